@@ -1,0 +1,66 @@
+// BSDF dispatch over the closed set of material models: one switch on the MaterialRef tag.
+#include "engine/bsdf/bsdf.h"
+
+#include "engine/bsdf/conductor.h"
+#include "engine/bsdf/dielectric.h"
+#include "engine/bsdf/diffuse.h"
+#include "engine/bsdf/mirror.h"
+#include "engine/bsdf/rough_plastic.h"
+
+namespace ptlab {
+namespace {
+
+ConductorParams ConductorRow(const ConductorTable& t, uint32_t i) {
+  return {t.alpha[i], {t.eta_r[i], t.eta_g[i], t.eta_b[i]}, {t.k_r[i], t.k_g[i], t.k_b[i]}};
+}
+
+RoughPlasticParams RoughPlasticRow(const RoughPlasticTable& t, uint32_t i) {
+  return MakeRoughPlasticParams(t.alpha[i], t.int_ior[i], t.ext_ior[i],
+                                {t.kd_r[i], t.kd_g[i], t.kd_b[i]});
+}
+
+}  // namespace
+
+Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
+  switch (ref.tag()) {
+    case MaterialTag::kDiffuse: return DiffuseEval(m.diffuse.Albedo(ref.index()), wo, wi);
+    case MaterialTag::kConductor:
+      return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
+    case MaterialTag::kRoughPlastic:
+      return RoughPlasticEval(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
+    default: return {};
+  }
+}
+
+float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
+  switch (ref.tag()) {
+    case MaterialTag::kDiffuse: return DiffusePdf(wo, wi);
+    case MaterialTag::kConductor:
+      return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
+    case MaterialTag::kRoughPlastic:
+      return RoughPlasticPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
+    default: return 0.0f;
+  }
+}
+
+bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
+                         const Vec2f& u2, BsdfSample* sample) {
+  switch (ref.tag()) {
+    case MaterialTag::kDiffuse:
+      return DiffuseSample(m.diffuse.Albedo(ref.index()), wo, u2, sample);
+    case MaterialTag::kMirror: return MirrorSample(wo, sample);
+    case MaterialTag::kDielectric: {
+      const uint32_t i = ref.index();
+      const float eta = m.dielectric.int_ior[i] / m.dielectric.ext_ior[i];
+      return DielectricSample(eta, wo, u1, sample, m.dielectric.Flags(i));
+    }
+    case MaterialTag::kConductor:
+      return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);
+    case MaterialTag::kRoughPlastic:
+      return RoughPlasticSample(RoughPlasticRow(m.rough_plastic, ref.index()), wo, u1, u2,
+                                sample);
+  }
+  return false;
+}
+
+}  // namespace ptlab

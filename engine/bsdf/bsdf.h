@@ -1,0 +1,33 @@
+// BSDF dispatch over the closed set of material models: one switch on the MaterialRef tag.
+#pragma once
+
+#include "engine/bsdf/bsdf_sample.h"
+#include "engine/scene/material_tables.h"
+
+namespace ptlab {
+
+/// True for models whose every lobe is a Dirac delta (mirror, smooth dielectric).
+constexpr bool IsDeltaMaterial(MaterialTag tag) {
+  return tag == MaterialTag::kMirror || tag == MaterialTag::kDielectric;
+}
+/// Models the scalar renderer can shade now: all of them.
+constexpr bool IsSupportedMaterial(MaterialTag tag) {
+  return static_cast<int>(tag) < kMaterialTagCount;
+}
+
+// The functions below are the scalar oracle of every model, addressed by MaterialRef (the
+// per-model free functions live in diffuse.h, mirror.h, dielectric.h, conductor.h and
+// rough_plastic.h). Directions are unit vectors in the local shading frame (z = shading
+// normal); wo points to the viewer, wi to the light. No NaN or Inf ever comes out: f ≥ 0,
+// pdf ≥ 0 and finite, and a sample's weight is finite.
+
+/// f(wo, wi) in the local shading frame (0 for delta models).
+Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi);
+/// Solid-angle pdf with which BsdfSampleDirection would pick wi (0 for delta models).
+float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi);
+/// Samples wi given wo; u1 picks a lobe, u2 the direction. False when no sample is possible.
+/// For non-delta models sample->weight = Eval·|cos θi|/Pdf and sample->pdf = Pdf(wo, wi).
+bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
+                         const Vec2f& u2, BsdfSample* sample);
+
+}  // namespace ptlab

@@ -1,0 +1,109 @@
+// Fresnel reflectance: exact unpolarised dielectric (with TIR), Schlick's approximation, conductors.
+#pragma once
+
+#include <cmath>
+
+#include "engine/core/vec.h"
+
+namespace ptlab {
+
+// The formulas below avoid the pattern `a * b - c` wherever the subtraction can cancel
+// catastrophically (e.g. η² − sin²θ near the critical angle): written as (η − s)(η + s), they
+// round the same with and without fused multiply-add, so the SIMD twins in simd/shade8-inl.h
+// (which the compiler may contract into FMAs) agree with this oracle to a few ulp.
+
+/// Relative IORs are clamped into [kMinRelativeIor, kMaxRelativeIor] (NaN → the minimum), so
+/// denormal or huge parameters cannot overflow η².
+inline constexpr float kMinRelativeIor = 1e-4f;
+inline constexpr float kMaxRelativeIor = 1e4f;
+
+inline float ClampRelativeIor(float eta) {
+  return !(eta > kMinRelativeIor) ? kMinRelativeIor : (eta < kMaxRelativeIor ? eta : kMaxRelativeIor);
+}
+/// |c| clamped to [0, 1]; NaN → 1.
+inline float ClampCosine(float c) {
+  const float a = std::fabs(c);
+  return a < 1.0f ? a : 1.0f;
+}
+
+/// Unpolarised Fresnel reflectance of a smooth dielectric interface for light arriving with
+/// cosine cos_i w.r.t. the normal on the exterior side (negative = from inside), relative IOR
+/// eta = η_int / η_ext (clamped, see above). Returns 1 under total internal reflection (including
+/// exactly at the critical angle) and sets *cos_t to the (non-negative) cosine of the refracted
+/// direction (0 under TIR).
+inline float FresnelDielectric(float cos_i, float eta, float* cos_t) {
+  eta = ClampRelativeIor(eta);
+  if (cos_i < 0) eta = 1.0f / eta;
+  const float c = ClampCosine(cos_i);
+  const float s = std::sqrt((1.0f - c) * (1.0f + c));  // sin θi
+  const float p = (eta - s) * (eta + s);               // (η cos θt)² = η² − sin² θi
+  if (!(p > 0)) {
+    *cos_t = 0.0f;
+    return 1.0f;
+  }
+  const float eta_ct = std::sqrt(p);                 // η cos θt
+  const float ct_over_eta = eta_ct / (eta * eta);    // cos θt / η
+  const float rs = (c - eta_ct) / (c + eta_ct);      // (cos i − η cos t) / (cos i + η cos t)
+  const float rp = (c - ct_over_eta) / (c + ct_over_eta);  // (η cos i − cos t) / (η cos i + cos t)
+  *cos_t = eta_ct / eta;
+  return 0.5f * (rs * rs + rp * rp);
+}
+
+/// Schlick's approximation R0 + (1 − R0)(1 − |cos_i|)^5 with R0 = ((η − 1)/(η + 1))², evaluated
+/// with the cosine on the incident side as UC Berkeley CS184's GlassBSDF does. It does not
+/// detect total internal reflection; callers test that separately (FresnelDielectric's cos_t).
+inline float FresnelSchlick(float cos_i, float eta) {
+  eta = ClampRelativeIor(eta);
+  const float r = (eta - 1.0f) / (eta + 1.0f);
+  const float r0 = r * r;
+  const float m = 1.0f - ClampCosine(cos_i);
+  const float m2 = m * m;
+  return r0 + (1.0f - r0) * (m2 * m2 * m);
+}
+
+/// Conductor IOR components are clamped into [0, kMaxConductorIor] (NaN → 0).
+inline constexpr float kMaxConductorIor = 1e4f;
+inline float ClampConductorIor(float v) {
+  return !(v > 0) ? 0.0f : (v < kMaxConductorIor ? v : kMaxConductorIor);
+}
+
+/// Unpolarised reflectance of a conductor with complex relative IOR η + iκ for light arriving
+/// at cosine |cos_i| (clamped to [0, 1]). With (a + ib)² = η² − κ² − sin²θ + 2iηκ (Born & Wolf,
+/// Principles of Optics §14.2), Rs = ((a − c)² + b²)/((a + c)² + b²) and
+/// Rp = Rs ((ac − s²)² + (bc)²)/((ac + s²)² + (bc)²); the sums of squares replace the usual
+/// a² + b² + c² − 2ac forms, which cancel. Result in [0, 1]; exactly 1 at grazing incidence.
+inline float FresnelConductor(float cos_i, float eta, float k) {
+  eta = ClampConductorIor(eta);
+  k = ClampConductorIor(k);
+  const float c = ClampCosine(cos_i);
+  const float s2 = (1.0f - c) * (1.0f + c);
+  const float t = (eta - k) * (eta + k) - s2;  // Re z = η² − κ² − sin²θ
+  const float ek = eta * k;                    // Im z / 2 = ab
+  const float abs_z = std::sqrt(t * t + 4.0f * (ek * ek));
+  // a² = (|z| + t)/2, b² = (|z| − t)/2: take the non-cancelling root and divide for the other.
+  float a, b;
+  if (t > 0) {
+    a = std::sqrt(0.5f * (abs_z + t));
+    b = ek / a;
+  } else {
+    b = std::sqrt(0.5f * (abs_z - t));
+    a = b > 0 ? ek / b : 0.0f;
+  }
+  const float b2 = b * b;
+  const float am = a - c, ap = a + c;
+  const float num_s = am * am + b2, den_s = ap * ap + b2;
+  const float rs = den_s > 0 ? num_s / den_s : 1.0f;
+  const float ac = a * c, bc = b * c;
+  const float pm = ac - s2, pp = ac + s2;
+  const float num_p = pm * pm + bc * bc, den_p = pp * pp + bc * bc;
+  const float rp = rs * (den_p > 0 ? num_p / den_p : 1.0f);
+  return 0.5f * (rs + rp);
+}
+
+/// FresnelConductor per RGB channel.
+inline Color3f FresnelConductor(float cos_i, const Color3f& eta, const Color3f& k) {
+  return {FresnelConductor(cos_i, eta.r, k.r), FresnelConductor(cos_i, eta.g, k.g),
+          FresnelConductor(cos_i, eta.b, k.b)};
+}
+
+}  // namespace ptlab

@@ -1,0 +1,101 @@
+// Batched shading over SoA arrays: the scalar oracle of simd/shade8.h, plus the partition of hits by material.
+#include "engine/bsdf/shade_batch.h"
+
+#include "engine/bsdf/beckmann.h"
+#include "engine/bsdf/bsdf.h"
+#include "engine/bsdf/fresnel.h"
+
+namespace ptlab {
+
+void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
+                size_t n, const ShadeInputs& in, const ShadeOutputs& out) {
+  const bool eval = in.wl.x != nullptr;
+  for (size_t i = 0; i < n; ++i) {
+    const MaterialRef ref = MaterialRef::Make(tag, material_index[i]);
+    const Vec3f wo{in.wo.x[i], in.wo.y[i], in.wo.z[i]};
+    if (eval) {
+      const Vec3f wl{in.wl.x[i], in.wl.y[i], in.wl.z[i]};
+      const Color3f f = BsdfEval(m, ref, wo, wl);
+      out.f.r[i] = f.r, out.f.g[i] = f.g, out.f.b[i] = f.b;
+      out.pdf_l[i] = BsdfPdf(m, ref, wo, wl);
+    }
+    BsdfSample s;
+    if (BsdfSampleDirection(m, ref, wo, in.u_lobe[i], {in.u_x[i], in.u_y[i]}, &s)) {
+      out.wi.x[i] = s.wi.x, out.wi.y[i] = s.wi.y, out.wi.z[i] = s.wi.z;
+      out.weight.r[i] = s.weight.r, out.weight.g[i] = s.weight.g, out.weight.b[i] = s.weight.b;
+      out.pdf[i] = s.pdf;
+      out.eta[i] = s.eta;
+    } else {
+      out.wi.x[i] = out.wi.y[i] = out.wi.z[i] = 0.0f;
+      out.weight.r[i] = out.weight.g[i] = out.weight.b[i] = 0.0f;
+      out.pdf[i] = 0.0f;
+      out.eta[i] = 1.0f;
+    }
+  }
+}
+
+void PartitionByMaterial(const MaterialRef* refs, size_t n, MaterialPartition* out) {
+  uint32_t count[kMaterialTagCount] = {};
+  for (size_t i = 0; i < n; ++i) {
+    const int t = static_cast<int>(refs[i].tag());
+    if (t < kMaterialTagCount) ++count[t];
+  }
+  out->begin[0] = 0;
+  for (int t = 0; t < kMaterialTagCount; ++t) out->begin[t + 1] = out->begin[t] + count[t];
+  const size_t total = out->begin[kMaterialTagCount];
+  out->slot.resize(total);
+  out->index.resize(total);
+  uint32_t next[kMaterialTagCount];
+  for (int t = 0; t < kMaterialTagCount; ++t) next[t] = out->begin[t];
+  for (size_t i = 0; i < n; ++i) {
+    const int t = static_cast<int>(refs[i].tag());
+    if (t >= kMaterialTagCount) continue;
+    const uint32_t k = next[t]++;
+    out->slot[k] = static_cast<uint32_t>(i);
+    out->index[k] = refs[i].index();
+  }
+}
+
+void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const ShadeInputs& in,
+               const ShadeOutputs& out, ShadeScratch* scratch) {
+  ShadeHitsWith(
+      [](const MaterialTables& mt, MaterialTag tag, const uint32_t* index, size_t count,
+         const ShadeInputs& bin, const ShadeOutputs& bout) {
+        ShadeBatch(mt, tag, index, count, bin, bout);
+      },
+      m, refs, n, in, out, scratch);
+}
+
+void BeckmannEvalPdfBatch(const float* alpha, DirectionArrays wo, DirectionArrays wi, size_t n,
+                          float* d, float* pdf) {
+  for (size_t i = 0; i < n; ++i) {
+    BeckmannEvalPdf(alpha[i], {wo.x[i], wo.y[i], wo.z[i]}, {wi.x[i], wi.y[i], wi.z[i]}, &d[i],
+                    &pdf[i]);
+  }
+}
+
+void SampleBeckmannReflectionBatch(const float* alpha, DirectionArrays wo, const float* u_x,
+                                   const float* u_y, size_t n, DirectionOutArrays wi,
+                                   float* pdf) {
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3f o{wo.x[i], wo.y[i], wo.z[i]};
+    Vec3f w = ReflectAbout(o, SampleBeckmannNormal(alpha[i], {u_x[i], u_y[i]}));
+    float p = 0.0f;
+    if (o.z > 0 && w.z > 0) p = BeckmannReflectionPdf(alpha[i], o, w);
+    if (!(p > 0)) w = {0, 0, 0}, p = 0.0f;
+    wi.x[i] = w.x, wi.y[i] = w.y, wi.z[i] = w.z;
+    pdf[i] = p;
+  }
+}
+
+void ConductorFresnelBatch(const float* cos_i, const float* eta, const float* k, size_t n,
+                           float* f) {
+  for (size_t i = 0; i < n; ++i) f[i] = FresnelConductor(cos_i[i], eta[i], k[i]);
+}
+
+void DielectricFresnelBatch(const float* cos_i, const float* eta, size_t n, float* f,
+                            float* cos_t) {
+  for (size_t i = 0; i < n; ++i) f[i] = FresnelDielectric(cos_i[i], eta[i], &cos_t[i]);
+}
+
+}  // namespace ptlab

@@ -1,0 +1,63 @@
+// Bounding volume hierarchy over the scene's triangles: flat node array and binned-SAH build.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/core/aligned.h"
+#include "engine/core/ray.h"
+#include "engine/core/vec.h"
+#include "engine/scene/geometry_tables.h"
+
+namespace ptlab {
+
+inline constexpr uint32_t kNoHit = 0xffffffffu;
+
+/// Closest hit of a ray: distance along the ray (in units of |d|), barycentrics of v1 and v2
+/// (the hit point is (1-b1-b2) v0 + b1 v1 + b2 v2), and the triangle's row in the scene's
+/// TriangleTable (kNoHit when nothing was hit).
+struct Hit {
+  float t = 0.0f;
+  float b1 = 0.0f, b2 = 0.0f;
+  uint32_t prim = kNoHit;
+};
+
+/// Deepest node of any Bvh (root depth 0) is below this, so traversal stacks of this many
+/// entries never overflow.
+inline constexpr int kBvhMaxDepth = 64;
+/// Largest number of triangles in one leaf.
+inline constexpr int kBvhMaxLeafSize = 8;
+
+/// One node of the flattened tree, 32 bytes, in depth-first order. An interior node's left
+/// child is the next node in the array and `offset` is its right child's index; a leaf covers
+/// the leaf-ordered triangles [offset, offset + count). Bounds are world space and contain
+/// every vertex below the node exactly (no padding).
+struct alignas(32) BvhNode {
+  Vec3f bounds_min;
+  uint32_t offset = 0;
+  Vec3f bounds_max;
+  uint16_t count = 0;  // triangles in a leaf; 0 marks an interior node
+  uint16_t axis = 0;   // interior: the axis (0 x, 1 y, 2 z) the children were split along
+
+  bool IsLeaf() const { return count != 0; }
+};
+static_assert(sizeof(BvhNode) == 32, "BvhNode must stay 32 bytes");
+
+/// A BVH that owns a leaf-ordered copy of the triangle positions (so traversal reads leaves
+/// contiguously) and the map from leaf order back to scene triangle rows.
+/// An empty `nodes` means nothing can be hit. Triangles with a non-finite coordinate or zero
+/// area (repeated or collinear vertices) are left out: they can never be hit.
+struct Bvh {
+  std::vector<BvhNode> nodes;       // nodes[0] is the root
+  TriangleTable leaf_triangles;     // positions in leaf order
+  AlignedVector<uint32_t> prim_id;  // leaf order -> scene TriangleTable row
+
+  bool empty() const { return nodes.empty(); }
+};
+
+/// Builds a BVH over `triangles` with binned SAH (32 centroid bins per axis), leaves of at
+/// most kBvhMaxLeafSize triangles and depth below kBvhMaxDepth. Single-threaded, O(n log n);
+/// deterministic for a given table.
+Bvh BuildBvh(const TriangleTable& triangles);
+
+}  // namespace ptlab

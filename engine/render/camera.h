@@ -1,0 +1,28 @@
+// Camera ray generation: Nori's perspective projection, with an optional thin lens.
+#pragma once
+
+#include "engine/core/ray.h"
+#include "engine/scene/scene.h"
+
+namespace ptlab {
+
+/// Precomputed per-render camera state.
+class Camera {
+ public:
+  explicit Camera(const CameraDesc& desc);
+
+  /// Primary ray through continuous film position (px, py) in pixels (row 0 at the top),
+  /// using lens sample u in [0,1)² when the aperture is open. d is unit length; t_min/t_max are
+  /// the near/far clip distances along the ray, as in Nori.
+  Ray GenerateRay(float px, float py, const Vec2f& lens_u) const;
+
+  int width() const { return desc_.width; }
+  int height() const { return desc_.height; }
+
+ private:
+  CameraDesc desc_;
+  float tan_half_fov_ = 0;
+  float aspect_ = 1;
+};
+
+}  // namespace ptlab

@@ -1,0 +1,61 @@
+// Film: weighted radiance sums per pixel, filled by splatting samples through the pixel filter.
+#include "engine/render/film.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ptlab {
+
+void FilmBlock::Reset(int x0, int y0, int width, int height) {
+  x0_ = x0, y0_ = y0, width_ = width, height_ = height;
+  sum_.assign(size_t(width) * size_t(height) * 4, 0.0f);
+}
+
+void FilmBlock::Clear() { std::fill(sum_.begin(), sum_.end(), 0.0f); }
+
+void FilmBlock::Splat(const PixelFilter& filter, float sx, float sy, const Color3f& radiance) {
+  const float r = filter.radius();
+  // Pixels whose centre lies within the radius: i + 0.5 in [sx - r, sx + r].
+  const int ix0 = std::max(x0_, int(std::ceil(sx - 0.5f - r)));
+  const int ix1 = std::min(x0_ + width_ - 1, int(std::floor(sx - 0.5f + r)));
+  const int iy0 = std::max(y0_, int(std::ceil(sy - 0.5f - r)));
+  const int iy1 = std::min(y0_ + height_ - 1, int(std::floor(sy - 0.5f + r)));
+  float wx[kMaxFilterTaps];
+  const int nx = std::min(kMaxFilterTaps, ix1 - ix0 + 1);
+  for (int i = 0; i < nx; ++i) wx[i] = filter.Eval(float(ix0 + i) + 0.5f - sx);
+  for (int j = iy0; j <= iy1; ++j) {
+    const float wy = filter.Eval(float(j) + 0.5f - sy);
+    if (wy == 0.0f) continue;
+    float* row = &sum_[(size_t(j - y0_) * size_t(width_) + size_t(ix0 - x0_)) * 4];
+    for (int i = 0; i < nx; ++i) {
+      const float w = wx[i] * wy;
+      row[4 * i + 0] += w * radiance.r;
+      row[4 * i + 1] += w * radiance.g;
+      row[4 * i + 2] += w * radiance.b;
+      row[4 * i + 3] += w;
+    }
+  }
+}
+
+void FilmBlock::Merge(const FilmBlock& other) {
+  const int xa = std::max(x0_, other.x0_), xb = std::min(x0_ + width_, other.x0_ + other.width_);
+  const int ya = std::max(y0_, other.y0_), yb = std::min(y0_ + height_, other.y0_ + other.height_);
+  for (int y = ya; y < yb; ++y) {
+    float* dst = &sum_[(size_t(y - y0_) * size_t(width_) + size_t(xa - x0_)) * 4];
+    const float* src =
+        &other.sum_[(size_t(y - other.y0_) * size_t(other.width_) + size_t(xa - other.x0_)) * 4];
+    for (int i = 0; i < (xb - xa) * 4; ++i) dst[i] += src[i];
+  }
+}
+
+Image FilmBlock::Resolve() const {
+  Image image(width_, height_);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      const float* p = &sum_[(size_t(y) * size_t(width_) + size_t(x)) * 4];
+      if (p[3] > 0) image.Set(x, y, Color3f{p[0], p[1], p[2]} / p[3]);
+    }
+  return image;
+}
+
+}  // namespace ptlab

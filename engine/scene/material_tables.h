@@ -1,0 +1,93 @@
+// Material components: one SoA table per BSDF model; MaterialRef = (tag, row).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/core/aligned.h"
+#include "engine/core/vec.h"
+#include "engine/scene/refs.h"
+
+namespace ptlab {
+
+/// Lambertian: albedo (Nori default 0.5).
+struct DiffuseTable {
+  AlignedVector<float> albedo_r, albedo_g, albedo_b;
+  size_t size() const { return albedo_r.size(); }
+  Color3f Albedo(size_t i) const { return {albedo_r[i], albedo_g[i], albedo_b[i]}; }
+};
+
+/// Perfect mirror: no parameters; only the number of rows matters.
+struct MirrorTable {
+  size_t count = 0;
+  size_t size() const { return count; }
+};
+
+/// Options of a dielectric row (bit flags; see engine/bsdf/dielectric.h).
+enum DielectricFlags : uint8_t {
+  kDielectricSchlick = 1u << 0,        // Schlick's Fresnel approximation (CS184 scenes)
+  kDielectricScaleRadiance = 1u << 1,  // scale radiance by (η_o/η_i)² on refraction
+};
+
+/// Smooth dielectric interface (Nori defaults intIOR 1.5046, extIOR 1.000277). `flags` stays
+/// empty until some row has a non-zero DielectricFlags value (then it holds one per row).
+struct DielectricTable {
+  AlignedVector<float> int_ior, ext_ior;
+  AlignedVector<uint8_t> flags;
+  size_t size() const { return int_ior.size(); }
+  uint8_t Flags(size_t i) const { return i < flags.size() ? flags[i] : uint8_t{0}; }
+};
+
+/// Rough conductor, Beckmann (Mitsuba `roughconductor`): per-RGB eta and k.
+struct ConductorTable {
+  AlignedVector<float> alpha, eta_r, eta_g, eta_b, k_r, k_g, k_b;
+  size_t size() const { return alpha.size(); }
+};
+
+/// Nori `microfacet`: Beckmann rough plastic, kd + ks specular lobe, ks = 1 - max(kd).
+struct RoughPlasticTable {
+  AlignedVector<float> alpha, int_ior, ext_ior, kd_r, kd_g, kd_b;
+  size_t size() const { return alpha.size(); }
+};
+
+struct MaterialTables {
+  DiffuseTable diffuse;
+  MirrorTable mirror;
+  DielectricTable dielectric;
+  ConductorTable conductor;
+  RoughPlasticTable rough_plastic;
+
+  MaterialRef AddDiffuse(const Color3f& albedo) {
+    diffuse.albedo_r.push_back(albedo.r), diffuse.albedo_g.push_back(albedo.g),
+        diffuse.albedo_b.push_back(albedo.b);
+    return MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(diffuse.size() - 1));
+  }
+  MaterialRef AddMirror() {
+    return MaterialRef::Make(MaterialTag::kMirror, uint32_t(mirror.count++));
+  }
+  MaterialRef AddDielectric(float int_ior, float ext_ior, uint8_t flags = 0) {
+    auto& t = dielectric;
+    if (flags != 0 || !t.flags.empty()) {
+      t.flags.resize(t.int_ior.size(), uint8_t{0});
+      t.flags.push_back(flags);
+    }
+    t.int_ior.push_back(int_ior), t.ext_ior.push_back(ext_ior);
+    return MaterialRef::Make(MaterialTag::kDielectric, uint32_t(t.size() - 1));
+  }
+  /// Beckmann rough conductor; eta/k per RGB channel (see engine/bsdf/conductor_presets.h).
+  MaterialRef AddConductor(float alpha, const Color3f& eta, const Color3f& k) {
+    auto& t = conductor;
+    t.alpha.push_back(alpha);
+    t.eta_r.push_back(eta.r), t.eta_g.push_back(eta.g), t.eta_b.push_back(eta.b);
+    t.k_r.push_back(k.r), t.k_g.push_back(k.g), t.k_b.push_back(k.b);
+    return MaterialRef::Make(MaterialTag::kConductor, uint32_t(t.size() - 1));
+  }
+  MaterialRef AddRoughPlastic(float alpha, float int_ior, float ext_ior, const Color3f& kd) {
+    auto& t = rough_plastic;
+    t.alpha.push_back(alpha), t.int_ior.push_back(int_ior), t.ext_ior.push_back(ext_ior);
+    t.kd_r.push_back(kd.r), t.kd_g.push_back(kd.g), t.kd_b.push_back(kd.b);
+    return MaterialRef::Make(MaterialTag::kRoughPlastic, uint32_t(t.size() - 1));
+  }
+};
+
+}  // namespace ptlab

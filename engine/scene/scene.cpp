@@ -1,0 +1,31 @@
+// Scene-wide systems that loaders run once all shapes are in.
+#include "engine/scene/scene.h"
+
+namespace ptlab {
+
+void FinalizeAreaLights(Scene* scene) {
+  AreaLightTable& lights = scene->area_lights;
+  lights.area.assign(lights.size(), 0.0f);
+  lights.cdf_offset.assign(lights.size(), 0);
+  lights.triangle_cdf.clear();
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const uint32_t mesh = lights.mesh[i];
+    const uint32_t first = scene->meshes.first_triangle[mesh];
+    const uint32_t count = scene->meshes.triangle_count[mesh];
+    lights.cdf_offset[i] = uint32_t(lights.triangle_cdf.size());
+    double total = 0;
+    for (uint32_t t = first; t < first + count; ++t) {
+      const TriangleTable& tri = scene->triangles;
+      total += 0.5 * double(Length(Cross(tri.V1(t) - tri.V0(t), tri.V2(t) - tri.V0(t))));
+      lights.triangle_cdf.push_back(float(total));
+    }
+    for (uint32_t t = 0; t < count; ++t) {
+      float& c = lights.triangle_cdf[lights.cdf_offset[i] + t];
+      c = total > 0 ? float(c / total) : float(t + 1) / float(count);
+    }
+    if (count > 0) lights.triangle_cdf[lights.cdf_offset[i] + count - 1] = 1.0f;
+    lights.area[i] = float(total);
+  }
+}
+
+}  // namespace ptlab

@@ -1,0 +1,942 @@
+// Nori XML scene parser: strict property lists, transforms, and one builder per object type.
+#include "engine/scene/xml_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <pugixml.hpp>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "engine/scene/mesh_builder.h"
+#include "engine/scene/obj_loader.h"
+#include "engine/scene/shapes.h"
+#include "engine/scene/text_parsing.h"
+
+namespace ptlab {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Locations
+
+// Maps pugixml byte offsets to "file:line:col" (1-based; col counts bytes), and carries the
+// load options to the parsing functions.
+class Locator {
+ public:
+  Locator(const std::string& text, std::string file, const LoadOptions& options)
+      : file_(std::move(file)), options_(options) {
+    line_starts_.push_back(0);
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') line_starts_.push_back(i + 1);
+  }
+
+  std::string AtOffset(ptrdiff_t offset) const {
+    if (offset < 0) return file_;
+    const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), size_t(offset));
+    const size_t line = size_t(it - line_starts_.begin());
+    const size_t col = size_t(offset) - line_starts_[line - 1] + 1;
+    return file_ + ":" + std::to_string(line) + ":" + std::to_string(col);
+  }
+  // pugixml gives the offset of an element's name; report its '<' instead.
+  std::string At(const pugi::xml_node& node) const {
+    const ptrdiff_t offset = node.offset_debug();
+    return AtOffset(node.type() == pugi::node_element && offset > 0 ? offset - 1 : offset);
+  }
+  size_t Line(const pugi::xml_node& node) const {
+    const ptrdiff_t offset = node.offset_debug();
+    if (offset < 0) return 0;
+    return size_t(std::upper_bound(line_starts_.begin(), line_starts_.end(), size_t(offset)) -
+                  line_starts_.begin());
+  }
+  Status Error(const pugi::xml_node& node, const std::string& message) const {
+    return Status::Error(At(node) + ": " + message);
+  }
+  const std::string& file() const { return file_; }
+  const LoadOptions& options() const { return options_; }
+
+ private:
+  std::string file_;
+  LoadOptions options_;
+  std::vector<size_t> line_starts_;
+};
+
+// "<mesh type="obj">" for messages.
+std::string Describe(const pugi::xml_node& node) {
+  std::string s = std::string("<") + node.name();
+  if (const pugi::xml_attribute type = node.attribute("type")) {
+    s += " type=\"" + std::string(type.value()) + "\"";
+  }
+  return s + ">";
+}
+
+std::string JoinNames(const std::vector<const char*>& names) {
+  std::string s;
+  for (const char* n : names) s += (s.empty() ? "" : ", ") + std::string(n);
+  return s.empty() ? "none" : s;
+}
+
+// Checks that `node` has exactly the `required` attributes, each once.
+Status CheckAttributes(const Locator& at, const pugi::xml_node& node,
+                       const std::vector<const char*>& required) {
+  std::vector<std::string_view> seen;
+  for (const pugi::xml_attribute a : node.attributes()) {
+    const std::string_view name = a.name();
+    const auto is = [&](const char* n) { return name == n; };
+    if (std::none_of(required.begin(), required.end(), is))
+      return at.Error(node, "unknown attribute '" + std::string(name) + "' on <" + node.name() +
+                                ">; expected " +
+                                (required.empty() ? "no attributes" : JoinNames(required)));
+    if (std::find(seen.begin(), seen.end(), name) != seen.end())
+      return at.Error(node,
+                      "duplicate attribute '" + std::string(name) + "' on <" + node.name() + ">");
+    seen.push_back(name);
+  }
+  for (const char* r : required)
+    if (!node.attribute(r))
+      return at.Error(node,
+                      std::string("<") + node.name() + "> is missing the attribute '" + r + "'");
+  return Status::Ok();
+}
+
+// Leaf elements (properties, transform steps) may hold neither elements nor text.
+Status CheckLeaf(const Locator& at, const pugi::xml_node& node) {
+  for (const pugi::xml_node child : node.children()) {
+    if (child.type() == pugi::node_element)
+      return at.Error(child, "unexpected <" + std::string(child.name()) + "> inside <" +
+                                 node.name() + ">; expected no child elements");
+    if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata)
+      return at.Error(node, "unexpected text inside <" + std::string(node.name()) +
+                                ">; the value goes in the 'value' attribute");
+  }
+  return Status::Ok();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Values
+
+Status ParseFloatValue(const Locator& at, const pugi::xml_node& node, const char* attribute,
+                       float* value) {
+  const std::string_view text = node.attribute(attribute).value();
+  std::vector<std::string_view> items;
+  if (!SplitList(text, &items) || items.size() != 1 || !ParseFloat(items[0], value))
+    return at.Error(node, "malformed number '" + std::string(text) + "' in attribute '" +
+                              attribute + "'; expected one finite decimal number");
+  return Status::Ok();
+}
+
+Status ParseFloatList(const Locator& at, const pugi::xml_node& node, const char* attribute,
+                      size_t count, float* values) {
+  const std::string_view text = node.attribute(attribute).value();
+  std::vector<std::string_view> items;
+  const std::string expected = "expected " + std::to_string(count) +
+                               " finite decimal numbers separated by commas and/or whitespace";
+  if (!SplitList(text, &items))
+    return at.Error(node, "malformed list '" + std::string(text) + "' in attribute '" + attribute +
+                              "' (empty item); " + expected);
+  if (items.size() != count)
+    return at.Error(node, "wrong number of components in '" + std::string(text) + "' (attribute '" +
+                              attribute + "'): found " + std::to_string(items.size()) + ", " +
+                              expected);
+  for (size_t i = 0; i < count; ++i)
+    if (!ParseFloat(items[i], &values[i]))
+      return at.Error(node, "malformed number '" + std::string(items[i]) + "' in attribute '" +
+                                attribute + "'; " + expected);
+  return Status::Ok();
+}
+
+Status ParseVec3(const Locator& at, const pugi::xml_node& node, const char* attribute, Vec3f* v) {
+  float xyz[3];
+  PTLAB_RETURN_IF_ERROR(ParseFloatList(at, node, attribute, 3, xyz));
+  *v = {xyz[0], xyz[1], xyz[2]};
+  return Status::Ok();
+}
+
+// The <transform> element: steps applied in order, each multiplied from the left (Nori).
+Status ParseTransform(const Locator& at, const pugi::xml_node& node, Transform* result) {
+  Transform t;
+  for (const pugi::xml_node step : node.children()) {
+    if (step.type() == pugi::node_pcdata || step.type() == pugi::node_cdata)
+      return at.Error(node,
+                      "unexpected text inside <transform>; expected translate, scale, "
+                      "rotate, matrix or lookat elements");
+    if (step.type() != pugi::node_element) continue;
+    const std::string_view tag = step.name();
+    PTLAB_RETURN_IF_ERROR(CheckLeaf(at, step));
+    Transform s;
+    if (tag == "translate") {
+      PTLAB_RETURN_IF_ERROR(CheckAttributes(at, step, {"value"}));
+      Vec3f v;
+      PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "value", &v));
+      s = Transform::Translate(v);
+    } else if (tag == "scale") {
+      PTLAB_RETURN_IF_ERROR(CheckAttributes(at, step, {"value"}));
+      Vec3f v;
+      PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "value", &v));
+      if (v.x == 0 || v.y == 0 || v.z == 0)
+        return at.Error(step, "singular <scale>; expected non-zero scale factors");
+      Matrix4 m, inv;
+      m.m[0][0] = v.x, m.m[1][1] = v.y, m.m[2][2] = v.z;
+      inv.m[0][0] = 1 / v.x, inv.m[1][1] = 1 / v.y, inv.m[2][2] = 1 / v.z;
+      s = Transform(m, inv);
+    } else if (tag == "rotate") {
+      PTLAB_RETURN_IF_ERROR(CheckAttributes(at, step, {"axis", "angle"}));
+      Vec3f axis;
+      float angle = 0;
+      PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "axis", &axis));
+      PTLAB_RETURN_IF_ERROR(ParseFloatValue(at, step, "angle", &angle));
+      if (!(Length(axis) > 0))
+        return at.Error(step, "zero <rotate> axis; expected a non-zero axis");
+      s = Transform::Rotate(axis, angle);
+    } else if (tag == "matrix") {
+      PTLAB_RETURN_IF_ERROR(CheckAttributes(at, step, {"value"}));
+      float values[16];
+      PTLAB_RETURN_IF_ERROR(ParseFloatList(at, step, "value", 16, values));
+      Matrix4 m, inv;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) m.m[i][j] = values[4 * i + j];
+      if (!Inverse(m, &inv))
+        return at.Error(step, "singular <matrix>; expected an invertible 4x4 matrix");
+      s = Transform(m, inv);
+    } else if (tag == "lookat") {
+      PTLAB_RETURN_IF_ERROR(CheckAttributes(at, step, {"origin", "target", "up"}));
+      Vec3f origin, target, up;
+      PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "origin", &origin));
+      PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "target", &target));
+      PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "up", &up));
+      if (!(Length(target - origin) > 0))
+        return at.Error(step, "degenerate <lookat>: expected target != origin");
+      if (!(Length(up) > 0)) return at.Error(step, "degenerate <lookat>: expected a non-zero 'up'");
+      const Vec3f dir = Normalize(target - origin);
+      const Vec3f left_raw = Cross(Normalize(up), dir);
+      if (!(Length(left_raw) > 1e-6f))
+        return at.Error(step, "degenerate <lookat>: expected 'up' not parallel to target - origin");
+      Vec3f left = Normalize(left_raw), new_up = Normalize(Cross(dir, left));
+      if (at.options().lookat == LookatConvention::kNori2015) {
+        left = Cross(dir, Normalize(up));
+        new_up = Cross(left, dir);
+      }
+      Matrix4 m, inv;
+      const Vec3f columns[4] = {left, new_up, dir, origin};
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r) m.m[r][c] = columns[c][r];
+      if (!Inverse(m, &inv)) return at.Error(step, "degenerate <lookat>");
+      s = Transform(m, inv);
+    } else {
+      return at.Error(step, "unknown transform step <" + std::string(tag) +
+                                ">; expected translate, scale, rotate, matrix or lookat");
+    }
+    t = s * t;
+    // Products of extreme steps can overflow; keep every matrix and inverse entry finite and
+    // within 1e30 so that transformed positions and normals stay finite.
+    for (const Matrix4* m : {&t.matrix(), &t.inverse_matrix()})
+      for (const auto& row : m->m)
+        for (const float x : row)
+          if (!(std::fabs(x) <= 1e30f))
+            return at.Error(step, "<" + std::string(tag) +
+                                      "> makes the transform (or its inverse) overflow; expected "
+                                      "matrix entries of magnitude <= 1e30");
+  }
+  *result = t;
+  return Status::Ok();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Property lists
+
+enum class PropertyType : uint8_t {
+  kBoolean,
+  kInteger,
+  kFloat,
+  kString,
+  kPoint,
+  kVector,
+  kColor,
+  kTransform
+};
+
+constexpr const char* kPropertyTags[] = {"boolean", "integer", "float", "string",
+                                         "point",   "vector",  "color", "transform"};
+
+bool PropertyTypeOf(std::string_view tag, PropertyType* type) {
+  for (int i = 0; i < 8; ++i)
+    if (tag == kPropertyTags[i]) {
+      *type = PropertyType(i);
+      return true;
+    }
+  return false;
+}
+
+struct Property {
+  std::string name;
+  PropertyType type;
+  pugi::xml_node node;
+  bool boolean = false;
+  int integer = 0;
+  float number = 0;
+  std::string text;
+  Vec3f vec;
+  Transform transform;
+};
+
+// The properties of one object. A builder first declares every name its type accepts
+// (Expect), then reads them with typed getters that fall back to the given default.
+class PropertyList {
+ public:
+  PropertyList(const Locator* at, pugi::xml_node owner) : at_(at), owner_(owner) {}
+
+  Status Add(const pugi::xml_node& node) {
+    PropertyType type;
+    PTLAB_CHECK(PropertyTypeOf(node.name(), &type));
+    Property p;
+    p.type = type;
+    p.node = node;
+    if (type == PropertyType::kTransform) {
+      PTLAB_RETURN_IF_ERROR(CheckAttributes(*at_, node, {"name"}));
+      PTLAB_RETURN_IF_ERROR(ParseTransform(*at_, node, &p.transform));
+    } else {
+      PTLAB_RETURN_IF_ERROR(CheckAttributes(*at_, node, {"name", "value"}));
+      PTLAB_RETURN_IF_ERROR(CheckLeaf(*at_, node));
+      const std::string value = node.attribute("value").value();
+      switch (type) {
+        case PropertyType::kBoolean: {
+          std::string lower = value;
+          for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+          if (lower != "true" && lower != "false")
+            return at_->Error(node, "malformed boolean '" + value + "'; expected true or false");
+          p.boolean = lower == "true";
+          break;
+        }
+        case PropertyType::kInteger:
+          if (!ParseInt(value, &p.integer))
+            return at_->Error(
+                node, "malformed integer '" + value + "'; expected a decimal integer such as 42");
+          break;
+        case PropertyType::kFloat:
+          PTLAB_RETURN_IF_ERROR(ParseFloatValue(*at_, node, "value", &p.number));
+          break;
+        case PropertyType::kString:
+          p.text = value;
+          break;
+        default:
+          PTLAB_RETURN_IF_ERROR(ParseVec3(*at_, node, "value", &p.vec));
+          break;
+      }
+    }
+    p.name = node.attribute("name").value();
+    for (const Property& q : props_)
+      if (q.name == p.name)
+        return at_->Error(node, "duplicate property '" + p.name + "' (first given at line " +
+                                    std::to_string(at_->Line(q.node)) +
+                                    "); expected each property at most once");
+    props_.push_back(std::move(p));
+    return Status::Ok();
+  }
+
+  // Fails on the first property whose name is not in `names`.
+  Status Expect(std::vector<const char*> names) {
+    expected_ = std::move(names);
+    for (const Property& p : props_) {
+      if (std::none_of(expected_.begin(), expected_.end(),
+                       [&](const char* n) { return p.name == n; }))
+        return at_->Error(p.node, "unknown property '" + p.name + "' for " + Describe(owner_) +
+                                      "; expected " +
+                                      (expected_.empty() ? std::string("no properties")
+                                                         : "one of: " + JoinNames(expected_)));
+    }
+    return Status::Ok();
+  }
+
+  Status Boolean(const char* name, bool* v) {
+    const Property* p = nullptr;
+    PTLAB_RETURN_IF_ERROR(Find(name, PropertyType::kBoolean, &p));
+    if (p) *v = p->boolean;
+    return Status::Ok();
+  }
+  Status Integer(const char* name, int* v) {
+    const Property* p = nullptr;
+    PTLAB_RETURN_IF_ERROR(Find(name, PropertyType::kInteger, &p));
+    if (p) *v = p->integer;
+    return Status::Ok();
+  }
+  Status Float(const char* name, float* v) {
+    const Property* p = nullptr;
+    PTLAB_RETURN_IF_ERROR(Find(name, PropertyType::kFloat, &p));
+    if (p) *v = p->number;
+    return Status::Ok();
+  }
+  Status String(const char* name, std::string* v) {
+    const Property* p = nullptr;
+    PTLAB_RETURN_IF_ERROR(Find(name, PropertyType::kString, &p));
+    if (p) *v = p->text;
+    return Status::Ok();
+  }
+  Status Point(const char* name, Vec3f* v) {
+    const Property* p = nullptr;
+    PTLAB_RETURN_IF_ERROR(Find(name, PropertyType::kPoint, &p));
+    if (p) *v = p->vec;
+    return Status::Ok();
+  }
+  Status Color(const char* name, Color3f* v) {
+    const Property* p = nullptr;
+    PTLAB_RETURN_IF_ERROR(Find(name, PropertyType::kColor, &p));
+    if (p) *v = {p->vec.x, p->vec.y, p->vec.z};
+    return Status::Ok();
+  }
+  Status TransformProperty(const char* name, Transform* v) {
+    const Property* p = nullptr;
+    PTLAB_RETURN_IF_ERROR(Find(name, PropertyType::kTransform, &p));
+    if (p) *v = p->transform;
+    return Status::Ok();
+  }
+
+  bool Has(const char* name) const { return Get(name) != nullptr; }
+
+  // An error located at property `name` if given, else at the owning element.
+  Status Error(const char* name, const std::string& message) const {
+    const Property* p = Get(name);
+    return at_->Error(p ? p->node : owner_, message);
+  }
+  Status Require(const char* name, const char* tag) const {
+    if (Has(name)) return Status::Ok();
+    return at_->Error(owner_, Describe(owner_) + " is missing the required property <" + tag +
+                                  " name=\"" + name + "\">");
+  }
+
+ private:
+  const Property* Get(const char* name) const {
+    for (const Property& p : props_)
+      if (p.name == name) return &p;
+    return nullptr;
+  }
+  Status Find(const char* name, PropertyType type, const Property** found) const {
+    // A getter for a name the builder did not Expect is a bug in this file.
+    PTLAB_CHECK(std::any_of(expected_.begin(), expected_.end(),
+                            [&](const char* n) { return std::string_view(n) == name; }));
+    *found = Get(name);
+    if (*found && (*found)->type != type)
+      return at_->Error((*found)->node, "property '" + std::string(name) + "' of " +
+                                            Describe(owner_) + " has the wrong type <" +
+                                            kPropertyTags[int((*found)->type)] + ">; expected <" +
+                                            kPropertyTags[int(type)] + ">");
+    return Status::Ok();
+  }
+
+  const Locator* at_;
+  pugi::xml_node owner_;
+  std::vector<Property> props_;
+  std::vector<const char*> expected_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Objects
+
+constexpr const char* kObjectTags[] = {"scene",  "mesh",    "shape",      "bsdf",    "emitter",
+                                       "camera", "sampler", "integrator", "rfilter", "test"};
+
+bool IsObjectTag(std::string_view tag) {
+  return std::any_of(std::begin(kObjectTags), std::end(kObjectTags),
+                     [&](const char* t) { return tag == t; });
+}
+
+std::string FormatNumber(float v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%g", double(v));
+  return buffer;
+}
+
+std::string FormatColor(const Color3f& c) {
+  return FormatNumber(c.r) + ", " + FormatNumber(c.g) + ", " + FormatNumber(c.b);
+}
+
+class SceneParser {
+ public:
+  SceneParser(const Locator* at, std::string base_dir) : at_(*at), base_dir_(std::move(base_dir)) {}
+
+  Status ParseRoot(const pugi::xml_document& doc) {
+    pugi::xml_node root;
+    for (const pugi::xml_node node : doc.children()) {
+      if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata)
+        return at_.Error(node, "unexpected text outside the root element");
+      if (node.type() != pugi::node_element) continue;
+      if (root)
+        return at_.Error(node, "a second root element <" + std::string(node.name()) +
+                                   ">; expected exactly one <scene>");
+      root = node;
+    }
+    if (!root)
+      return Status::Error(at_.AtOffset(0) + ": no root element; expected a <scene> element");
+    const std::string_view tag = root.name();
+    if (tag == "test")
+      return at_.Error(root,
+                       "<test> elements (Nori t-tests and chi-square tests) are not "
+                       "supported yet; expected a <scene> root");
+    if (tag != "scene")
+      return at_.Error(root, "root element <" + std::string(tag) + ">; expected <scene>");
+    return ParseScene(root);
+  }
+
+  Scene TakeScene() { return std::move(scene_); }
+
+ private:
+  // Splits `node`'s children into properties (parsed into `props`) and child objects, which
+  // must be among `allowed`.
+  Status Collect(const pugi::xml_node& node, const std::vector<const char*>& allowed,
+                 PropertyList* props, std::vector<pugi::xml_node>* children) {
+    for (const pugi::xml_node child : node.children()) {
+      if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata)
+        return at_.Error(node,
+                         "unexpected text inside " + Describe(node) + "; expected only elements");
+      if (child.type() != pugi::node_element) continue;
+      const std::string_view tag = child.name();
+      PropertyType type;
+      if (PropertyTypeOf(tag, &type)) {
+        PTLAB_RETURN_IF_ERROR(props->Add(child));
+      } else if (std::any_of(allowed.begin(), allowed.end(),
+                             [&](const char* a) { return tag == a; })) {
+        children->push_back(child);
+      } else {
+        const std::string expected =
+            "expected a property (boolean, integer, float, string, point, vector, color, "
+            "transform)" +
+            (allowed.empty() ? std::string() : " or one of the elements " + JoinNames(allowed));
+        if (tag == "test")
+          return at_.Error(child,
+                           "<test> elements (Nori t-tests and chi-square tests) are not "
+                           "supported yet");
+        if (IsObjectTag(tag))
+          return at_.Error(child, "<" + std::string(tag) + "> is not allowed inside " +
+                                      Describe(node) + "; " + expected);
+        return at_.Error(child, "unknown tag <" + std::string(tag) + ">; " + expected);
+      }
+    }
+    return Status::Ok();
+  }
+
+  // Objects that take only properties.
+  Status CollectLeafObject(const pugi::xml_node& node, PropertyList* props) {
+    PTLAB_RETURN_IF_ERROR(CheckAttributes(at_, node, {"type"}));
+    std::vector<pugi::xml_node> none;
+    return Collect(node, {}, props, &none);
+  }
+
+  // Enforces "at most one" for `slot`, remembering where the first one was.
+  Status TakeSingleton(const pugi::xml_node& node, pugi::xml_node* slot) {
+    if (*slot)
+      return at_.Error(node, "a second <" + std::string(node.name()) +
+                                 ">; expected at most one (the first is at line " +
+                                 std::to_string(at_.Line(*slot)) + ")");
+    *slot = node;
+    return Status::Ok();
+  }
+
+  Status ParseScene(const pugi::xml_node& node) {
+    PTLAB_RETURN_IF_ERROR(CheckAttributes(at_, node, {}));
+    PropertyList props(&at_, node);
+    std::vector<pugi::xml_node> children;
+    PTLAB_RETURN_IF_ERROR(
+        Collect(node, {"mesh", "shape", "camera", "sampler", "integrator", "emitter", "rfilter"},
+                &props, &children));
+    PTLAB_RETURN_IF_ERROR(props.Expect({}));
+    pugi::xml_node sampler;
+    for (const pugi::xml_node child : children) {
+      const std::string_view tag = child.name();
+      if (tag == "mesh" || tag == "shape") {
+        PTLAB_RETURN_IF_ERROR(ParseShape(child));
+      } else if (tag == "camera") {
+        PTLAB_RETURN_IF_ERROR(TakeSingleton(child, &camera_));
+        PTLAB_RETURN_IF_ERROR(ParseCamera(child));
+      } else if (tag == "sampler") {
+        PTLAB_RETURN_IF_ERROR(TakeSingleton(child, &sampler));
+        PTLAB_RETURN_IF_ERROR(ParseSampler(child));
+      } else if (tag == "integrator") {
+        PTLAB_RETURN_IF_ERROR(TakeSingleton(child, &integrator_));
+        PTLAB_RETURN_IF_ERROR(ParseIntegrator(child));
+      } else if (tag == "rfilter") {
+        PTLAB_RETURN_IF_ERROR(ParseFilter(child));
+      } else {
+        PTLAB_RETURN_IF_ERROR(ParseSceneEmitter(child));
+      }
+    }
+    if (!camera_) return at_.Error(node, "no <camera> in the scene; expected one");
+    if (!integrator_) return at_.Error(node, "no <integrator> in the scene; expected one");
+    return Status::Ok();
+  }
+
+  std::string Resolve(const std::string& filename) const {
+    const std::filesystem::path p(filename);
+    if (p.is_absolute() || base_dir_.empty()) return p.lexically_normal().string();
+    return (std::filesystem::path(base_dir_) / p).lexically_normal().string();
+  }
+
+  Status ParseShape(const pugi::xml_node& node) {
+    PTLAB_RETURN_IF_ERROR(CheckAttributes(at_, node, {"type"}));
+    const std::string type = node.attribute("type").value();
+    PropertyList props(&at_, node);
+    std::vector<pugi::xml_node> children;
+    PTLAB_RETURN_IF_ERROR(Collect(node, {"bsdf", "emitter"}, &props, &children));
+
+    MeshData generated;
+    const MeshData* mesh = &generated;
+    std::string name = type;
+    if (type == "obj") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"filename", "toWorld"}));
+      PTLAB_RETURN_IF_ERROR(props.Require("filename", "string"));
+    } else if (type == "sphere") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"center", "radius", "toWorld"}));
+      Vec3f center;
+      float radius = 1.0f;
+      PTLAB_RETURN_IF_ERROR(props.Point("center", &center));
+      PTLAB_RETURN_IF_ERROR(props.Float("radius", &radius));
+      if (!(radius > 0)) return props.Error("radius", "sphere radius must be > 0");
+      generated = MakeSphere(center, radius);
+    } else if (type == "rectangle" || type == "cube" || type == "disk") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"toWorld"}));
+      generated =
+          type == "rectangle" ? MakeRectangle() : (type == "cube" ? MakeCube() : MakeDisk());
+    } else {
+      return at_.Error(node, "unknown " + std::string(node.name()) + " type '" + type +
+                                 "'; expected obj, sphere, rectangle, cube or disk");
+    }
+    Transform to_world;
+    PTLAB_RETURN_IF_ERROR(props.TransformProperty("toWorld", &to_world));
+
+    pugi::xml_node bsdf_node, emitter_node;
+    for (const pugi::xml_node child : children)
+      PTLAB_RETURN_IF_ERROR(TakeSingleton(
+          child, std::string_view(child.name()) == "bsdf" ? &bsdf_node : &emitter_node));
+    // Nori's default material for a mesh without a BSDF.
+    MaterialRef material;
+    if (bsdf_node) {
+      StatusOr<MaterialRef> parsed = ParseBsdf(bsdf_node);
+      if (!parsed.ok()) return parsed.status();
+      material = *parsed;
+    }
+    Color3f radiance;
+    if (emitter_node) PTLAB_RETURN_IF_ERROR(ParseAreaEmitter(emitter_node, &radiance));
+
+    if (type == "obj") {
+      std::string filename;
+      PTLAB_RETURN_IF_ERROR(props.String("filename", &filename));
+      const std::string path = Resolve(filename);
+      auto it = obj_cache_.find(path);
+      if (it == obj_cache_.end()) {
+        StatusOr<MeshData> loaded = LoadObj(path);
+        if (!loaded.ok())
+          return at_.Error(node, "cannot load the OBJ file of " + Describe(node) + ": " +
+                                     loaded.status().message());
+        it = obj_cache_.emplace(path, std::move(*loaded)).first;
+      }
+      mesh = &it->second;
+      name = filename;
+    }
+    if (!bsdf_node) material = scene_.materials.AddDiffuse({0.5f, 0.5f, 0.5f});
+    const uint32_t first = uint32_t(scene_.triangles.size());
+    const uint32_t row = AddMesh(&scene_, *mesh, to_world, material, name);
+    const TriangleTable& tri = scene_.triangles;
+    for (uint32_t t = first; t < tri.size(); ++t)
+      for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)})
+        if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)))
+          return at_.Error(node, "triangle " + std::to_string(t - first) + " of " + Describe(node) +
+                                     " has a non-finite world-space vertex; "
+                                     "expected coordinates and toWorld that stay within float "
+                                     "range");
+    if (emitter_node) {
+      AreaLightTable& lights = scene_.area_lights;
+      const EmitterRef ref = EmitterRef::Make(EmitterTag::kArea, uint32_t(lights.size()));
+      lights.radiance.push_back(radiance);
+      lights.mesh.push_back(row);
+      scene_.meshes.emitter[row] = ref;
+      scene_.emitters.push_back(ref);
+    }
+    return Status::Ok();
+  }
+
+  // Reflectances must lie in [0, 1]; radiance, eta and k only need to be >= 0.
+  enum class Range { kUnit, kNonNegative };
+  Status CheckColor(PropertyList& props, const char* name, const Color3f& c, Range range) {
+    const float max = range == Range::kUnit ? 1.0f : INFINITY;
+    if (c.r >= 0 && c.g >= 0 && c.b >= 0 && c.r <= max && c.g <= max && c.b <= max)
+      return Status::Ok();
+    return props.Error(name, std::string("'") + name + "' = (" + FormatColor(c) +
+                                 ") is out of range; expected components " +
+                                 (range == Range::kUnit ? "in [0, 1]" : ">= 0"));
+  }
+  Status CheckPositive(PropertyList& props, const char* name, float v) {
+    if (v > 0) return Status::Ok();
+    return props.Error(name, std::string("'") + name + "' = " + FormatNumber(v) +
+                                 " is out of range; expected a value > 0");
+  }
+
+  StatusOr<MaterialRef> ParseBsdf(const pugi::xml_node& node) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    const std::string type = node.attribute("type").value();
+    MaterialTables& materials = scene_.materials;
+    float int_ior = 1.5046f, ext_ior = 1.000277f, alpha = 0.1f;
+    if (type == "diffuse") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"albedo"}));
+      Color3f albedo{0.5f, 0.5f, 0.5f};
+      PTLAB_RETURN_IF_ERROR(props.Color("albedo", &albedo));
+      PTLAB_RETURN_IF_ERROR(CheckColor(props, "albedo", albedo, Range::kUnit));
+      return materials.AddDiffuse(albedo);
+    }
+    if (type == "mirror") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({}));
+      return materials.AddMirror();
+    }
+    if (type == "dielectric") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"intIOR", "extIOR"}));
+      PTLAB_RETURN_IF_ERROR(props.Float("intIOR", &int_ior));
+      PTLAB_RETURN_IF_ERROR(props.Float("extIOR", &ext_ior));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "intIOR", int_ior));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "extIOR", ext_ior));
+      return materials.AddDielectric(int_ior, ext_ior);
+    }
+    if (type == "microfacet") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"alpha", "intIOR", "extIOR", "kd"}));
+      Color3f kd{0.5f, 0.5f, 0.5f};
+      PTLAB_RETURN_IF_ERROR(props.Float("alpha", &alpha));
+      PTLAB_RETURN_IF_ERROR(props.Float("intIOR", &int_ior));
+      PTLAB_RETURN_IF_ERROR(props.Float("extIOR", &ext_ior));
+      PTLAB_RETURN_IF_ERROR(props.Color("kd", &kd));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "alpha", alpha));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "intIOR", int_ior));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "extIOR", ext_ior));
+      PTLAB_RETURN_IF_ERROR(CheckColor(props, "kd", kd, Range::kUnit));
+      return materials.AddRoughPlastic(alpha, int_ior, ext_ior, kd);
+    }
+    if (type == "roughconductor") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"alpha", "eta", "k", "material"}));
+      if (props.Has("material"))
+        return props.Error("material",
+                           "roughconductor material presets are not supported "
+                           "yet; expected explicit <color name=\"eta\"> and "
+                           "<color name=\"k\">");
+      PTLAB_RETURN_IF_ERROR(props.Require("eta", "color"));
+      PTLAB_RETURN_IF_ERROR(props.Require("k", "color"));
+      Color3f eta, k;
+      PTLAB_RETURN_IF_ERROR(props.Float("alpha", &alpha));
+      PTLAB_RETURN_IF_ERROR(props.Color("eta", &eta));
+      PTLAB_RETURN_IF_ERROR(props.Color("k", &k));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "alpha", alpha));
+      PTLAB_RETURN_IF_ERROR(CheckColor(props, "eta", eta, Range::kNonNegative));
+      PTLAB_RETURN_IF_ERROR(CheckColor(props, "k", k, Range::kNonNegative));
+      ConductorTable& t = materials.conductor;
+      t.alpha.push_back(alpha);
+      t.eta_r.push_back(eta.r), t.eta_g.push_back(eta.g), t.eta_b.push_back(eta.b);
+      t.k_r.push_back(k.r), t.k_g.push_back(k.g), t.k_b.push_back(k.b);
+      return MaterialRef::Make(MaterialTag::kConductor, uint32_t(t.size() - 1));
+    }
+    return at_.Error(node, "unknown bsdf type '" + type +
+                               "'; expected diffuse, mirror, dielectric, microfacet or "
+                               "roughconductor");
+  }
+
+  static bool IsUnsupportedEmitter(const std::string& type) {
+    return type == "envmap" || type == "distantdisk" || type == "point";
+  }
+
+  Status ParseAreaEmitter(const pugi::xml_node& node, Color3f* radiance) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    const std::string type = node.attribute("type").value();
+    if (IsUnsupportedEmitter(type))
+      return at_.Error(node, "emitter type '" + type + "' is not supported yet");
+    if (type != "area")
+      return at_.Error(node, "unknown emitter type '" + type + "' inside a shape; expected area");
+    PTLAB_RETURN_IF_ERROR(props.Expect({"radiance"}));
+    PTLAB_RETURN_IF_ERROR(props.Require("radiance", "color"));
+    PTLAB_RETURN_IF_ERROR(props.Color("radiance", radiance));
+    return CheckColor(props, "radiance", *radiance, Range::kNonNegative);
+  }
+
+  Status ParseSceneEmitter(const pugi::xml_node& node) {
+    PTLAB_RETURN_IF_ERROR(CheckAttributes(at_, node, {"type"}));
+    const std::string type = node.attribute("type").value();
+    if (IsUnsupportedEmitter(type))
+      return at_.Error(node, "emitter type '" + type + "' is not supported yet");
+    if (type == "area")
+      return at_.Error(node, "an area emitter must be inside a <mesh> or <shape>");
+    return at_.Error(node, "unknown emitter type '" + type +
+                               "'; expected area (inside a shape); envmap, distantdisk and "
+                               "point are not supported yet");
+  }
+
+  Status ParseCamera(const pugi::xml_node& node) {
+    PTLAB_RETURN_IF_ERROR(CheckAttributes(at_, node, {"type"}));
+    PropertyList props(&at_, node);
+    std::vector<pugi::xml_node> children;
+    PTLAB_RETURN_IF_ERROR(Collect(node, {"rfilter"}, &props, &children));
+    const std::string type = node.attribute("type").value();
+    CameraDesc camera;
+    if (type == "perspective") {
+      PTLAB_RETURN_IF_ERROR(
+          props.Expect({"fov", "width", "height", "nearClip", "farClip", "toWorld"}));
+    } else if (type == "thinlens") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"fov", "width", "height", "nearClip", "farClip",
+                                          "toWorld", "apertureRadius", "focusDistance"}));
+      PTLAB_RETURN_IF_ERROR(props.Require("apertureRadius", "float"));
+      PTLAB_RETURN_IF_ERROR(props.Require("focusDistance", "float"));
+      PTLAB_RETURN_IF_ERROR(props.Float("apertureRadius", &camera.aperture_radius));
+      PTLAB_RETURN_IF_ERROR(props.Float("focusDistance", &camera.focus_distance));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "apertureRadius", camera.aperture_radius));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "focusDistance", camera.focus_distance));
+    } else {
+      return at_.Error(node,
+                       "unknown camera type '" + type + "'; expected perspective or thinlens");
+    }
+    PTLAB_RETURN_IF_ERROR(props.Float("fov", &camera.fov_deg));
+    PTLAB_RETURN_IF_ERROR(props.Integer("width", &camera.width));
+    PTLAB_RETURN_IF_ERROR(props.Integer("height", &camera.height));
+    PTLAB_RETURN_IF_ERROR(props.Float("nearClip", &camera.near_clip));
+    PTLAB_RETURN_IF_ERROR(props.Float("farClip", &camera.far_clip));
+    PTLAB_RETURN_IF_ERROR(props.TransformProperty("toWorld", &camera.camera_to_world));
+    if (!(camera.fov_deg > 0 && camera.fov_deg < 180))
+      return props.Error("fov", "fov = " + FormatNumber(camera.fov_deg) +
+                                    " is out of range; expected degrees in (0, 180)");
+    if (camera.width < 1) return props.Error("width", "width must be >= 1 pixel");
+    if (camera.height < 1) return props.Error("height", "height must be >= 1 pixel");
+    PTLAB_RETURN_IF_ERROR(CheckPositive(props, "nearClip", camera.near_clip));
+    if (!(camera.far_clip > camera.near_clip))
+      return props.Error("farClip", "farClip must be > nearClip");
+    scene_.camera = camera;
+    for (const pugi::xml_node child : children) PTLAB_RETURN_IF_ERROR(ParseFilter(child));
+    return Status::Ok();
+  }
+
+  Status ParseFilter(const pugi::xml_node& node) {
+    PTLAB_RETURN_IF_ERROR(TakeSingleton(node, &filter_));
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    const std::string type = node.attribute("type").value();
+    FilterDesc filter;
+    if (type == "gaussian") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"radius", "stddev"}));
+      filter.type = FilterDesc::Type::kGaussian;
+      filter.radius = 2.0f;
+      filter.stddev = 0.5f;
+      PTLAB_RETURN_IF_ERROR(props.Float("stddev", &filter.stddev));
+      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "stddev", filter.stddev));
+    } else if (type == "box" || type == "tent") {
+      PTLAB_RETURN_IF_ERROR(props.Expect({"radius"}));
+      filter.type = type == "box" ? FilterDesc::Type::kBox : FilterDesc::Type::kTent;
+      filter.radius = type == "box" ? 0.5f : 1.0f;  // Nori's fixed radii
+    } else {
+      return at_.Error(node, "unknown rfilter type '" + type + "'; expected gaussian, box or tent");
+    }
+    PTLAB_RETURN_IF_ERROR(props.Float("radius", &filter.radius));
+    PTLAB_RETURN_IF_ERROR(CheckPositive(props, "radius", filter.radius));
+    scene_.filter = filter;
+    return Status::Ok();
+  }
+
+  Status ParseSampler(const pugi::xml_node& node) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    const std::string type = node.attribute("type").value();
+    if (type != "independent")
+      return at_.Error(node, "unknown sampler type '" + type + "'; expected independent");
+    PTLAB_RETURN_IF_ERROR(props.Expect({"sampleCount"}));
+    int count = 1;
+    PTLAB_RETURN_IF_ERROR(props.Integer("sampleCount", &count));
+    if (count < 1) return props.Error("sampleCount", "sampleCount must be >= 1");
+    scene_.sampler.sample_count = uint32_t(count);
+    return Status::Ok();
+  }
+
+  Status ParseIntegrator(const pugi::xml_node& node) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    const std::string type = node.attribute("type").value();
+    using Type = IntegratorDesc::Type;
+    struct Kind {
+      const char* name;
+      Type type;
+      bool depth, light_samples, heuristic;
+    };
+    static constexpr Kind kKinds[] = {
+        {"normals", Type::kNormals, false, false, false},
+        {"direct_ems", Type::kDirectEms, false, true, false},
+        {"direct_mats", Type::kDirectMats, false, false, false},
+        {"direct_mis", Type::kDirectMis, false, true, true},
+        {"whitted", Type::kWhitted, true, false, false},
+        {"path_mats", Type::kPathMats, true, false, false},
+        {"path_ems", Type::kPathEms, true, true, false},
+        {"path_mis", Type::kPathMis, true, true, true},
+    };
+    const Kind* kind = nullptr;
+    for (const Kind& k : kKinds)
+      if (type == k.name) kind = &k;
+    if (!kind)
+      return at_.Error(node, "unknown integrator type '" + type +
+                                 "'; expected normals, direct_ems, direct_mats, direct_mis, "
+                                 "whitted, path_mats, path_ems or path_mis");
+    std::vector<const char*> names;
+    if (kind->depth) names.push_back("maxDepth");
+    if (kind->light_samples) names.push_back("lightSamples");
+    if (kind->heuristic) names.push_back("heuristic");
+    PTLAB_RETURN_IF_ERROR(props.Expect(std::move(names)));
+    IntegratorDesc desc;
+    desc.type = kind->type;
+    if (kind->depth) {
+      PTLAB_RETURN_IF_ERROR(props.Integer("maxDepth", &desc.max_depth));
+      if (desc.max_depth < -1)
+        return props.Error("maxDepth", "maxDepth must be >= 0, or -1 for unbounded");
+    }
+    if (kind->light_samples) {
+      PTLAB_RETURN_IF_ERROR(props.Integer("lightSamples", &desc.light_samples));
+      if (desc.light_samples < 1) return props.Error("lightSamples", "lightSamples must be >= 1");
+    }
+    if (kind->heuristic) {
+      std::string heuristic = "balance";
+      PTLAB_RETURN_IF_ERROR(props.String("heuristic", &heuristic));
+      if (heuristic != "balance" && heuristic != "power")
+        return props.Error("heuristic",
+                           "unknown heuristic '" + heuristic + "'; expected balance or power");
+      desc.power_heuristic = heuristic == "power";
+    }
+    scene_.integrator = desc;
+    return Status::Ok();
+  }
+
+  const Locator& at_;
+  std::string base_dir_;
+  Scene scene_;
+  pugi::xml_node camera_, integrator_, filter_;
+  std::map<std::string, MeshData> obj_cache_;  // one OBJ used by several meshes loads once
+};
+
+}  // namespace
+
+StatusOr<Scene> LoadSceneFromString(const std::string& xml, const std::string& base_dir,
+                                    const std::string& display_name,
+                                    const LoadOptions& options) {
+  const Locator at(xml, display_name, options);
+  pugi::xml_document doc;
+  const pugi::xml_parse_result result =
+      doc.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (result.status == pugi::status_no_document_element)
+    return Status::Error(at.AtOffset(0) + ": no root element; expected a <scene> element");
+  if (!result)
+    return Status::Error(at.AtOffset(result.offset) +
+                         ": XML syntax error: " + result.description());
+  SceneParser parser(&at, base_dir);
+  PTLAB_RETURN_IF_ERROR(parser.ParseRoot(doc));
+  Scene scene = parser.TakeScene();
+  scene.source_path = display_name;
+  FinalizeAreaLights(&scene);
+  return scene;
+}
+
+StatusOr<Scene> LoadScene(const std::string& path, const LoadOptions& options) {
+  std::string xml;
+  PTLAB_RETURN_IF_ERROR(ReadTextFile(path, "scene file", &xml));
+  return LoadSceneFromString(xml, std::filesystem::path(path).parent_path().string(), path,
+                             options);
+}
+
+}  // namespace ptlab

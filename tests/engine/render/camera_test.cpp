@@ -1,0 +1,75 @@
+// Camera: Nori's projection conventions and the thin lens.
+#include "engine/render/camera.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace ptlab {
+namespace {
+
+CameraDesc MakeDesc(float fov, int w, int h) {
+  CameraDesc d;
+  d.fov_deg = fov;
+  d.width = w;
+  d.height = h;
+  return d;
+}
+
+TEST(Camera, CentreRayLooksAlongZ) {
+  const Camera cam(MakeDesc(40, 64, 32));
+  const Ray r = cam.GenerateRay(32, 16, {0.5f, 0.5f});
+  EXPECT_NEAR(r.d.x, 0, 1e-6);
+  EXPECT_NEAR(r.d.y, 0, 1e-6);
+  EXPECT_NEAR(r.d.z, 1, 1e-6);
+  EXPECT_FLOAT_EQ(r.t_min, 1e-4f);
+}
+
+TEST(Camera, FovIsHorizontalAndImageLeftIsCameraPlusX) {
+  const float fov = 50;
+  const Camera cam(MakeDesc(fov, 200, 100));
+  const Ray left = cam.GenerateRay(0, 50, {0.5f, 0.5f});
+  const Ray right = cam.GenerateRay(200, 50, {0.5f, 0.5f});
+  const Ray top = cam.GenerateRay(100, 0, {0.5f, 0.5f});
+  EXPECT_GT(left.d.x, 0);   // Nori: +x in camera space is image left
+  EXPECT_LT(right.d.x, 0);
+  EXPECT_GT(top.d.y, 0);    // row 0 is the top
+  const float half = std::atan2(left.d.x, left.d.z) * 180.0f / kPi;
+  EXPECT_NEAR(half, fov / 2, 1e-4);
+  // Vertical half-angle follows the aspect ratio: tan(v) = tan(h) / aspect.
+  EXPECT_NEAR(top.d.y / top.d.z, std::tan(Radians(fov / 2)) / 2.0f, 1e-6);
+}
+
+TEST(Camera, ThinLensWithZeroRadiusIsThePinhole) {
+  CameraDesc d = MakeDesc(30, 64, 64);
+  d.camera_to_world = Transform::Translate({1, 2, 3}) * Transform::Rotate({0, 1, 0}, 30);
+  CameraDesc lens = d;
+  lens.aperture_radius = 0.0f;
+  lens.focus_distance = 5.0f;
+  const Camera a(d), b(lens);
+  for (float u : {0.0f, 0.3f, 0.999f}) {
+    const Ray ra = a.GenerateRay(10.5f, 40.25f, {u, 1 - u});
+    const Ray rb = b.GenerateRay(10.5f, 40.25f, {u, 1 - u});
+    EXPECT_EQ(ra.o, rb.o);
+    EXPECT_EQ(ra.d, rb.d);
+  }
+}
+
+TEST(Camera, ThinLensRaysMeetOnThePlaneOfFocus) {
+  CameraDesc d = MakeDesc(30, 64, 64);
+  d.aperture_radius = 0.2f;
+  d.focus_distance = 4.0f;
+  const Camera cam(d);
+  const Ray centre = cam.GenerateRay(20.5f, 10.5f, {0.5f, 0.5f});
+  const Vec3f focus = centre.o + centre.d * (4.0f / centre.d.z);
+  for (float u : {0.05f, 0.4f, 0.95f}) {
+    const Ray r = cam.GenerateRay(20.5f, 10.5f, {u, 0.7f});
+    EXPECT_LE(std::hypot(r.o.x, r.o.y), 0.2f + 1e-6f);
+    const Vec3f p = r.o + r.d * ((4.0f - r.o.z) / r.d.z);
+    EXPECT_NEAR(p.x, focus.x, 1e-4);
+    EXPECT_NEAR(p.y, focus.y, 1e-4);
+  }
+}
+
+}  // namespace
+}  // namespace ptlab

@@ -1,0 +1,265 @@
+// Chi-square test driver: sampling histogram, per-cell pdf integration, checks and verdict.
+#include "tools/chi2/chi2.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string_view>
+
+#include "engine/core/check.h"
+#include "engine/core/rng.h"
+
+namespace ptlab {
+namespace {
+
+// Samples are drawn and mapped in chunks so a batch (SIMD) sampler sees plain arrays.
+constexpr int kChunk = 256;
+
+// Cells whose integral came out exactly 0 but that hold samples are integrated again with this
+// many forced subdivisions (65 points per axis), so a sliver of support clipping a cell
+// corner between the default 9 points per axis is not mistaken for zero mass.
+constexpr int kRecheckMinDepth = 6;
+
+uint64_t StreamFromName(std::string_view name) {
+  uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a, 64 bit
+  for (char c : name) h = (h ^ uint8_t(c)) * 0x100000001b3ULL;
+  return MixBits(h);
+}
+
+std::string FormatPoint(const Chi2Domain& domain, const Chi2Point& p) {
+  char buf[96];
+  if (domain.spherical()) {
+    std::snprintf(buf, sizeof(buf), "(%.7g, %.7g, %.7g)", p.x, p.y, p.z);
+  } else {
+    std::snprintf(buf, sizeof(buf), "(%.7g, %.7g)", p.x, p.y);
+  }
+  return buf;
+}
+
+std::string Format(const char* fmt, double a, double b = 0, double c = 0) {
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), fmt, a, b, c);
+  return buf;
+}
+
+// Draws every sample and bins it. Fills observed, samples, absorbed and the failure reasons of
+// samples that are not finite or not in the domain.
+void TabulateSamples(const Chi2Subject& subject, const Chi2Options& options, Chi2Result* r) {
+  Pcg32 rng(options.seed, StreamFromName(subject.name));
+  const Chi2Domain& d = subject.domain;
+  const double sx = r->xres / (d.x1 - d.x0), sy = r->yres / (d.y1 - d.y0);
+  float u1[kChunk];
+  Vec2f u2[kChunk];
+  Chi2Point p[kChunk];
+  uint8_t ok[kChunk];
+  int64_t non_finite = 0, outside = 0;
+  Chi2Point first_non_finite, first_outside;
+  for (int64_t done = 0; done < options.samples; done += kChunk) {
+    const int n = int(std::min<int64_t>(kChunk, options.samples - done));
+    for (int i = 0; i < n; ++i) {
+      u1[i] = subject.uniform_dims >= 3 ? rng.NextFloat() : 0.0f;
+      u2[i].x = rng.NextFloat();
+      u2[i].y = rng.NextFloat();
+    }
+    if (subject.sample_batch) {
+      subject.sample_batch(u1, u2, n, p, ok);
+    } else {
+      for (int i = 0; i < n; ++i) ok[i] = subject.sample(u1[i], u2[i], &p[i]) ? 1 : 0;
+    }
+    for (int i = 0; i < n; ++i) {
+      if (!ok[i]) {
+        ++r->absorbed;
+        continue;
+      }
+      if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z)) {
+        if (non_finite++ == 0) first_non_finite = p[i];
+        continue;
+      }
+      if (!Chi2Contains(d, p[i])) {
+        if (outside++ == 0) first_outside = p[i];
+        continue;
+      }
+      const Chi2Param q = Chi2ToParam(d, p[i]);
+      const int ix = std::clamp(int((q.x - d.x0) * sx), 0, r->xres - 1);
+      const int iy = std::clamp(int((q.y - d.y0) * sy), 0, r->yres - 1);
+      r->observed[size_t(iy) * size_t(r->xres) + size_t(ix)] += 1.0;
+    }
+  }
+  r->samples = options.samples;
+  if (non_finite > 0) {
+    r->failures.push_back(Format("%.0f non-finite samples", double(non_finite)) + " (first " +
+                          FormatPoint(d, first_non_finite) + ")");
+  }
+  if (outside > 0) {
+    r->failures.push_back(Format("%.0f samples outside the domain", double(outside)) + " (first " +
+                          FormatPoint(d, first_outside) + ", domain " + Chi2DomainName(d) + ")");
+  }
+  if (r->absorbed > 0 && !subject.defective()) {
+    r->failures.push_back(
+        Format("the sampler absorbed %.0f samples but the subject is not "
+               "defective (albedo 1)",
+               double(r->absorbed)));
+  }
+}
+
+// Integrates the pdf over every cell (probability per cell, written to r->expected before
+// scaling) and records non-finite or negative pdf values.
+class CellIntegrator {
+ public:
+  CellIntegrator(const Chi2Subject& subject, const Chi2Options& options, Chi2Result* r)
+      : subject_(subject), options_(options), r_(r) {}
+
+  double Integrate(int ix, int iy, const Simpson2DOptions& simpson) {
+    const Chi2Domain& d = subject_.domain;
+    const double cx0 = d.x0 + (d.x1 - d.x0) * ix / r_->xres;
+    const double cx1 = d.x0 + (d.x1 - d.x0) * (ix + 1) / r_->xres;
+    const double cy0 = d.y0 + (d.y1 - d.y0) * iy / r_->yres;
+    const double cy1 = d.y0 + (d.y1 - d.y0) * (iy + 1) / r_->yres;
+    SimpsonBudget budget;
+    budget.limit = options_.max_evals_per_cell;
+    auto inner = [&](double x) {
+      double lo, hi;
+      Chi2SupportY(d, x, cy0, cy1, &lo, &hi);
+      return AdaptiveSimpson([&](double y) { return Pdf(x, y); }, lo, hi, simpson.inner, &budget);
+    };
+    const double v = AdaptiveSimpson(inner, cx0, cx1, simpson.outer, &budget);
+    if (budget.exhausted) ++exhausted_cells_;
+    return v;
+  }
+
+  void Report() {
+    r_->pdf_evals = evals_;
+    if (bad_values_ > 0) {
+      r_->failures.push_back(
+          Format("the pdf is non-finite or negative at %.0f of %.0f evaluated points",
+                 double(bad_values_), double(evals_)) +
+          " (first: " + Format("%g", first_bad_value_) + " at " +
+          FormatPoint(subject_.domain, first_bad_point_) + ")");
+    }
+    if (exhausted_cells_ > 0) {
+      r_->notes.push_back(
+          Format("integration budget (%.0f pdf evaluations) exhausted in %.0f "
+                 "cells before convergence",
+                 double(options_.max_evals_per_cell), double(exhausted_cells_)));
+    }
+  }
+
+ private:
+  double Pdf(double x, double y) {
+    ++evals_;
+    const Chi2Point p = Chi2FromParam(subject_.domain, {x, y});
+    const double v = subject_.pdf(p);
+    if (!std::isfinite(v) || v < 0) {
+      if (bad_values_++ == 0) first_bad_point_ = p, first_bad_value_ = v;
+      return 0.0;
+    }
+    return v;
+  }
+
+  const Chi2Subject& subject_;
+  const Chi2Options& options_;
+  Chi2Result* r_;
+  int64_t evals_ = 0, bad_values_ = 0, exhausted_cells_ = 0;
+  Chi2Point first_bad_point_;
+  double first_bad_value_ = 0;
+};
+
+}  // namespace
+
+Chi2Result RunChi2Test(const Chi2Subject& subject, const Chi2Options& options) {
+  PTLAB_CHECK(options.samples >= 1 && options.res >= 1 && options.test_count >= 1);
+  PTLAB_CHECK(options.alpha > 0 && options.alpha < 1);
+  PTLAB_CHECK(subject.pdf && (subject.sample || subject.sample_batch));
+  Chi2Result r;
+  r.name = subject.name;
+  r.domain = subject.domain;
+  r.xres = Chi2GridWidth(subject.domain, options.res);
+  r.yres = options.res;
+  const size_t cells = size_t(r.xres) * size_t(r.yres);
+  r.observed.assign(cells, 0.0);
+  r.expected.assign(cells, 0.0);
+  r.alpha = SidakAlpha(options.alpha, options.test_count);
+
+  TabulateSamples(subject, options, &r);
+
+  CellIntegrator integrator(subject, options, &r);
+  Simpson2DOptions recheck = options.simpson;
+  recheck.outer.min_depth = std::max(recheck.outer.min_depth, kRecheckMinDepth);
+  recheck.inner.min_depth = std::max(recheck.inner.min_depth, kRecheckMinDepth);
+  double total = 0;
+  for (int iy = 0; iy < r.yres; ++iy) {
+    for (int ix = 0; ix < r.xres; ++ix) {
+      const size_t c = size_t(iy) * size_t(r.xres) + size_t(ix);
+      double mass = integrator.Integrate(ix, iy, options.simpson);
+      if (mass == 0 && r.observed[c] > 0) mass = integrator.Integrate(ix, iy, recheck);
+      total += mass;
+      r.expected[c] = mass * double(options.samples);
+    }
+  }
+  integrator.Report();
+  r.pdf_integral = total;
+
+  if (std::isnan(subject.albedo)) {
+    if (!(total <= 1.0 + options.integral_tol)) {
+      r.failures.push_back(
+          Format("the pdf integrates to %.6f over the domain, more than 1 "
+                 "(tolerance %g)",
+                 total, options.integral_tol));
+    }
+  } else if (!(std::fabs(total - subject.albedo) <= options.integral_tol)) {
+    r.failures.push_back(
+        Format("the pdf integrates to %.6f over the domain, expected %g "
+               "(tolerance %g)",
+               total, subject.albedo, options.integral_tol));
+  }
+
+  // Pearson over the cells, plus the absorbed samples as one more outcome of a defective
+  // distribution (their expected count is the mass the pdf leaves out).
+  std::vector<double> observed = r.observed, expected = r.expected;
+  if (subject.defective()) {
+    observed.push_back(double(r.absorbed));
+    expected.push_back(std::max(0.0, 1.0 - total) * double(options.samples));
+  }
+  const PearsonResult pearson = PearsonChiSquare(observed, expected, options.min_expected);
+  r.chi2 = pearson.chi2;
+  r.dof = pearson.dof;
+  r.pooled_cells = pearson.pooled_cells;
+  if (pearson.pooled_cells > 0) {
+    r.notes.push_back(Format("pooled %.0f cells with expected count < %g into one",
+                             double(pearson.pooled_cells), options.min_expected));
+  }
+  if (pearson.zero_expected_cells > 0) {
+    r.failures.push_back(Format("%.0f samples fell in %.0f cells of zero expected mass",
+                                pearson.zero_expected_observed,
+                                double(pearson.zero_expected_cells)));
+  }
+  if (r.dof < 1) {
+    r.failures.push_back(
+        Format("too few cells with expected mass for a test (dof %.0f)", double(r.dof)));
+  } else {
+    r.p_value = ChiSquarePValue(r.chi2, r.dof);
+    if (!(r.p_value >= r.alpha)) {
+      r.failures.push_back(
+          Format("chi-square rejects the pdf: p = %.4g < alpha' = %.4g", r.p_value, r.alpha));
+    }
+  }
+  r.pass = r.failures.empty();
+  return r;
+}
+
+std::string FormatChi2Result(const Chi2Subject& subject, const Chi2Result& result) {
+  const bool broken = subject.expect == Chi2Expect::kFail;
+  const char* verdict =
+      broken ? (result.pass ? "XPASS" : "XFAIL") : (result.pass ? "PASS" : "FAIL");
+  char buf[512];
+  std::snprintf(buf, sizeof(buf),
+                "%-5s  %-40s chi2=%-10.1f dof=%-5d p=%-10.4g alpha'=%-9.3g mass=%.6f", verdict,
+                result.name.c_str(), result.chi2, result.dof, result.p_value, result.alpha,
+                result.pdf_integral);
+  std::string s = buf;
+  if (!subject.params.empty()) s += "  [" + subject.params + "]";
+  for (const std::string& f : result.failures) s += "\n       - " + f;
+  return s;
+}
+
+}  // namespace ptlab

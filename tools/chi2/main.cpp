@@ -1,0 +1,128 @@
+// chi2 CLI: lists and runs the chi-square lab's subjects; exit code = verdict of the run.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "tools/chi2/chi2.h"
+#include "tools/chi2/report.h"
+#include "tools/chi2/subjects.h"
+
+namespace {
+
+constexpr int kExitPass = 0;
+constexpr int kExitFail = 1;
+constexpr int kExitUsage = 3;
+
+constexpr const char* kFooter =
+    R"(Each test histograms the subject's samples on a grid (res x res cells; 2res x res in
+(phi, cos theta) on the sphere), integrates its pdf over every cell (adaptive Simpson), pools
+cells expecting < 5 samples and applies Pearson's chi-square test. It also fails on samples that
+are non-finite, outside the domain or in cells of zero expected mass, on non-finite or negative
+pdf values, and on a pdf integral off 1 (or the subject's albedo) by more than 1e-3.
+Significance: alpha for the whole run, Sidak-corrected per test: alpha' = 1 - (1 - alpha)^(1/n).
+Verdicts: PASS / FAIL for real subjects; XFAIL (rejected as expected) / XPASS for "broken/..."
+subjects, which exist to prove the test can fail.
+Exit codes: 0 every subject as expected (real ones pass, broken ones fail), 1 otherwise,
+  3 bad usage, unknown subject or unwritable image directory.)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"chi2: chi-square goodness-of-fit tests of sampling routines against their pdfs"};
+  app.footer(kFooter);
+  std::vector<std::string> names;
+  bool list = false, all = false, verbose = false;
+  std::string images_dir;
+  ptlab::Chi2Options options;
+  app.add_option("NAME", names, "subjects to run (see --list)");
+  app.add_flag("--list", list, "list the subjects and exit");
+  app.add_flag("--all", all, "run every subject");
+  app.add_flag("-v,--verbose", verbose, "also print notes (pooling, integration cost)");
+  app.add_option("--samples", options.samples, "samples per test")
+      ->check(CLI::Range(int64_t{1}, int64_t{1} << 40))
+      ->capture_default_str();
+  app.add_option("--res", options.res, "grid cells along y (cos theta); x gets 2x on the sphere")
+      ->check(CLI::Range(2, 4096))
+      ->capture_default_str();
+  app.add_option("--seed", options.seed, "PCG32 seed (the stream comes from the subject name)")
+      ->capture_default_str();
+  app.add_option("--alpha", options.alpha, "significance level of the whole run")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str();
+  app.add_option("--images", images_dir,
+                 "write <DIR>/<name>.png (observed | expected | difference) and .csv per test");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitPass : kExitUsage;
+  }
+
+  const ptlab::Chi2Registry registry = ptlab::DefaultChi2Registry();
+  if (list) {
+    for (const ptlab::Chi2Subject& s : registry.subjects()) {
+      std::printf("%-40s %-22s %s%s%s\n", s.name.c_str(), ptlab::Chi2DomainName(s.domain).c_str(),
+                  s.expect == ptlab::Chi2Expect::kPass ? "must pass" : "must fail",
+                  s.params.empty() ? "" : "  ", s.params.c_str());
+    }
+    return kExitPass;
+  }
+  if (all == !names.empty()) {
+    std::fprintf(stderr, "chi2: give either --all or subject names (--list shows them)\n%s",
+                 app.help().c_str());
+    return kExitUsage;
+  }
+  std::vector<const ptlab::Chi2Subject*> selected;
+  if (all) {
+    for (const ptlab::Chi2Subject& s : registry.subjects()) selected.push_back(&s);
+  } else {
+    for (const std::string& name : names) {
+      const ptlab::Chi2Subject* s = registry.Find(name);
+      if (s == nullptr) {
+        std::fprintf(stderr, "chi2: unknown subject \"%s\" (--list shows them)\n", name.c_str());
+        return kExitUsage;
+      }
+      selected.push_back(s);
+    }
+  }
+
+  if (!images_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(images_dir, ec);
+    if (ec) {
+      std::fprintf(stderr, "chi2: %s: cannot create the image directory: %s\n", images_dir.c_str(),
+                   ec.message().c_str());
+      return kExitUsage;
+    }
+  }
+  options.test_count = int(selected.size());
+  std::printf(
+      "chi2: %d tests, %lld samples, res %d, seed %llu, alpha %g (alpha' = %.3g per test)\n",
+      options.test_count, static_cast<long long>(options.samples), options.res,
+      static_cast<unsigned long long>(options.seed), options.alpha,
+      ptlab::SidakAlpha(options.alpha, options.test_count));
+  int as_expected = 0, unexpected = 0;
+  for (const ptlab::Chi2Subject* s : selected) {
+    const ptlab::Chi2Result result = ptlab::RunChi2Test(*s, options);
+    std::printf("%s\n", ptlab::FormatChi2Result(*s, result).c_str());
+    if (verbose) {
+      for (const std::string& note : result.notes) std::printf("       . %s\n", note.c_str());
+      std::printf("       . %lld pdf evaluations\n", static_cast<long long>(result.pdf_evals));
+    }
+    std::fflush(stdout);
+    (ptlab::Chi2AsExpected(*s, result) ? as_expected : unexpected)++;
+    if (!images_dir.empty()) {
+      const ptlab::Status status = ptlab::WriteChi2Report(images_dir, result);
+      if (!status.ok()) {
+        std::fprintf(stderr, "chi2: %s\n", status.message().c_str());
+        return kExitUsage;
+      }
+    }
+  }
+  std::printf("chi2: %d as expected, %d not: %s\n", as_expected, unexpected,
+              unexpected == 0 ? "PASS" : "FAIL");
+  return unexpected == 0 ? kExitPass : kExitFail;
+}

@@ -1,0 +1,158 @@
+// imgdiff CLI: compares test image A with reference B; prints a table or JSON; exit code = verdict.
+#include <CLI/CLI.hpp>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "engine/image/image_io.h"
+#include "tools/imgdiff/imgdiff.h"
+
+namespace {
+
+constexpr int kExitPass = 0;
+constexpr int kExitOverThreshold = 1;
+constexpr int kExitSizeMismatch = 2;
+constexpr int kExitUsage = 3;
+
+constexpr const char* kFooter = R"(Metrics (A = test, B = reference; pixels with a NaN/Inf channel
+in A or B are skipped):
+  MAE, MSE, RMSE per channel and over all channels; relMSE = mean((a-b)^2 / (b^2 + eps)),
+  eps = 1e-2; PSNR = 10 log10(peak^2 / MSE) with peak = 1 if B is a PNG (LDR), else the
+  maximum finite value of B; max abs error with its pixel (x, y from the top-left) and channel;
+  NaN/Inf pixel counts of each image; channel means of each image (over its finite pixels) and
+  their relative difference (meanA - meanB) / meanB.
+Blocks: N x N tiles from the top-left; partial edge blocks are INCLUDED (mean over the pixels
+  they cover); a block's mean is over its pixels and the three channels. Among blocks whose mean
+  in B is >= --block-min, the share whose mean in A is within --tol of B's:
+  |meanA - meanB| < tol * meanB.
+--parity F: PARITY.md's P(F): every channel mean of A within 1 % of B's (strictly), no NaN/Inf
+  in A, and the share of 32x32 blocks (B mean >= 0.01) within 5 % is >= F. --flip-x applies.
+--heatmap: per-pixel signed relative error of the channel mean, (a-b)/sqrt(b^2 + 1e-2), in a
+  blue-white-red map: -scale blue, 0 white, +scale red; NaN/Inf pixels green. Written as PNG
+  (or EXR/PFM by the extension).
+With any --fail-* threshold, NaN/Inf pixels in A also fail.
+Exit codes: 0 pass, 1 over a threshold (or parity failed), 2 size mismatch, 3 unreadable
+  file, unwritable heat map or bad usage.)";
+
+bool IsLdrPng(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char magic[16] = {};
+  in.read(reinterpret_cast<char*>(magic), sizeof(magic));
+  return ptlab::DetectImageFormat(magic, size_t(in.gcount())) == ptlab::ImageFormat::kPng;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "imgdiff: compare image A (test) with image B (reference). Reads EXR, PNG, "
+      "Radiance HDR and PFM."};
+  app.footer(kFooter);
+  std::string path_a, path_b, heatmap_path;
+  bool json = false, flip_x = false;
+  ptlab::ImageDiffOptions options;
+  double heatmap_scale = 0.5;
+  double fail_rmse = 0, fail_relmse = 0, fail_mean_rel = 0, fail_block_share = 0, parity = 0;
+  app.add_option("A", path_a, "test image")->required();
+  app.add_option("B", path_b, "reference image")->required();
+  app.add_flag("--json", json, "print one JSON object instead of the table");
+  app.add_flag("--flip-x", flip_x, "mirror A left-right before comparing (eth2015 references)");
+  app.add_option("--block", options.block_size, "block edge N in pixels")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--tol", options.block_tol, "block relative tolerance T")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--block-min", options.block_min, "floor on B's block mean for eligibility")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--heatmap", heatmap_path, "write the relative-error heat map here");
+  app.add_option("--heatmap-scale", heatmap_scale, "relative error shown at full colour")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  CLI::Option* o_rmse = app.add_option("--fail-rmse", fail_rmse, "fail if RMSE (all) > X")
+                            ->check(CLI::NonNegativeNumber);
+  CLI::Option* o_relmse = app.add_option("--fail-relmse", fail_relmse, "fail if relMSE (all) > X")
+                              ->check(CLI::NonNegativeNumber);
+  CLI::Option* o_mean = app.add_option("--fail-mean-rel", fail_mean_rel,
+                                       "fail if max over channels |meanA-meanB|/meanB > X")
+                            ->check(CLI::NonNegativeNumber);
+  CLI::Option* o_share = app.add_option("--fail-block-share", fail_block_share,
+                                        "fail if the share of blocks within --tol is < F")
+                             ->check(CLI::Range(0.0, 1.0));
+  CLI::Option* o_parity =
+      app.add_option("--parity", parity, "fail unless PARITY.md's criterion P(F) holds")
+          ->check(CLI::Range(0.0, 1.0));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitPass : kExitUsage;
+  }
+  options.flip_x = flip_x;
+
+  ptlab::StatusOr<ptlab::Image> a = ptlab::ReadImage(path_a);
+  if (!a.ok()) {
+    std::fprintf(stderr, "imgdiff: %s\n", a.status().message().c_str());
+    return kExitUsage;
+  }
+  ptlab::StatusOr<ptlab::Image> b = ptlab::ReadImage(path_b);
+  if (!b.ok()) {
+    std::fprintf(stderr, "imgdiff: %s\n", b.status().message().c_str());
+    return kExitUsage;
+  }
+  if (!ptlab::SameSize(*a, *b)) {
+    std::fprintf(stderr, "imgdiff: size mismatch: A %s is %dx%d, B %s is %dx%d\n", path_a.c_str(),
+                 a->width, a->height, path_b.c_str(), b->width, b->height);
+    return kExitSizeMismatch;
+  }
+  if (IsLdrPng(path_b)) options.psnr_peak = 1.0;
+
+  const ptlab::ImageDiff diff = ptlab::CompareImages(*a, *b, options);
+  ptlab::DiffThresholds thresholds;
+  if (o_rmse->count()) thresholds.rmse = fail_rmse;
+  if (o_relmse->count()) thresholds.rel_mse = fail_relmse;
+  if (o_mean->count()) thresholds.mean_rel = fail_mean_rel;
+  if (o_share->count()) thresholds.block_share = fail_block_share;
+  std::vector<std::string> failures = ptlab::CheckThresholds(diff, thresholds);
+  ptlab::ParityResult parity_result;
+  const bool has_parity = o_parity->count() > 0;
+  if (has_parity) {
+    parity_result = ptlab::CheckParity(*a, *b, parity, flip_x);
+    if (!parity_result.pass) failures.push_back("parity " + parity_result.summary);
+  }
+
+  if (!heatmap_path.empty()) {
+    const ptlab::Image heat =
+        ptlab::RelativeErrorHeatmap(flip_x ? ptlab::FlipX(*a) : *a, *b, heatmap_scale);
+    const std::string lower = [&] {
+      std::string s = heatmap_path;
+      for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+      return s;
+    }();
+    const bool by_extension = lower.ends_with(".exr") || lower.ends_with(".pfm");
+    const ptlab::Status s =
+        by_extension ? ptlab::WriteImage(heatmap_path, heat) : ptlab::WritePng(heatmap_path, heat);
+    if (!s.ok()) {
+      std::fprintf(stderr, "imgdiff: heat map: %s\n", s.message().c_str());
+      return kExitUsage;
+    }
+  }
+
+  if (json) {
+    std::printf("%s\n", ptlab::FormatDiffJson(path_a, path_b, diff,
+                                              has_parity ? &parity_result : nullptr, failures)
+                            .c_str());
+  } else {
+    std::printf("A: %s\nB: %s\n%s", path_a.c_str(), path_b.c_str(),
+                ptlab::FormatDiffTable(diff, has_parity ? &parity_result : nullptr).c_str());
+    if (failures.empty()) {
+      std::printf("result: PASS\n");
+    } else {
+      std::printf("result: FAIL\n");
+      for (const std::string& f : failures) std::printf("  - %s\n", f.c_str());
+    }
+  }
+  return failures.empty() ? kExitPass : kExitOverThreshold;
+}

@@ -1,0 +1,191 @@
+// ptlab command line: `ptlab render scene.xml` (and, later, test and envmap tools).
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+
+#include "engine/bvh/bvh.h"
+#include "engine/image/image_io.h"
+#include "engine/render/integrator.h"
+#include "engine/render/render.h"
+#include "engine/scene/xml_loader.h"
+
+namespace ptlab {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+void OnSigint(int) {
+  g_interrupted.store(true);
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+std::string FormatDuration(double s) {
+  char buf[32];
+  if (s < 60) std::snprintf(buf, sizeof buf, "%.1fs", s);
+  else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
+  else std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) % 3600) / 60);
+  return buf;
+}
+
+// A bar with ETA and rays/s on a terminal; a plain line every 10 % otherwise.
+class ProgressReporter {
+ public:
+  ProgressReporter() : tty_(isatty(STDERR_FILENO)) {}
+  void Update(const RenderProgress& p) {
+    const double frac = p.samples_total ? double(p.samples_done) / double(p.samples_total) : 1.0;
+    const double eta = frac > 0 ? p.seconds * (1.0 - frac) / frac : 0.0;
+    const double mrays = p.seconds > 0 ? double(p.rays) / p.seconds * 1e-6 : 0.0;
+    if (tty_) {
+      constexpr int kWidth = 30;
+      const int filled = int(frac * kWidth);
+      std::string bar(size_t(filled), '#');
+      bar.resize(kWidth, '.');
+      std::fprintf(stderr, "\r[%s] %5.1f%%  ETA %-8s %7.2f Mrays/s", bar.c_str(), 100 * frac,
+                   FormatDuration(eta).c_str(), mrays);
+      std::fflush(stderr);
+    } else {
+      const int decile = int(frac * 10);
+      if (decile > last_decile_) {
+        last_decile_ = decile;
+        std::fprintf(stderr, "progress %3d%%  elapsed %s  ETA %s  %.2f Mrays/s\n", decile * 10,
+                     FormatDuration(p.seconds).c_str(), FormatDuration(eta).c_str(), mrays);
+      }
+    }
+  }
+  void Finish() {
+    if (tty_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool tty_;
+  int last_decile_ = 0;
+};
+
+struct RenderArgs {
+  std::string scene;
+  std::string output;
+  int spp = 0, threads = 0, width = 0, height = 0;
+  uint64_t seed = 0;
+  bool quiet = false;
+  std::string lookat = "nori";
+};
+
+int RunRender(const RenderArgs& args) {
+  LoadOptions load_options;
+  if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
+  StatusOr<Scene> loaded = LoadScene(args.scene, load_options);
+  if (!loaded.ok()) {
+    std::fprintf(stderr, "error: %s\n", loaded.status().message().c_str());
+    return 1;
+  }
+  Scene& scene = *loaded;
+  const std::string unsupported = UnsupportedFeature(scene);
+  if (!unsupported.empty()) {
+    std::fprintf(stderr, "error: %s: %s\n", args.scene.c_str(), unsupported.c_str());
+    return 1;
+  }
+  if (args.width > 0 || args.height > 0) {
+    const double aspect = double(scene.camera.width) / double(scene.camera.height);
+    scene.camera.width = args.width > 0 ? args.width : int(std::lround(args.height * aspect));
+    scene.camera.height = args.height > 0 ? args.height : int(std::lround(args.width / aspect));
+  }
+  std::string out = args.output;
+  if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".exr";
+  const std::filesystem::path out_path(out);
+  if (out_path.extension() != ".exr") {
+    std::fprintf(stderr, "error: output '%s' must end in .exr (a .png is written beside it)\n",
+                 out.c_str());
+    return 1;
+  }
+  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
+    std::fprintf(stderr, "error: output directory '%s' does not exist\n",
+                 out_path.parent_path().string().c_str());
+    return 1;
+  }
+
+  RenderOptions options;
+  options.spp = args.spp > 0 ? uint32_t(args.spp) : scene.sampler.sample_count;
+  options.threads = args.threads > 0 ? args.threads
+                                     : std::max(1, int(std::thread::hardware_concurrency()));
+  options.seed = args.seed;
+  options.cancel = &g_interrupted;
+  ProgressReporter reporter;
+  if (!args.quiet) options.on_progress = [&](const RenderProgress& p) { reporter.Update(p); };
+
+  std::fprintf(stderr, "ptlab: %s  %dx%d  %u spp  %d threads  %zu triangles\n",
+               args.scene.c_str(), scene.camera.width, scene.camera.height, options.spp,
+               options.threads, scene.triangles.size());
+  const Bvh bvh = BuildBvh(scene.triangles);
+  std::signal(SIGINT, OnSigint);
+  const RenderResult result = Render(scene, bvh, options);
+  std::signal(SIGINT, SIG_DFL);
+  if (!args.quiet) reporter.Finish();
+
+  if (result.nonfinite_samples > 0)
+    std::fprintf(stderr, "warning: dropped %llu NaN/Inf samples (first at pixel %d,%d)\n",
+                 (unsigned long long)result.nonfinite_samples, result.first_nonfinite_x,
+                 result.first_nonfinite_y);
+  const std::vector<std::pair<std::string, std::string>> header = {
+      {"ptlab:scene", args.scene},
+      {"ptlab:spp", std::to_string(result.spp_done)},
+      {"ptlab:spp_requested", std::to_string(options.spp)},
+      {"ptlab:seed", std::to_string(args.seed)},
+      {"ptlab:seconds", std::to_string(result.seconds)},
+      {"ptlab:interrupted", result.interrupted ? "true" : "false"},
+      {"ptlab:nonfinite_samples", std::to_string(result.nonfinite_samples)},
+  };
+  if (result.spp_done == 0) {
+    std::fprintf(stderr, "interrupted before the first pass completed: nothing written\n");
+    return 130;
+  }
+  Status st = WriteExr(out, result.image, header);
+  if (st.ok()) st = WritePng(std::filesystem::path(out).replace_extension(".png").string(),
+                             result.image);
+  if (!st.ok()) {
+    std::fprintf(stderr, "error: %s\n", st.message().c_str());
+    return 1;
+  }
+  std::printf("%s: %s (%u spp, %.2f s, %.2f Mrays/s)\n",
+              result.interrupted ? "interrupted, wrote partial image" : "wrote", out.c_str(),
+              result.spp_done, result.seconds,
+              result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0);
+  return result.interrupted ? 130 : 0;
+}
+
+}  // namespace
+}  // namespace ptlab
+
+int main(int argc, char** argv) {
+  CLI::App app{"ptlab: a CPU path tracer and rendering test lab"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "ptlab 0.1");
+
+  ptlab::RenderArgs render;
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene (Nori XML) to EXR + PNG");
+  cmd->add_option("scene", render.scene, "Scene file (.xml)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)");
+  cmd->add_option("--spp", render.spp, "Samples per pixel (default: the scene's sampleCount)")
+      ->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--threads", render.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams");
+  cmd->add_option("--width", render.width, "Override the image width")->check(CLI::Range(1, 65536));
+  cmd->add_option("--height", render.height, "Override the image height")
+      ->check(CLI::Range(1, 65536));
+  cmd->add_flag("-q,--quiet", render.quiet, "No progress output");
+  cmd->add_option("--lookat", render.lookat,
+                  "lookat convention: nori (current) or nori2015 (the mirrored, unnormalised "
+                  "frame of the 2015-16 Nori that rendered the eth2015 references)")
+      ->check(CLI::IsMember({"nori", "nori2015"}));
+
+  CLI11_PARSE(app, argc, argv);
+  if (cmd->parsed()) return ptlab::RunRender(render);
+  return 0;
+}
