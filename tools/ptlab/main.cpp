@@ -185,6 +185,14 @@ int main(int argc, char** argv) {
                   "frame of the 2015-16 Nori that rendered the eth2015 references)")
       ->check(CLI::IsMember({"nori", "nori2015"}));
 
+  bool known = false;
+  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    known = known || (argc > 1 && sub->get_name() == argv[1]);
+  if (argc > 1 && argv[1][0] != '-' && !known) {
+    std::fprintf(stderr, "error: unknown command '%s'; expected one of: render (see --help)\n",
+                 argv[1]);
+    return 3;
+  }
   CLI11_PARSE(app, argc, argv);
   if (cmd->parsed()) return ptlab::RunRender(render);
   return 0;

@@ -1,0 +1,157 @@
+// The ptlab command line: outputs, bad input, Ctrl-C, run as a user would (std::system).
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "engine/image/image_io.h"
+
+namespace ptlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kPtlab = std::string(PTLAB_BINARY_DIR) + "/bin/ptlab";
+const std::string kScenes = std::string(PTLAB_SOURCE_DIR) + "/scenes";
+const std::string kBadScenes = std::string(PTLAB_SOURCE_DIR) + "/tests/data/scene";
+
+fs::path TempDir(const std::string& name) {
+  const fs::path dir = fs::path(PTLAB_BINARY_DIR) / "test-output" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string ReadFile(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Exit status of a shell command (stdout+stderr to `log`).
+int RunPtlab(const std::string& args, const fs::path& log) {
+  const int rc = std::system((kPtlab + " " + args + " > " + log.string() + " 2>&1").c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+TEST(PtlabCli, RendersExrAndPngWithHeader) {
+  const fs::path dir = TempDir("cli_render");
+  const fs::path out = dir / "cbox.exr";
+  ASSERT_EQ(RunPtlab("render " + kScenes + "/cbox.xml -o " + out.string() + " --spp 2 --width 40 --height 30 "
+                "--seed 3 -q", dir / "log"), 0)
+      << ReadFile(dir / "log");
+  ASSERT_TRUE(fs::exists(out));
+  ASSERT_TRUE(fs::exists(dir / "cbox.png"));
+  StatusOr<Image> img = ReadImage(out.string());
+  ASSERT_TRUE(img.ok());
+  EXPECT_EQ(img->width, 40);
+  EXPECT_EQ(img->height, 30);
+  auto attrs = ReadExrStringAttributes(out.string());
+  ASSERT_TRUE(attrs.ok());
+  std::string spp, seed, interrupted;
+  for (const auto& [k, v] : *attrs) {
+    if (k == "ptlab:spp") spp = v;
+    if (k == "ptlab:seed") seed = v;
+    if (k == "ptlab:interrupted") interrupted = v;
+  }
+  EXPECT_EQ(spp, "2");
+  EXPECT_EQ(seed, "3");
+  EXPECT_EQ(interrupted, "false");
+  // No temporary files are left beside the outputs.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.path().filename() != "log";
+  EXPECT_EQ(files, 2);
+}
+
+
+TEST(PtlabCli, BadInputIsAClearErrorAndWritesNothing) {
+  struct Case {
+    std::string args, expect;
+  };
+  const fs::path dir = TempDir("cli_bad");
+  const std::string out = (dir / "x.exr").string();
+  const Case cases[] = {
+      {"render " + kBadScenes + "/bad_syntax.xml -o " + out, "bad_syntax.xml:"},
+      {"render " + kBadScenes + "/missing_obj.xml -o " + out, "missing_obj.xml:"},
+      {"render " + kBadScenes + "/faceless_obj.xml -o " + out, "faceless_obj.xml:"},
+      {"render /nonexistent/scene.xml -o " + out, "scene.xml"},
+      {"render " + kScenes + "/cbox.xml --spp 0 -o " + out, "--spp"},
+      {"render " + kScenes + "/cbox.xml --spp abc -o " + out, "--spp"},
+      {"render " + kScenes + "/cbox.xml --bogus -o " + out, "--bogus"},
+      {"render " + kScenes + "/cbox.xml -o " + (dir / "x.png").string(), ".exr"},
+      {"render " + kScenes + "/cbox.xml -o /nonexistent/dir/x.exr", "does not exist"},
+      {"frobnicate", "frobnicate"},
+  };
+  for (const Case& c : cases) {
+    const int rc = RunPtlab(c.args, dir / "log");
+    const std::string log = ReadFile(dir / "log");
+    EXPECT_NE(rc, 0) << c.args;
+    EXPECT_NE(log.find(c.expect), std::string::npos) << c.args << "\n" << log;
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(dir)) files += e.path().filename() != "log";
+    EXPECT_EQ(files, 0) << c.args;
+  }
+}
+
+TEST(PtlabCli, HelpOnEveryCommand) {
+  const fs::path dir = TempDir("cli_help");
+  EXPECT_EQ(RunPtlab("--help", dir / "log"), 0);
+  EXPECT_NE(ReadFile(dir / "log").find("render"), std::string::npos);
+  EXPECT_EQ(RunPtlab("render --help", dir / "log"), 0);
+  EXPECT_NE(ReadFile(dir / "log").find("--spp"), std::string::npos);
+}
+
+// Ctrl-C: the image of every completed pass is written, marked as interrupted, exit 130.
+TEST(PtlabCli, InterruptWritesWhatItHas) {
+  const fs::path dir = TempDir("cli_sigint");
+  const fs::path out = dir / "cbox.exr", log = dir / "log";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string log_s = log.string();
+    std::freopen(log_s.c_str(), "w", stderr);
+    std::freopen("/dev/null", "w", stdout);
+    execl(kPtlab.c_str(), "ptlab", "render", (kScenes + "/cbox.xml").c_str(), "-o",
+          out.string().c_str(), "--spp", "4096", "--width", "64", "--height", "64",
+          "--threads", "1", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Wait until at least 10 % is reported (several 16-spp passes complete), then interrupt.
+  bool started = false;
+  for (int i = 0; i < 1200 && !started; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    started = ReadFile(log).find("progress  10%") != std::string::npos;
+  }
+  ASSERT_TRUE(started) << ReadFile(log);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_TRUE(fs::exists(out)) << ReadFile(log);
+  auto attrs = ReadExrStringAttributes(out.string());
+  ASSERT_TRUE(attrs.ok());
+  int spp = -1;
+  std::string interrupted;
+  for (const auto& [k, v] : *attrs) {
+    if (k == "ptlab:spp") spp = std::stoi(v);
+    if (k == "ptlab:interrupted") interrupted = v;
+  }
+  EXPECT_EQ(interrupted, "true");
+  EXPECT_GE(spp, 16);
+  EXPECT_LT(spp, 4096);
+  EXPECT_EQ(spp % 16, 0);
+}
+
+}  // namespace
+}  // namespace ptlab
