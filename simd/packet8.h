@@ -1,28 +1,16 @@
 // 8-wide ray and hit packets: plain aligned SoA arrays (no Highway types), like Embree's RTCRay8.
 #pragma once
 
-#include <cstddef>
-#include <cstdint>
+// The types live in engine/core/packet8.h so that the scalar render driver can fill and read
+// packets without including anything from simd/; they are the same types here.
+#include "engine/core/packet8.h"
 
 namespace ptlab::simd {
 
-inline constexpr size_t kPacketWidth = 8;
-
-/// Bit i = lane i active.
-using Mask8 = uint32_t;
-inline constexpr Mask8 kAllLanes = 0xffu;
-
-struct alignas(32) RayPacket8 {
-  float org_x[8], org_y[8], org_z[8];
-  float dir_x[8], dir_y[8], dir_z[8];
-  float t_min[8], t_max[8];
-};
-
-/// Closest hits: t, barycentrics of v1 and v2, and the scene triangle row (0xffffffff = none).
-struct alignas(32) HitPacket8 {
-  float t[8];
-  float b1[8], b2[8];
-  uint32_t prim[8];
-};
+using ::ptlab::HitPacket8;
+using ::ptlab::kAllLanes;
+using ::ptlab::kPacketWidth;
+using ::ptlab::Mask8;
+using ::ptlab::RayPacket8;
 
 }  // namespace ptlab::simd

@@ -1,4 +1,4 @@
-// Beckmann microfacet distribution: D, Smith G1 (rational approximation), half-vector sampling, pdf.
+// Beckmann microfacet distribution: D, Smith G1 (rational approx.), half-vector sampling, pdf.
 #pragma once
 
 #include <cmath>
@@ -35,7 +35,9 @@ inline float ClampBeckmannAlpha(float alpha) {
   return !(alpha > kBeckmannMinAlpha) ? kBeckmannMinAlpha
                                       : (alpha < kBeckmannMaxAlpha ? alpha : kBeckmannMaxAlpha);
 }
-inline float ClampSample(float u) { return !(u > 0) ? 0.0f : (u < kOneMinusEpsilon ? u : kOneMinusEpsilon); }
+inline float ClampSample(float u) {
+  return !(u > 0) ? 0.0f : (u < kOneMinusEpsilon ? u : kOneMinusEpsilon);
+}
 
 /// BeckmannD for the half vector h (any length > 0); 0 when h.z ≤ 0 or exp underflows.
 inline float BeckmannD(float alpha, const Vec3f& h) {
@@ -96,8 +98,10 @@ inline Vec3f ReflectAbout(const Vec3f& wo, const Vec3f& h) {
 }
 
 /// D(h) and the solid-angle density of wi when h ~ BeckmannPdfH and wi = reflect(wo, h):
-/// pdf = D(h) cos θh / (4 |wo·h|), h = (wo + wi)/|wo + wi|. For unit wo, wi we have
-/// wo·h = |wo + wi|/2, so pdf = D(H) H.z / (2 |H|²) with H = wo + wi (no cancellation).
+/// pdf = D(h) cos θh / (4 wo·h) with h = H/|H|, H = wo + wi, i.e. pdf = D(H) H.z / (4 wo·H).
+/// wo·H is a dot product rather than |H|/2 (equal for exactly unit vectors) because at
+/// grazing, nearly opposite wo and wi the latter turns the ~1e-7 length error of
+/// float-normalised inputs into a relative error ~1e-7/|H|², against ~1e-7/|H| here.
 /// Both are 0 unless wo and wi are above the surface (one-sided, as Nori and Mitsuba).
 /// Scalar oracle of simd::BeckmannEvalPdfBatch.
 inline void BeckmannEvalPdf(float alpha, const Vec3f& wo, const Vec3f& wi, float* d, float* pdf) {
@@ -106,9 +110,9 @@ inline void BeckmannEvalPdf(float alpha, const Vec3f& wo, const Vec3f& wi, float
   if (!(wo.z > 0) || !(wi.z > 0)) return;
   const Vec3f h = wo + wi;
   const float dv = BeckmannD(alpha, h);
-  if (!(dv > 0)) return;
-  const float n2 = h.x * h.x + h.y * h.y + h.z * h.z;
-  const float p = dv * h.z / (2.0f * n2);
+  const float wo_h = Dot(wo, h);
+  if (!(dv > 0) || !(wo_h > 0)) return;
+  const float p = dv * h.z / (4.0f * wo_h);
   if (!std::isfinite(dv) || !std::isfinite(p)) return;  // non-unit or non-finite inputs
   *d = dv;
   *pdf = p;

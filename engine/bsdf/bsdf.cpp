@@ -23,23 +23,27 @@ RoughPlasticParams RoughPlasticRow(const RoughPlasticTable& t, uint32_t i) {
 
 Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
   switch (ref.tag()) {
-    case MaterialTag::kDiffuse: return DiffuseEval(m.diffuse.Albedo(ref.index()), wo, wi);
+    case MaterialTag::kDiffuse:
+      return DiffuseEval(m.diffuse.Albedo(ref.index()), wo, wi);
     case MaterialTag::kConductor:
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEval(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
-    default: return {};
+    default:
+      return {};
   }
 }
 
 float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
   switch (ref.tag()) {
-    case MaterialTag::kDiffuse: return DiffusePdf(wo, wi);
+    case MaterialTag::kDiffuse:
+      return DiffusePdf(wo, wi);
     case MaterialTag::kConductor:
       return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
-    default: return 0.0f;
+    default:
+      return 0.0f;
   }
 }
 
@@ -48,7 +52,8 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffuseSample(m.diffuse.Albedo(ref.index()), wo, u2, sample);
-    case MaterialTag::kMirror: return MirrorSample(wo, sample);
+    case MaterialTag::kMirror:
+      return MirrorSample(wo, sample);
     case MaterialTag::kDielectric: {
       const uint32_t i = ref.index();
       const float eta = m.dielectric.int_ior[i] / m.dielectric.ext_ior[i];
@@ -57,8 +62,7 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
     case MaterialTag::kConductor:
       return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);
     case MaterialTag::kRoughPlastic:
-      return RoughPlasticSample(RoughPlasticRow(m.rough_plastic, ref.index()), wo, u1, u2,
-                                sample);
+      return RoughPlasticSample(RoughPlasticRow(m.rough_plastic, ref.index()), wo, u1, u2, sample);
   }
   return false;
 }

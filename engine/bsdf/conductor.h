@@ -24,9 +24,9 @@ inline Color3f ConductorEval(const ConductorParams& p, const Vec3f& wo, const Ve
   const float d = BeckmannD(p.alpha, h);
   if (!(d > 0)) return {};
   // For unit wo, wi: wi·h = wo·h = |wo + wi| / 2 > 0, so χ⁺ holds for both G1 factors.
-  const float cos_h = 0.5f * std::sqrt(Dot(h, h));
+  const float wi_h = 0.5f * std::sqrt(Dot(h, h));
   const float g = BeckmannG1OverCos(p.alpha, wo) * BeckmannG1OverCos(p.alpha, wi);
-  const Color3f f = FresnelConductor(cos_h, p.eta, p.k) * (0.25f * d * g);
+  const Color3f f = FresnelConductor(wi_h, p.eta, p.k) * (0.25f * d * g);
   return IsFinite(f) ? f : Color3f{};
 }
 
@@ -37,7 +37,7 @@ inline float ConductorPdf(const ConductorParams& p, const Vec3f& wo, const Vec3f
 
 /// Samples h ~ BeckmannPdfH (h-density D cos θh, not the visible normals) and reflects wo.
 /// False when wo or the reflected wi is not above the surface. The weight is
-/// f cos θi / pdf = F G1(wi) (G1(wo)/cos θo) |H|² / (2 H.z) with H = wo + wi, where D has
+/// f cos θi / pdf = F G1(wi) (G1(wo)/cos θo) (wo·H) / H.z with H = wo + wi, where D has
 /// cancelled; pdf = ConductorPdf(wo, wi).
 inline bool ConductorSample(const ConductorParams& p, const Vec3f& wo, const Vec2f& u,
                             BsdfSample* s) {
@@ -48,9 +48,9 @@ inline bool ConductorSample(const ConductorParams& p, const Vec3f& wo, const Vec
   const float pdf = ConductorPdf(p, wo, wi);
   if (!(pdf > 0)) return false;
   const Vec3f h = wo + wi;
-  const float n2 = Dot(h, h);
   const float g = BeckmannG1(p.alpha, wi) * BeckmannG1OverCos(p.alpha, wo);
-  const Color3f w = FresnelConductor(0.5f * std::sqrt(n2), p.eta, p.k) * (g * n2 / (2.0f * h.z));
+  const Color3f w =
+      FresnelConductor(0.5f * std::sqrt(Dot(h, h)), p.eta, p.k) * (g * Dot(wo, h) / h.z);
   if (!IsFinite(w)) return false;
   s->wi = wi;
   s->pdf = pdf;

@@ -1,6 +1,7 @@
 // Smooth dielectric (Nori `dielectric`): reflect with probability F, refract otherwise.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "engine/bsdf/bsdf_sample.h"
@@ -41,6 +42,7 @@ inline bool DielectricSample(float eta, const Vec3f& wo, float u, BsdfSample* s,
   // Refraction (Snell): rel = η_o/η_i, the relative index seen from wo's side.
   const float rel = cos_o > 0 ? 1.0f / eta : eta;
   s->wi = {-wo.x * rel, -wo.y * rel, cos_o > 0 ? -cos_t : cos_t};
+  if (!std::isfinite(s->wi.x) || !std::isfinite(s->wi.y)) return false;  // non-unit huge wo
   s->pdf = 1.0f - f;
   s->eta = 1.0f / rel;
   if (flags & kDielectricScaleRadiance) s->weight = {rel * rel, rel * rel, rel * rel};

@@ -1,4 +1,4 @@
-// Fresnel reflectance: exact unpolarised dielectric (with TIR), Schlick's approximation, conductors.
+// Fresnel reflectance: exact unpolarised dielectric (with TIR), Schlick, conductors.
 #pragma once
 
 #include <cmath>
@@ -7,10 +7,11 @@
 
 namespace ptlab {
 
-// The formulas below avoid the pattern `a * b - c` wherever the subtraction can cancel
-// catastrophically (e.g. η² − sin²θ near the critical angle): written as (η − s)(η + s), they
-// round the same with and without fused multiply-add, so the SIMD twins in simd/shade8-inl.h
-// (which the compiler may contract into FMAs) agree with this oracle to a few ulp.
+// Where a sum cancels (η² − sin²θ near the critical angle, η² − κ² − sin²θ), the formulas are
+// arranged so that no precision is lost beyond the input's own conditioning: η² − 1 is formed
+// as (η − 1)(η + 1), and cos²θ is kept as c·c rather than recovered from 1 − sin²θ (which
+// would lose it entirely below cos θ ≈ 2.4e-4). The SIMD twins in simd/shade8-inl.h round
+// the products of these sums exactly as this code does (no FMA contraction there).
 
 /// Relative IORs are clamped into [kMinRelativeIor, kMaxRelativeIor] (NaN → the minimum), so
 /// denormal or huge parameters cannot overflow η².
@@ -18,7 +19,8 @@ inline constexpr float kMinRelativeIor = 1e-4f;
 inline constexpr float kMaxRelativeIor = 1e4f;
 
 inline float ClampRelativeIor(float eta) {
-  return !(eta > kMinRelativeIor) ? kMinRelativeIor : (eta < kMaxRelativeIor ? eta : kMaxRelativeIor);
+  return !(eta > kMinRelativeIor) ? kMinRelativeIor
+                                  : (eta < kMaxRelativeIor ? eta : kMaxRelativeIor);
 }
 /// |c| clamped to [0, 1]; NaN → 1.
 inline float ClampCosine(float c) {
@@ -29,21 +31,21 @@ inline float ClampCosine(float c) {
 /// Unpolarised Fresnel reflectance of a smooth dielectric interface for light arriving with
 /// cosine cos_i w.r.t. the normal on the exterior side (negative = from inside), relative IOR
 /// eta = η_int / η_ext (clamped, see above). Returns 1 under total internal reflection (including
-/// exactly at the critical angle) and sets *cos_t to the (non-negative) cosine of the refracted
-/// direction (0 under TIR).
+/// exactly at the critical angle, and at exactly grazing incidence) and sets *cos_t to the
+/// (non-negative) cosine of the refracted direction (0 under TIR). For η = 1 it returns 0 and
+/// cos_t = |cos_i| at every angle but exactly grazing.
 inline float FresnelDielectric(float cos_i, float eta, float* cos_t) {
   eta = ClampRelativeIor(eta);
   if (cos_i < 0) eta = 1.0f / eta;
   const float c = ClampCosine(cos_i);
-  const float s = std::sqrt((1.0f - c) * (1.0f + c));  // sin θi
-  const float p = (eta - s) * (eta + s);               // (η cos θt)² = η² − sin² θi
+  const float p = (eta - 1.0f) * (eta + 1.0f) + c * c;  // (η cos θt)² = η² − sin² θi
   if (!(p > 0)) {
     *cos_t = 0.0f;
     return 1.0f;
   }
-  const float eta_ct = std::sqrt(p);                 // η cos θt
-  const float ct_over_eta = eta_ct / (eta * eta);    // cos θt / η
-  const float rs = (c - eta_ct) / (c + eta_ct);      // (cos i − η cos t) / (cos i + η cos t)
+  const float eta_ct = std::sqrt(p);               // η cos θt
+  const float ct_over_eta = eta_ct / (eta * eta);  // cos θt / η
+  const float rs = (c - eta_ct) / (c + eta_ct);    // (cos i − η cos t) / (cos i + η cos t)
   const float rp = (c - ct_over_eta) / (c + ct_over_eta);  // (η cos i − cos t) / (η cos i + cos t)
   *cos_t = eta_ct / eta;
   return 0.5f * (rs * rs + rp * rp);

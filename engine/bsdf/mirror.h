@@ -6,7 +6,7 @@
 namespace ptlab {
 
 inline bool MirrorSample(const Vec3f& wo, BsdfSample* s) {
-  if (CosTheta(wo) <= 0) return false;
+  if (!(CosTheta(wo) > 0)) return false;
   s->wi = {-wo.x, -wo.y, wo.z};
   s->weight = {1, 1, 1};
   s->pdf = 1.0f;

@@ -1,4 +1,4 @@
-// Batched shading over SoA arrays: the scalar oracle of simd/shade8.h, plus the partition of hits by material.
+// Batched shading over SoA arrays (scalar oracle of simd/shade8.h) and the partition by material.
 #include "engine/bsdf/shade_batch.h"
 
 #include "engine/bsdf/beckmann.h"
@@ -7,8 +7,8 @@
 
 namespace ptlab {
 
-void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
-                size_t n, const ShadeInputs& in, const ShadeOutputs& out) {
+void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
+                const ShadeInputs& in, const ShadeOutputs& out) {
   const bool eval = in.wl.x != nullptr;
   for (size_t i = 0; i < n; ++i) {
     const MaterialRef ref = MaterialRef::Make(tag, material_index[i]);
@@ -60,9 +60,8 @@ void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const
                const ShadeOutputs& out, ShadeScratch* scratch) {
   ShadeHitsWith(
       [](const MaterialTables& mt, MaterialTag tag, const uint32_t* index, size_t count,
-         const ShadeInputs& bin, const ShadeOutputs& bout) {
-        ShadeBatch(mt, tag, index, count, bin, bout);
-      },
+         const ShadeInputs& bin,
+         const ShadeOutputs& bout) { ptlab::ShadeBatch(mt, tag, index, count, bin, bout); },
       m, refs, n, in, out, scratch);
 }
 
@@ -75,8 +74,7 @@ void BeckmannEvalPdfBatch(const float* alpha, DirectionArrays wo, DirectionArray
 }
 
 void SampleBeckmannReflectionBatch(const float* alpha, DirectionArrays wo, const float* u_x,
-                                   const float* u_y, size_t n, DirectionOutArrays wi,
-                                   float* pdf) {
+                                   const float* u_y, size_t n, DirectionOutArrays wi, float* pdf) {
   for (size_t i = 0; i < n; ++i) {
     const Vec3f o{wo.x[i], wo.y[i], wo.z[i]};
     Vec3f w = ReflectAbout(o, SampleBeckmannNormal(alpha[i], {u_x[i], u_y[i]}));

@@ -1,4 +1,4 @@
-// Batched shading over SoA arrays: the scalar oracle of simd/shade8.h, plus the partition of hits by material.
+// Batched shading over SoA arrays (scalar oracle of simd/shade8.h) and the partition by material.
 #pragma once
 
 #include <cstddef>
@@ -43,20 +43,20 @@ struct ShadeInputs {
 
 /// What one shading step writes per hit.
 struct ShadeOutputs {
-  ColorOutArrays f;            // BsdfEval(wo, wl)
-  float* pdf_l = nullptr;      // BsdfPdf(wo, wl)
-  DirectionOutArrays wi;       // sampled direction (0 when there is no sample)
-  ColorOutArrays weight;       // sample weight f |cos θi| / pdf (0 when there is no sample)
-  float* pdf = nullptr;        // sample pdf; 0 means "no sample" (BsdfSampleDirection false)
-  float* eta = nullptr;        // relative IOR crossed by the sample (1 unless refracted)
+  ColorOutArrays f;        // BsdfEval(wo, wl)
+  float* pdf_l = nullptr;  // BsdfPdf(wo, wl)
+  DirectionOutArrays wi;   // sampled direction (0 when there is no sample)
+  ColorOutArrays weight;   // sample weight f |cos θi| / pdf (0 when there is no sample)
+  float* pdf = nullptr;    // sample pdf; 0 means "no sample" (BsdfSampleDirection false)
+  float* eta = nullptr;    // relative IOR crossed by the sample (1 unless refracted)
 };
 
 /// One shading step for n hits that all have material tag `tag`; row i uses table row
 /// material_index[i]. The scalar oracle of simd::ShadeBatch: per row, BsdfEval, BsdfPdf and
 /// BsdfSampleDirection (engine/bsdf/bsdf.h). Whether a sample is a delta lobe follows from
 /// the tag (IsDeltaMaterial).
-void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
-                size_t n, const ShadeInputs& in, const ShadeOutputs& out);
+void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
+                const ShadeInputs& in, const ShadeOutputs& out);
 
 /// Hits grouped by material tag with a counting sort. Positions begin[t] .. begin[t + 1] of
 /// `slot` and `index` describe the hits with tag t, in their input order: slot = position in
@@ -105,8 +105,7 @@ void SampleBeckmannReflectionBatch(const float* alpha, DirectionArrays wo, const
 void ConductorFresnelBatch(const float* cos_i, const float* eta, const float* k, size_t n,
                            float* f);
 /// f[i] = FresnelDielectric(cos_i[i], eta[i], &cos_t[i]).
-void DielectricFresnelBatch(const float* cos_i, const float* eta, size_t n, float* f,
-                            float* cos_t);
+void DielectricFresnelBatch(const float* cos_i, const float* eta, size_t n, float* f, float* cos_t);
 
 // ---------------------------------------------------------------------------------------------
 
@@ -126,11 +125,10 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
       out.eta[i] = 1.0f;
     }
   }
-  const float* src_in[9] = {in.wo.x, in.wo.y, in.wo.z, in.wl.x, in.wl.y,
-                            in.wl.z, in.u_lobe, in.u_x, in.u_y};
-  float* dst_out[12] = {out.f.r,      out.f.g,        out.f.b,        out.pdf_l,
-                        out.wi.x,     out.wi.y,       out.wi.z,       out.weight.r,
-                        out.weight.g, out.weight.b,   out.pdf,        out.eta};
+  const float* src_in[9] = {in.wo.x, in.wo.y,   in.wo.z, in.wl.x, in.wl.y,
+                            in.wl.z, in.u_lobe, in.u_x,  in.u_y};
+  float* dst_out[12] = {out.f.r,  out.f.g,      out.f.b,      out.pdf_l,    out.wi.x, out.wi.y,
+                        out.wi.z, out.weight.r, out.weight.g, out.weight.b, out.pdf,  out.eta};
   for (int t = 0; t < kMaterialTagCount; ++t) {
     const size_t begin = part.begin[t], count = part.begin[t + 1] - begin;
     if (count == 0) continue;

@@ -3,106 +3,36 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "engine/bsdf/bsdf.h"
 #include "engine/bvh/intersect1.h"
 #include "engine/bvh/ray_offset.h"
 #include "engine/light/area_light.h"
+#include "engine/light/infinite_light.h"
+#include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
 
 namespace ptlab {
 namespace {
 
 using Type = IntegratorDesc::Type;
-
-// Nori's Whitted integrator continues specular chains with probability 0.95.
-constexpr float kWhittedContinuation = 0.95f;
-// Recursion guard for the Whitted integrator (paths this long carry ~0.95^64 of the weight).
-constexpr int kWhittedMaxDepth = 64;
-
-Vec2f Next2D(Pcg32& rng) {
-  const float a = rng.NextFloat();
-  return {a, rng.NextFloat()};
-}
-
-// Origin of a ray leaving its.p toward direction w, pushed off the surface on w's side.
-Vec3f SpawnOrigin(const SurfaceInteraction& its, const Vec3f& w) {
-  return OffsetRayOrigin(its.p, Dot(its.ng, w) >= 0 ? its.ng : -its.ng);
-}
+using namespace integrator;  // the per-vertex pieces shared with the packet path
 
 bool Trace(const RenderContext& ctx, const Ray& ray, Hit* hit, RayCounters* c) {
   ++c->rays;
   return Intersect1(ctx.bvh, ray, hit);
 }
 
-// Radiance emitted by the surface at its toward direction w (unit, away from the surface).
-Color3f Emitted(const Scene& scene, const SurfaceInteraction& its, const Vec3f& w) {
-  if (!its.emitter.valid() || its.emitter.tag() != EmitterTag::kArea) return {};
-  return AreaLightRadiance(scene.area_lights.radiance[its.emitter.index()], its.frame.n, w);
-}
-
-// Solid-angle density with which emitter sampling (one emitter chosen uniformly, a point
-// uniform by area) produces the point `its` on a light seen from `from`.
-float EmitterPdf(const Scene& scene, const SurfaceInteraction& its, const Vec3f& from) {
-  if (!its.emitter.valid() || its.emitter.tag() != EmitterTag::kArea) return 0.0f;
-  const Vec3f d = its.p - from;
-  const float dist2 = Dot(d, d);
-  const float cos_l = -Dot(its.frame.n, d) / std::sqrt(dist2);
-  if (cos_l <= 0) return 0.0f;
-  const float area = scene.area_lights.area[its.emitter.index()];
-  return dist2 / (cos_l * area * float(scene.emitters.size()));
-}
-
-// MIS weight of a strategy with density pdf_a against one with density pdf_b (one sample
-// each): the balance heuristic, or Veach's power heuristic with exponent 2.
-float MisWeight(float pdf_a, float pdf_b, bool power) {
-  if (power) {
-    pdf_a *= pdf_a;
-    pdf_b *= pdf_b;
-  }
-  const float sum = pdf_a + pdf_b;
-  return sum > 0 ? pdf_a / sum : 0.0f;
-}
-
 // One emitter sample for the direct light at its (wo: local direction to the viewer).
 // With mis, the sample is weighted against BSDF sampling (balance or power heuristic).
 Color3f SampleEmitterDirect(const RenderContext& ctx, const SurfaceInteraction& its,
                             const Vec3f& wo, bool mis, Pcg32& rng, RayCounters* c) {
-  const Scene& scene = ctx.scene;
-  const size_t n = scene.emitters.size();
-  if (n == 0) return {};
-  const size_t k = std::min(n - 1, size_t(rng.NextFloat() * float(n)));
-  const float u_tri = rng.NextFloat();
-  const Vec2f u = Next2D(rng);
-  const EmitterRef emitter = scene.emitters[k];
-  if (emitter.tag() != EmitterTag::kArea) return {};
-  const AreaLightSample ls = SampleAreaLight(scene, emitter.index(), u_tri, u);
-  const Vec3f d = ls.p - its.p;
-  const float dist2 = Dot(d, d);
-  if (!(dist2 > 0) || !(ls.pdf_area > 0)) return {};
-  const Vec3f wi = d / std::sqrt(dist2);
-  const float cos_l = -Dot(ls.n, wi);
-  if (cos_l <= 0) return {};
-  const Vec3f wi_local = its.frame.ToLocal(wi);
-  const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
-  if (IsBlack(f)) return {};
-  // Shadow ray between the two offset points; d is not normalised, so t runs over [0, 1).
-  Ray shadow;
-  shadow.o = SpawnOrigin(its, wi);
-  const Vec3f target = OffsetRayOrigin(ls.p, Dot(ls.ng, wi) <= 0 ? ls.ng : -ls.ng);
-  shadow.d = target - shadow.o;
-  shadow.t_min = 0.0f;
-  shadow.t_max = 1.0f;
+  const EmitterSampleRequest req = PrepareEmitterSample(ctx.scene, its, wo, mis, rng);
+  if (!req.traced) return {};
   ++c->rays;
-  if (Occluded1(ctx.bvh, shadow)) return {};
-  const float pdf_light = ls.pdf_area * dist2 / (cos_l * float(n));
-  float weight = 1.0f;
-  if (mis) {
-    const float pdf_bsdf = BsdfPdf(scene.materials, its.material, wo, wi_local);
-    weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
-  }
-  return f * ls.radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
+  return EmitterSampleResult(req, Occluded1(ctx.bvh, req.shadow));
 }
 
 Color3f LiNormals(const RenderContext& ctx, const Ray& ray, RayCounters* c) {
@@ -117,7 +47,7 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, Pcg32& rng
                  RayCounters* c) {
   const Scene& scene = ctx.scene;
   Hit hit;
-  if (!Trace(ctx, ray, &hit, c)) return {};
+  if (!Trace(ctx, ray, &hit, c)) return Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
   const SurfaceInteraction its = MakeInteraction(scene, hit);
   const Vec3f wo_world = -ray.d / Length(ray.d);
   Color3f L = Emitted(scene, its, wo_world);
@@ -130,9 +60,12 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, Pcg32& rng
   const float u1 = rng.NextFloat();
   if (!BsdfSampleDirection(scene.materials, its.material, wo, u1, Next2D(rng), &bs)) return L;
   const Vec3f wi = its.frame.ToWorld(bs.wi);
-  Ray next{SpawnOrigin(its, wi), wi, 0.0f, 1e30f};
+  Ray next{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
   Hit hit2;
-  if (!Trace(ctx, next, &hit2, c)) return L;
+  if (!Trace(ctx, next, &hit2, c)) {
+    if (type == Type::kDirectMats) return L + bs.weight * Escaped(scene, wi, false, 0.0f);
+    return L + bs.weight * Escaped(scene, wi, mis && !bs.delta, bs.pdf);
+  }
   const SurfaceInteraction light = MakeInteraction(scene, hit2);
   const Color3f Le = Emitted(scene, light, -wi);
   if (IsBlack(Le)) return L;
@@ -150,7 +83,7 @@ Color3f LiWhitted(const RenderContext& ctx, const Ray& ray, int depth, Pcg32& rn
                   RayCounters* c) {
   const Scene& scene = ctx.scene;
   Hit hit;
-  if (!Trace(ctx, ray, &hit, c)) return {};
+  if (!Trace(ctx, ray, &hit, c)) return Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
   const SurfaceInteraction its = MakeInteraction(scene, hit);
   const Vec3f wo_world = -ray.d / Length(ray.d);
   const Color3f Le = Emitted(scene, its, wo_world);
@@ -163,7 +96,7 @@ Color3f LiWhitted(const RenderContext& ctx, const Ray& ray, int depth, Pcg32& rn
   const float u1 = rng.NextFloat();
   if (!BsdfSampleDirection(scene.materials, its.material, wo, u1, Next2D(rng), &bs)) return Le;
   const Vec3f wi = its.frame.ToWorld(bs.wi);
-  const Ray next{SpawnOrigin(its, wi), wi, 0.0f, 1e30f};
+  const Ray next{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
   return Le + bs.weight * LiWhitted(ctx, next, depth + 1, rng, c) * (1.0f / kWhittedContinuation);
 }
 
@@ -182,7 +115,14 @@ Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, Pcg32& rng, RayCoun
   Vec3f prev_p;
   for (int depth = 0;; ++depth) {
     Hit hit;
-    if (!Trace(ctx, ray, &hit, c)) break;
+    if (!Trace(ctx, ray, &hit, c)) {
+      // Escaped: environment light, counted unless emitter sampling already did (ems after a
+      // non-specular bounce), MIS-weighted for path_mis.
+      const Vec3f w = ray.d / Length(ray.d);
+      if (!nee || specular_bounce) L += throughput * Escaped(scene, w, false, 0.0f);
+      else if (mis) L += throughput * Escaped(scene, w, true, prev_pdf);
+      break;
+    }
     const SurfaceInteraction its = MakeInteraction(scene, hit);
     const Vec3f wo_world = -ray.d / Length(ray.d);
     const Color3f Le = Emitted(scene, its, wo_world);
@@ -219,7 +159,7 @@ Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, Pcg32& rng, RayCoun
     prev_pdf = bs.pdf;
     prev_p = its.p;
     const Vec3f wi = its.frame.ToWorld(bs.wi);
-    ray = Ray{SpawnOrigin(its, wi), wi, 0.0f, 1e30f};
+    ray = Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
   }
   return L;
 }
@@ -241,13 +181,10 @@ Color3f Li(const RenderContext& ctx, const Ray& ray, Pcg32& rng, RayCounters* co
 }
 
 std::string UnsupportedFeature(const Scene& scene) {
-  const char* names[kMaterialTagCount] = {"diffuse", "mirror", "dielectric", "roughconductor",
-                                          "microfacet"};
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
-    const MaterialTag tag = scene.meshes.material[i].tag();
-    if (!IsSupportedMaterial(tag))
-      return std::string("bsdf '") + names[int(tag)] + "' (on '" + scene.meshes.name[i] +
-             "') is not supported yet";
+    const MaterialRef m = scene.meshes.material[i];
+    if (!m.valid() || !IsSupportedMaterial(m.tag()))
+      return "the material of '" + scene.meshes.name[i] + "' is not supported yet";
   }
   return "";
 }

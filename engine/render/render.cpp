@@ -13,6 +13,7 @@
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/integrator.h"
+#include "engine/render/packet_render.h"
 
 namespace ptlab {
 namespace {
@@ -23,37 +24,7 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
-struct TileStats {
-  uint64_t rays = 0;
-  uint64_t nonfinite = 0;
-  int first_x = -1, first_y = -1;
-};
-
-void RenderTile(const RenderContext& ctx, const Camera& camera, const PixelFilter& filter,
-                const Tile& tile, uint32_t s_begin, uint32_t s_end, uint64_t seed,
-                FilmBlock* block, TileStats* stats) {
-  RayCounters counters;
-  const uint64_t width = uint64_t(camera.width());
-  for (int y = tile.y0; y < tile.y1; ++y)
-    for (int x = tile.x0; x < tile.x1; ++x) {
-      const uint64_t pixel = uint64_t(y) * width + uint64_t(x);
-      const uint64_t pixel_seed = MixBits(seed * 0x9e3779b97f4a7c15ULL + pixel);
-      for (uint32_t s = s_begin; s < s_end; ++s) {
-        Pcg32 rng(pixel_seed, s);
-        const float jx = rng.NextFloat(), jy = rng.NextFloat();
-        const float lx = rng.NextFloat(), ly = rng.NextFloat();
-        const float sx = float(x) + jx, sy = float(y) + jy;
-        const Ray ray = camera.GenerateRay(sx, sy, {lx, ly});
-        const Color3f L = Li(ctx, ray, rng, &counters);
-        if (!IsFinite(L)) {
-          if (stats->nonfinite++ == 0) stats->first_x = x, stats->first_y = y;
-          continue;
-        }
-        block->Splat(filter, sx, sy, L);
-      }
-    }
-  stats->rays += counters.rays;
-}
+using TileStats = TileSampleStats;
 
 }  // namespace
 
@@ -99,7 +70,13 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         blocks[i].Reset(t.x0 - border, t.y0 - border, t.x1 - t.x0 + 2 * border,
                         t.y1 - t.y0 + 2 * border);
         stats[i] = TileStats{};
-        RenderTile(ctx, camera, filter, t, s0, s1, options.seed, &blocks[i], &stats[i]);
+        if (options.packets != nullptr) {
+          RenderTilePacket8(ctx, *options.packets, camera, filter, t.x0, t.y0, t.x1, t.y1, s0,
+                            s1, options.seed, &blocks[i], &stats[i]);
+        } else {
+          RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,
+                           &blocks[i], &stats[i]);
+        }
         std::lock_guard<std::mutex> lock(mutex);
         ++tiles_done;
         progress.samples_done += uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0) * (s1 - s0);

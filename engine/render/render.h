@@ -7,6 +7,7 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image.h"
+#include "engine/render/packet_render.h"
 #include "engine/scene/scene.h"
 
 namespace ptlab {
@@ -23,6 +24,9 @@ struct RenderOptions {
   uint64_t seed = 0;
   /// Set (e.g. by a SIGINT handler) to stop; the image keeps every completed pass.
   const std::atomic<bool>* cancel = nullptr;
+  /// When set, tiles run through the 8-wide packet path on this traversal backend (bit-identical
+  /// to the scalar path); it must outlive the render. Null: one ray at a time, the oracle.
+  const TraversalBackend8* packets = nullptr;
   /// Called from the coordinating thread after each tile completes.
   std::function<void(const RenderProgress&)> on_progress;
 };

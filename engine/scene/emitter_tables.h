@@ -1,10 +1,11 @@
-// Emitter components: area lights on meshes (one row per emitting mesh).
+// Emitter components: area lights on meshes, environment maps and distant disks (one row each).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "engine/core/aligned.h"
+#include "engine/core/frame.h"
 #include "engine/core/vec.h"
 #include "engine/scene/refs.h"
 
@@ -19,6 +20,43 @@ struct AreaLightTable {
   std::vector<float> area;               // total surface area (world units²)
   std::vector<uint32_t> cdf_offset;
   AlignedVector<float> triangle_cdf;     // normalised, last entry of each light = 1
+
+  size_t size() const { return radiance.size(); }
+};
+
+/// How an environment map's emitter samples directions (XML string `sampling`).
+enum class EnvironmentSampling : uint8_t {
+  kUniform,     // uniform over the sphere, pdf 1/(4π)
+  kImportance,  // piecewise constant over the pixels, ∝ luminance × sinθ (the default)
+};
+
+/// Environment maps (Mitsuba `envmap`), one row per emitter; built by AddEnvironmentMap
+/// (engine/light/environment_map.h), which documents the lat-long convention. Per-row columns
+/// index into pooled columns: pixels (premultiplied by `scale`, row-major, row 0 = up) at
+/// pixel_offset; the importance distribution (engine/sampling/distribution2d.h layout) at
+/// marginal_offset (height + 1 floats) and conditional_offset (height × (width + 1) floats).
+/// Uniform rows store no distribution. A scene without environment maps holds empty vectors.
+struct EnvironmentMapTable {
+  std::vector<int32_t> width, height;
+  std::vector<uint32_t> pixel_offset, marginal_offset, conditional_offset;
+  std::vector<EnvironmentSampling> sampling;
+  std::vector<Frame> to_world;             // rotation: local (s, t, n) axes in world space
+  std::vector<float> luminance_integral;   // ≈ ∫ luminance dω (sr); 0 = black: never sampled
+  AlignedVector<float> r, g, b;            // pooled pixels
+  AlignedVector<float> marginal_cdf, conditional_cdf;  // pooled importance CDFs
+
+  size_t size() const { return width.size(); }
+};
+
+/// Nori (ETH) `distantdisk` emitters: constant radiance inside a cone of half-angle thetaA
+/// around the world axis to_world.n, zero outside; thetaA = 180° is a constant environment.
+struct DistantDiskTable {
+  std::vector<Color3f> radiance;
+  // ω (unit) is inside iff |ω - axis|² <= max_chord2 = 2 (1 - cos thetaA), +inf for 180°: the
+  // chord form stays accurate in float for narrow cones, where cos ω·axis ≈ 1 does not.
+  std::vector<float> max_chord2;
+  std::vector<float> solid_angle;  // 2π (1 - cos thetaA), sr, computed in double
+  std::vector<Frame> to_world;     // rotation: the cone axis is to_world.n
 
   size_t size() const { return radiance.size(); }
 };

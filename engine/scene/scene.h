@@ -59,6 +59,8 @@ struct Scene {
   MeshTable meshes;
   MaterialTables materials;
   AreaLightTable area_lights;
+  EnvironmentMapTable environment_maps;
+  DistantDiskTable distant_disks;
   std::vector<EmitterRef> emitters;  // all emitters, for uniform selection
 
   CameraDesc camera;

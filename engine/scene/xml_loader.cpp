@@ -1,6 +1,8 @@
 // Nori XML scene parser: strict property lists, transforms, and one builder per object type.
 #include "engine/scene/xml_loader.h"
 
+#include "engine/bsdf/conductor_presets.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -12,10 +14,14 @@
 #include <utility>
 #include <vector>
 
+#include "engine/image/image_io.h"
+#include "engine/light/distant_disk.h"
+#include "engine/light/environment_map.h"
 #include "engine/scene/mesh_builder.h"
 #include "engine/scene/obj_loader.h"
 #include "engine/scene/shapes.h"
 #include "engine/scene/text_parsing.h"
+#include "engine/scene/xml_loader_internal.h"
 
 namespace ptlab {
 namespace {
@@ -472,14 +478,19 @@ class SceneParser {
     const std::string_view tag = root.name();
     if (tag == "test")
       return at_.Error(root,
-                       "<test> elements (Nori t-tests and chi-square tests) are not "
-                       "supported yet; expected a <scene> root");
+                       "<test> roots (Nori t-test / chi-square test files) are not supported "
+                       "yet as scenes; run the file with `ptlab test FILE.xml`; expected a "
+                       "<scene> root");
     if (tag != "scene")
       return at_.Error(root, "root element <" + std::string(tag) + ">; expected <scene>");
     return ParseScene(root);
   }
 
   Scene TakeScene() { return std::move(scene_); }
+
+  // One <scene> or <bsdf> element of a larger document (xml_loader_internal.h).
+  Status ParseSceneElement(const pugi::xml_node& node) { return ParseScene(node); }
+  StatusOr<MaterialRef> ParseBsdfElement(const pugi::xml_node& node) { return ParseBsdf(node); }
 
  private:
   // Splits `node`'s children into properties (parsed into `props`) and child objects, which
@@ -689,12 +700,19 @@ class SceneParser {
       return materials.AddMirror();
     }
     if (type == "dielectric") {
-      PTLAB_RETURN_IF_ERROR(props.Expect({"intIOR", "extIOR"}));
+      PTLAB_RETURN_IF_ERROR(props.Expect({"intIOR", "extIOR", "schlick", "scaleRadiance"}));
       PTLAB_RETURN_IF_ERROR(props.Float("intIOR", &int_ior));
       PTLAB_RETURN_IF_ERROR(props.Float("extIOR", &ext_ior));
       PTLAB_RETURN_IF_ERROR(CheckPositive(props, "intIOR", int_ior));
       PTLAB_RETURN_IF_ERROR(CheckPositive(props, "extIOR", ext_ior));
-      return materials.AddDielectric(int_ior, ext_ior);
+      // ptlab extensions: Schlick's approximation (as CS184's glass) and the (η_o/η_i)²
+      // radiance scaling on refraction; both off by default, as in Nori.
+      bool schlick = false, scale_radiance = false;
+      PTLAB_RETURN_IF_ERROR(props.Boolean("schlick", &schlick));
+      PTLAB_RETURN_IF_ERROR(props.Boolean("scaleRadiance", &scale_radiance));
+      const uint8_t flags = uint8_t((schlick ? kDielectricSchlick : 0) |
+                                    (scale_radiance ? kDielectricScaleRadiance : 0));
+      return materials.AddDielectric(int_ior, ext_ior, flags);
     }
     if (type == "microfacet") {
       PTLAB_RETURN_IF_ERROR(props.Expect({"alpha", "intIOR", "extIOR", "kd"}));
@@ -711,33 +729,38 @@ class SceneParser {
     }
     if (type == "roughconductor") {
       PTLAB_RETURN_IF_ERROR(props.Expect({"alpha", "eta", "k", "material"}));
-      if (props.Has("material"))
-        return props.Error("material",
-                           "roughconductor material presets are not supported "
-                           "yet; expected explicit <color name=\"eta\"> and "
-                           "<color name=\"k\">");
-      PTLAB_RETURN_IF_ERROR(props.Require("eta", "color"));
-      PTLAB_RETURN_IF_ERROR(props.Require("k", "color"));
+      // Mitsuba's roughconductor: a named `material` (default Cu) or explicit eta and k.
       Color3f eta, k;
       PTLAB_RETURN_IF_ERROR(props.Float("alpha", &alpha));
-      PTLAB_RETURN_IF_ERROR(props.Color("eta", &eta));
-      PTLAB_RETURN_IF_ERROR(props.Color("k", &k));
+      if (props.Has("eta") || props.Has("k")) {
+        if (props.Has("material"))
+          return props.Error("material", "give either string 'material' or colors 'eta' and "
+                                         "'k', not both");
+        PTLAB_RETURN_IF_ERROR(props.Require("eta", "color"));
+        PTLAB_RETURN_IF_ERROR(props.Require("k", "color"));
+        PTLAB_RETURN_IF_ERROR(props.Color("eta", &eta));
+        PTLAB_RETURN_IF_ERROR(props.Color("k", &k));
+      } else {
+        std::string name = "Cu";
+        PTLAB_RETURN_IF_ERROR(props.String("material", &name));
+        if (!LookupConductorPreset(name, &eta, &k)) {
+          return props.Error("material", "unknown conductor '" + name + "'; expected one of " +
+                                              std::string(ConductorPresetNames()));
+        }
+      }
       PTLAB_RETURN_IF_ERROR(CheckPositive(props, "alpha", alpha));
       PTLAB_RETURN_IF_ERROR(CheckColor(props, "eta", eta, Range::kNonNegative));
       PTLAB_RETURN_IF_ERROR(CheckColor(props, "k", k, Range::kNonNegative));
-      ConductorTable& t = materials.conductor;
-      t.alpha.push_back(alpha);
-      t.eta_r.push_back(eta.r), t.eta_g.push_back(eta.g), t.eta_b.push_back(eta.b);
-      t.k_r.push_back(k.r), t.k_g.push_back(k.g), t.k_b.push_back(k.b);
-      return MaterialRef::Make(MaterialTag::kConductor, uint32_t(t.size() - 1));
+      return materials.AddConductor(alpha, eta, k);
     }
     return at_.Error(node, "unknown bsdf type '" + type +
                                "'; expected diffuse, mirror, dielectric, microfacet or "
                                "roughconductor");
   }
 
-  static bool IsUnsupportedEmitter(const std::string& type) {
-    return type == "envmap" || type == "distantdisk" || type == "point";
+  static bool IsUnsupportedEmitter(const std::string& type) { return type == "point"; }
+  static bool IsInfiniteEmitter(const std::string& type) {
+    return type == "envmap" || type == "distantdisk";
   }
 
   Status ParseAreaEmitter(const pugi::xml_node& node, Color3f* radiance) {
@@ -746,6 +769,10 @@ class SceneParser {
     const std::string type = node.attribute("type").value();
     if (IsUnsupportedEmitter(type))
       return at_.Error(node, "emitter type '" + type + "' is not supported yet");
+    if (IsInfiniteEmitter(type))
+      return at_.Error(node, "an emitter of type '" + type +
+                                 "' cannot be attached to a shape; expected it directly inside "
+                                 "<scene>");
     if (type != "area")
       return at_.Error(node, "unknown emitter type '" + type + "' inside a shape; expected area");
     PTLAB_RETURN_IF_ERROR(props.Expect({"radiance"}));
@@ -761,9 +788,90 @@ class SceneParser {
       return at_.Error(node, "emitter type '" + type + "' is not supported yet");
     if (type == "area")
       return at_.Error(node, "an area emitter must be inside a <mesh> or <shape>");
+    if (type == "envmap") return ParseEnvironmentEmitter(node);
+    if (type == "distantdisk") return ParseDistantDiskEmitter(node);
     return at_.Error(node, "unknown emitter type '" + type +
-                               "'; expected area (inside a shape); envmap, distantdisk and "
-                               "point are not supported yet");
+                               "'; expected envmap or distantdisk (area goes inside a shape; "
+                               "point is not supported yet)");
+  }
+
+  // The rotation of an infinite emitter's toWorld: its upper 3x3 must be orthonormal
+  // (translation is ignored: the emitter is infinitely far away).
+  Status RotationOf(const pugi::xml_node& node, PropertyList& props, const Transform& to_world,
+                    Frame* frame) {
+    const Matrix4& m = to_world.matrix();
+    const Vec3f c[3] = {{m.m[0][0], m.m[1][0], m.m[2][0]},
+                        {m.m[0][1], m.m[1][1], m.m[2][1]},
+                        {m.m[0][2], m.m[1][2], m.m[2][2]}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (!(std::fabs(Dot(c[i], c[j]) - (i == j ? 1.0f : 0.0f)) <= 1e-4f))
+          return props.Error("toWorld", "toWorld of " + Describe(node) +
+                                            " is not a rotation; expected an orthonormal upper 3x3 "
+                                            "(rotate, lookat; no scale or shear)");
+    frame->s = Normalize(c[0]), frame->t = Normalize(c[1]), frame->n = Normalize(c[2]);
+    return Status::Ok();
+  }
+
+  // Mitsuba `envmap`: string filename (EXR/HDR/PFM/PNG lat-long image, required), float scale
+  // = 1, transform toWorld (rotation), string sampling = importance|uniform.
+  Status ParseEnvironmentEmitter(const pugi::xml_node& node) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    PTLAB_RETURN_IF_ERROR(props.Expect({"filename", "scale", "toWorld", "sampling"}));
+    PTLAB_RETURN_IF_ERROR(props.Require("filename", "string"));
+    std::string filename, sampling = "importance";
+    EnvironmentMapDesc desc;
+    Transform to_world;
+    PTLAB_RETURN_IF_ERROR(props.String("filename", &filename));
+    PTLAB_RETURN_IF_ERROR(props.Float("scale", &desc.scale));
+    PTLAB_RETURN_IF_ERROR(props.String("sampling", &sampling));
+    PTLAB_RETURN_IF_ERROR(props.TransformProperty("toWorld", &to_world));
+    if (!(desc.scale >= 0))
+      return props.Error("scale", "scale = " + FormatNumber(desc.scale) +
+                                      " is out of range; expected a value >= 0");
+    if (sampling != "importance" && sampling != "uniform")
+      return props.Error("sampling",
+                         "unknown sampling '" + sampling + "'; expected importance or uniform");
+    desc.sampling =
+        sampling == "uniform" ? EnvironmentSampling::kUniform : EnvironmentSampling::kImportance;
+    PTLAB_RETURN_IF_ERROR(RotationOf(node, props, to_world, &desc.to_world));
+    const std::string path = Resolve(filename);
+    StatusOr<Image> image = ReadImage(path);
+    if (!image.ok())
+      return at_.Error(
+          node, "cannot load the image of " + Describe(node) + ": " + image.status().message());
+    StatusOr<uint32_t> row = AddEnvironmentMap(*image, desc, path, &scene_.environment_maps);
+    if (!row.ok()) return at_.Error(node, row.status().message());
+    scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kEnvironment, *row));
+    return Status::Ok();
+  }
+
+  // Nori (ETH) `distantdisk`: color radiance and float thetaA (half-angle in degrees, (0, 180])
+  // required, transform toWorld (rotation; the cone is around its local +z).
+  Status ParseDistantDiskEmitter(const pugi::xml_node& node) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    PTLAB_RETURN_IF_ERROR(props.Expect({"radiance", "thetaA", "toWorld"}));
+    PTLAB_RETURN_IF_ERROR(props.Require("radiance", "color"));
+    PTLAB_RETURN_IF_ERROR(props.Require("thetaA", "float"));
+    Color3f radiance;
+    float theta_a = 0;
+    Transform to_world;
+    Frame frame;
+    PTLAB_RETURN_IF_ERROR(props.Color("radiance", &radiance));
+    PTLAB_RETURN_IF_ERROR(props.Float("thetaA", &theta_a));
+    PTLAB_RETURN_IF_ERROR(props.TransformProperty("toWorld", &to_world));
+    PTLAB_RETURN_IF_ERROR(CheckColor(props, "radiance", radiance, Range::kNonNegative));
+    if (!(theta_a > 0 && theta_a <= 180))
+      return props.Error("thetaA", "thetaA = " + FormatNumber(theta_a) +
+                                       " is out of range; expected degrees in (0, 180]");
+    PTLAB_RETURN_IF_ERROR(RotationOf(node, props, to_world, &frame));
+    StatusOr<uint32_t> row =
+        AddDistantDisk(radiance, theta_a, frame, at_.At(node), &scene_.distant_disks);
+    if (!row.ok()) return row.status();
+    scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kDistantDisk, *row));
+    return Status::Ok();
   }
 
   Status ParseCamera(const pugi::xml_node& node) {
@@ -939,4 +1047,34 @@ StatusOr<Scene> LoadScene(const std::string& path, const LoadOptions& options) {
                              options);
 }
 
+namespace internal {
+
+StatusOr<Scene> ParseSceneElement(const std::string& xml, const pugi::xml_node& node,
+                                  const std::string& base_dir, const std::string& display_name,
+                                  const LoadOptions& options) {
+  const Locator at(xml, display_name, options);
+  SceneParser parser(&at, base_dir);
+  PTLAB_RETURN_IF_ERROR(parser.ParseSceneElement(node));
+  Scene scene = parser.TakeScene();
+  scene.source_path = display_name;
+  FinalizeAreaLights(&scene);
+  return scene;
+}
+
+StatusOr<ParsedBsdfs> ParseBsdfElements(const std::string& xml,
+                                        const std::vector<pugi::xml_node>& nodes,
+                                        const std::string& display_name) {
+  const Locator at(xml, display_name, LoadOptions{});
+  SceneParser parser(&at, "");
+  ParsedBsdfs parsed;
+  for (const pugi::xml_node& node : nodes) {
+    StatusOr<MaterialRef> ref = parser.ParseBsdfElement(node);
+    if (!ref.ok()) return ref.status();
+    parsed.refs.push_back(*ref);
+  }
+  parsed.materials = std::move(parser.TakeScene().materials);
+  return parsed;
+}
+
+}  // namespace internal
 }  // namespace ptlab

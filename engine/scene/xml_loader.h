@@ -43,11 +43,20 @@ struct LoadOptions {
 ///   `lightSamples` for direct_ems/direct_mis/path_ems/path_mis, string `heuristic` =
 ///   balance|power for direct_mis/path_mis);
 ///   at most one `<rfilter>` (here or in the camera): gaussian (float `radius` = 2, `stddev` =
-///   0.5), box (`radius` = 0.5), tent (`radius` = 1).
+///   0.5), box (`radius` = 0.5), tent (`radius` = 1);
+///   any number of infinite `<emitter>`s directly in the scene: envmap (Mitsuba: string
+///   `filename` required, an EXR/HDR/PFM/PNG lat-long image resolved like OBJ names; float
+///   `scale` = 1, >= 0; string `sampling` = importance|uniform; transform `toWorld`, a rotation)
+///   and distantdisk (Nori ETH: color `radiance` and float `thetaA` in (0, 180] degrees, both
+///   required; transform `toWorld`, a rotation, the cone around its local +z). Environment-map
+///   pixels must be finite and >= 0 (NaN, Inf or negative values are an error, not clamped);
+///   see engine/light/environment_map.h for the lat-long convention.
 /// - `<bsdf>`: diffuse (color `albedo` = 0.5 in [0,1]), mirror, dielectric (float `intIOR` =
-///   1.5046, `extIOR` = 1.000277), microfacet = Beckmann rough plastic (float `alpha` = 0.1,
+///   1.5046, `extIOR` = 1.000277; ptlab's booleans `schlick` and `scaleRadiance` = false),
+///   microfacet = Beckmann rough plastic (float `alpha` = 0.1,
 ///   `intIOR`, `extIOR`, color `kd` = 0.5 in [0,1]), roughconductor (float `alpha` = 0.1,
-///   colors `eta`, `k` required; presets via string `material` are not supported yet).
+///   string `material` = Cu, a preset of engine/bsdf/conductor_presets.h, or colors `eta` and
+///   `k` instead).
 /// - properties: `<boolean|integer|float|string|point|vector|color name=.. value=..>`;
 ///   point/vector/color take exactly 3 numbers separated by commas and/or whitespace.
 /// - `<transform name="toWorld">` with `<translate value>`, `<scale value>`, `<rotate axis
@@ -62,9 +71,10 @@ struct LoadOptions {
 /// duplicate properties, wrong property types, malformed numbers ("1.2.3", "abc", "nan",
 /// "inf", trailing junk), wrong component counts, out-of-range values, singular transforms,
 /// a second camera/sampler/integrator/rfilter, a missing camera or integrator, unreadable or
-/// faceless OBJ files (the message then also carries the OBJ file:line), and the features not
-/// supported yet: `<test>` roots, `<bsdf>` outside a shape, emitters envmap, distantdisk and
-/// point. Area lights get their CDFs from FinalizeAreaLights before the scene is returned.
+/// faceless OBJ files (the message then also carries the OBJ file:line), unreadable or invalid
+/// environment maps, a toWorld of an infinite emitter that is not a rotation, and the features
+/// not supported yet: `<test>` roots, `<bsdf>` outside a shape, point emitters. Area lights get
+/// their CDFs from FinalizeAreaLights before the scene is returned.
 StatusOr<Scene> LoadScene(const std::string& path, const LoadOptions& options = {});
 
 /// As LoadScene, from XML text in memory: relative file names resolve against `base_dir`

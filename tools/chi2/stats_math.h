@@ -1,4 +1,4 @@
-// Numerics of the chi-square lab: incomplete gamma / p-values, Šidák, adaptive Simpson, Pearson.
+// Numerics of the statistical lab: χ² and Student t p-values, Šidák, adaptive Simpson, Pearson.
 #pragma once
 
 #include <algorithm>
@@ -119,5 +119,70 @@ struct PearsonResult {
 /// counted in zero_expected_* when they hold observations. observed.size() == expected.size().
 PearsonResult PearsonChiSquare(const std::vector<double>& observed,
                                const std::vector<double>& expected, double min_expected = 5.0);
+
+/// Regularised incomplete beta function I_x(a, b) = B(x; a, b) / B(a, b); a, b > 0,
+/// 0 <= x <= 1 (NaN otherwise). Lentz continued fraction on whichever of I_x(a, b) and
+/// 1 - I_{1-x}(b, a) converges fast (Numerical Recipes §6.4).
+double RegularizedIncompleteBeta(double a, double b, double x);
+
+/// P[T <= t] for Student's t distribution with `dof` > 0 degrees of freedom (real dof allowed,
+/// as Welch's test needs).
+double StudentTCdf(double t, double dof);
+
+/// Two-tailed p-value P[|T| >= |t|] = I_{dof/(dof+t²)}(dof/2, 1/2), computed directly (not as
+/// 1 - cdf), so tiny p-values keep their digits. NaN t gives NaN.
+double StudentTTwoTailedPValue(double t, double dof);
+
+/// Mean and variance of a stream of values, one pass (Welford), mergeable (Chan et al.), so
+/// chunks accumulated on several threads and merged in a fixed order give fixed results.
+struct RunningMoments {
+  int64_t n = 0;
+  double mean = 0;
+  double m2 = 0;  // Σ (x - mean)²
+
+  void Add(double x) {
+    ++n;
+    const double delta = x - mean;
+    mean += delta / double(n);
+    m2 += delta * (x - mean);
+  }
+  void Merge(const RunningMoments& o) {
+    if (o.n == 0) return;
+    const int64_t total = n + o.n;
+    const double delta = o.mean - mean;
+    mean += delta * double(o.n) / double(total);
+    m2 += o.m2 + delta * delta * double(n) * double(o.n) / double(total);
+    n = total;
+  }
+  /// Unbiased sample variance (n - 1 in the denominator); 0 for n < 2.
+  double Variance() const { return n > 1 ? m2 / double(n - 1) : 0.0; }
+};
+
+/// Outcome of a t-test at a Šidák-corrected level.
+struct TTestResult {
+  double t = 0;  // the t statistic (signed: estimate above the reference is > 0)
+  double dof = 0;
+  double p_value = std::numeric_limits<double>::quiet_NaN();  // two-tailed
+  double alpha = 0;                                           // Šidák-corrected per-test level
+  bool pass = false;  // the null hypothesis (equal means) was accepted: p >= alpha
+};
+
+/// Nori's floor on the sample variance of a t-test (hypothesis::students_t_test): an estimator
+/// that is constant (variance 0, e.g. total internal reflection) and equal to the reference
+/// passes instead of dividing 0 by 0.
+inline constexpr double kNoriMinTTestVariance = 1e-5;
+
+/// One-sample two-tailed Student t-test of H0: E[X] = reference, from n samples with sample
+/// mean `mean` and unbiased sample variance `variance`: t = (mean - reference) /
+/// sqrt(max(variance, min_variance) / n), dof = n - 1, rejected when p < SidakAlpha(alpha,
+/// test_count) (Nori's test). n >= 2, 0 < alpha < 1, test_count >= 1.
+TTestResult OneSampleTTest(double mean, double variance, int64_t n, double reference, double alpha,
+                           int test_count, double min_variance = kNoriMinTTestVariance);
+
+/// Welch's two-sample two-tailed t-test of H0: E[X1] = E[X2] (unequal variances; dof by
+/// Welch–Satterthwaite), at SidakAlpha(alpha, test_count). n1, n2 >= 2. Two constant samples
+/// (both variances 0) give t = 0 (p = 1) when the means are equal, else t = ±inf (p = 0).
+TTestResult WelchTTest(double mean1, double variance1, int64_t n1, double mean2, double variance2,
+                       int64_t n2, double alpha, int test_count);
 
 }  // namespace ptlab

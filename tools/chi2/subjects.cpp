@@ -1,6 +1,10 @@
 // Subjects of the chi-square lab: the warps of engine/sampling/warp.h and broken variants.
 #include "tools/chi2/subjects.h"
 
+#include "tools/chi2/bsdf_subjects.h"
+#include "tools/chi2/geometry_subjects.h"
+#include "tools/chi2/light_subjects.h"
+
 #include <cmath>
 
 #include "engine/core/check.h"
@@ -95,6 +99,9 @@ Chi2Registry DefaultChi2Registry() {
   Chi2Registry registry;
   RegisterWarpSubjects(&registry);
   RegisterBrokenSubjects(&registry);
+  RegisterLightSubjects(&registry);
+  RegisterGeometrySubjects(&registry);
+  RegisterBsdfSubjects(&registry);
   return registry;
 }
 

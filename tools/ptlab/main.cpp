@@ -12,9 +12,15 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
+#include "engine/light/environment_map.h"
 #include "engine/render/integrator.h"
 #include "engine/render/render.h"
 #include "engine/scene/xml_loader.h"
+#include "simd/bvh8.h"
+#include "simd/targets.h"
+#include "simd/traverse8.h"
+#include "simd/traverse8_backend.h"
+#include "tools/chi2/nori_tests.h"
 
 namespace ptlab {
 namespace {
@@ -75,6 +81,7 @@ struct RenderArgs {
   uint64_t seed = 0;
   bool quiet = false;
   std::string lookat = "nori";
+  bool scalar = false;
 };
 
 int RunRender(const RenderArgs& args) {
@@ -123,6 +130,20 @@ int RunRender(const RenderArgs& args) {
                args.scene.c_str(), scene.camera.width, scene.camera.height, options.spp,
                options.threads, scene.triangles.size());
   const Bvh bvh = BuildBvh(scene.triangles);
+  const bool packets = !args.scalar && !simd::ForceScalar();
+  simd::Bvh8 bvh8;
+  TraversalBackend8 backend;
+  if (packets) {
+    bvh8 = simd::BuildBvh8(bvh);
+    backend = simd::PacketTraversalBackend(bvh8);
+    options.packets = &backend;
+  }
+  const std::string traversal = packets ? std::string("packet8 ") + simd::Traverse8TargetName()
+                                        : std::string("scalar");
+  std::fprintf(stderr, "ptlab: traversal: %s\n",
+               packets ? ("8-wide packets, Highway target " +
+                          std::string(simd::Traverse8TargetName())).c_str()
+                       : "scalar oracle (one ray at a time)");
   std::signal(SIGINT, OnSigint);
   const RenderResult result = Render(scene, bvh, options);
   std::signal(SIGINT, SIG_DFL);
@@ -140,6 +161,7 @@ int RunRender(const RenderArgs& args) {
       {"ptlab:seconds", std::to_string(result.seconds)},
       {"ptlab:interrupted", result.interrupted ? "true" : "false"},
       {"ptlab:nonfinite_samples", std::to_string(result.nonfinite_samples)},
+      {"ptlab:traversal", traversal},
   };
   if (result.spp_done == 0) {
     std::fprintf(stderr, "interrupted before the first pass completed: nothing written\n");
@@ -165,7 +187,8 @@ int RunRender(const RenderArgs& args) {
 int main(int argc, char** argv) {
   CLI::App app{"ptlab: a CPU path tracer and rendering test lab"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "ptlab 0.1");
+  app.set_version_flag("--version", std::string("ptlab 0.1 (traversal: Highway ") +
+                                       ptlab::simd::Traverse8TargetName() + ")");
 
   ptlab::RenderArgs render;
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (Nori XML) to EXR + PNG");
@@ -184,16 +207,45 @@ int main(int argc, char** argv) {
                   "lookat convention: nori (current) or nori2015 (the mirrored, unnormalised "
                   "frame of the 2015-16 Nori that rendered the eth2015 references)")
       ->check(CLI::IsMember({"nori", "nori2015"}));
+  cmd->add_flag("--scalar", render.scalar,
+                "Trace one ray at a time with the scalar oracle (same as PTLAB_FORCE_SCALAR=1)");
+
+  std::string test_file;
+  bool test_verbose = false;
+  CLI::App* test_cmd = app.add_subcommand(
+      "test", "Run a Nori statistical test file (<test type=\"ttest|chi2test\">)");
+  test_cmd->add_option("file", test_file, "Nori test file (.xml)")->required();
+  test_cmd->add_flag("-v,--verbose", test_verbose, "Also print variances and chi-square notes");
+
+  std::string envmap_in, envmap_out;
+  CLI::App* envmap_cmd = app.add_subcommand(
+      "envmap-pdf", "Write the importance-sampling probability image of an environment map "
+                    "(R: row marginal CDF, G: conditional CDF, B: pixel probability / max)");
+  envmap_cmd->add_option("map", envmap_in, "Lat-long map (.exr or .hdr)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  envmap_cmd->add_option("-o,--output", envmap_out, "Output image (.png, .exr or .pfm)")
+      ->required();
 
   bool known = false;
   for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
     known = known || (argc > 1 && sub->get_name() == argv[1]);
   if (argc > 1 && argv[1][0] != '-' && !known) {
-    std::fprintf(stderr, "error: unknown command '%s'; expected one of: render (see --help)\n",
+    std::fprintf(stderr, "error: unknown command '%s'; expected one of: render, test, envmap-pdf (see --help)\n",
                  argv[1]);
     return 3;
   }
   CLI11_PARSE(app, argc, argv);
   if (cmd->parsed()) return ptlab::RunRender(render);
+  if (test_cmd->parsed()) return ptlab::RunNoriTestCommand(test_file, test_verbose);
+  if (envmap_cmd->parsed()) {
+    const ptlab::Status st = ptlab::WriteEnvironmentPdfImage(envmap_in, envmap_out);
+    if (!st.ok()) {
+      std::fprintf(stderr, "error: %s\n", st.message().c_str());
+      return 1;
+    }
+    std::printf("wrote %s\n", envmap_out.c_str());
+    return 0;
+  }
   return 0;
 }

@@ -1,4 +1,5 @@
 // Image parity with Nori's official references (../shared/PARITY.md), label `image`.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -10,6 +11,7 @@
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
 #include "engine/scene/xml_loader.h"
+#include "tests/engine/render/packet_render_for_test.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab {
@@ -28,7 +30,17 @@ struct ParityCase {
   // odyssey 8 % too dark and 45 % of blocks off; so we render those scenes with the old
   // frame (LookatConvention::kNori2015) and compare without flipping.
   LookatConvention lookat;
+  // Sample counts: 0 = the XML's. `full_spp` overrides it for every run (a reference rendered
+  // at more samples than its XML says); `quick_spp`, if set, is used by `./lab test` without
+  // --full (PTLAB_FULL unset) for the expensive path-traced scenes, to keep the suite short.
+  uint32_t full_spp = 0;
+  uint32_t quick_spp = 0;
 };
+
+bool FullQuality() {
+  const char* v = std::getenv("PTLAB_FULL");
+  return v != nullptr && std::string(v) == "1";
+}
 
 void PrintTo(const ParityCase& c, std::ostream* os) { *os << c.name; }
 
@@ -45,12 +57,12 @@ TEST_P(ImageParity, MatchesReference) {
   ASSERT_TRUE(reference.ok()) << reference.status().message();
 
   RenderOptions options;
-  // At the XML's sample count, as the references were rendered.
-  options.spp = scene->sampler.sample_count;
+  // At the XML's sample count, as the references were rendered (see ParityCase).
+  options.spp = c.full_spp ? c.full_spp : scene->sampler.sample_count;
+  if (!FullQuality() && c.quick_spp) options.spp = std::min(options.spp, c.quick_spp);
   options.threads = std::max(1u, std::thread::hardware_concurrency());
   options.seed = 1;
-  const Bvh bvh = BuildBvh(scene->triangles);
-  const RenderResult result = Render(*scene, bvh, options);
+  const RenderResult result = RenderWithPackets(*scene, options);
   ASSERT_EQ(result.spp_done, options.spp);
 
   const ParityResult parity = CheckParity(result.image, *reference, c.floor, /*flip_x=*/false);
@@ -77,6 +89,69 @@ INSTANTIATE_TEST_SUITE_P(
                    "eth2015/scenes/pa3/odyssey/ref/odyssey_mats_64spp.exr", 0.95, LookatConvention::kNori2015},
         ParityCase{"odyssey_mis", "eth2015/scenes/pa3/odyssey/odyssey_mis.xml",
                    "eth2015/scenes/pa3/odyssey/ref/odyssey_mis_32spp.exr", 0.95, LookatConvention::kNori2015}),
+    [](const ::testing::TestParamInfo<ParityCase>& info) { return std::string(info.param.name); });
+
+// Direct illumination from Nori's ETH `distantdisk` (issue 5): a constant environment (ao) and a
+// small cone ("sun", side), rendered with the 2015-16 lookat like every eth2015 reference.
+INSTANTIATE_TEST_SUITE_P(
+    DistantDisk, ImageParity,
+    ::testing::Values(
+        ParityCase{"sphere_ao_ems", "eth2015/scenes/pa3/sphere/sphere_ao_ems.xml",
+                   "eth2015/scenes/pa3/sphere/ref/sphere_ao_ems_256spp.exr", 0.97,
+                   LookatConvention::kNori2015},
+        ParityCase{"sphere_ao_mats", "eth2015/scenes/pa3/sphere/sphere_ao_mats.xml",
+                   "eth2015/scenes/pa3/sphere/ref/sphere_ao_mats_256spp.exr", 0.97,
+                   LookatConvention::kNori2015},
+        ParityCase{"sphere_ao_mis", "eth2015/scenes/pa3/sphere/sphere_ao_mis.xml",
+                   "eth2015/scenes/pa3/sphere/ref/sphere_ao_mis_128spp.exr", 0.97,
+                   LookatConvention::kNori2015},
+        ParityCase{"sphere_side_ems", "eth2015/scenes/pa3/sphere/sphere_side_ems.xml",
+                   "eth2015/scenes/pa3/sphere/ref/sphere_side_ems_256spp.exr", 0.94,
+                   LookatConvention::kNori2015},
+        // BSDF sampling of a 10° cone is noisy: at the reference's 256 spp we agree on 91 % of
+        // blocks (< 0.94), so this one renders at 4x the reference's samples (PARITY.md
+        // allows more).
+        ParityCase{"sphere_side_mats", "eth2015/scenes/pa3/sphere/sphere_side_mats.xml",
+                   "eth2015/scenes/pa3/sphere/ref/sphere_side_mats_256spp.exr", 0.94,
+                   LookatConvention::kNori2015, 1024},
+        ParityCase{"sphere_side_mis", "eth2015/scenes/pa3/sphere/sphere_side_mis.xml",
+                   "eth2015/scenes/pa3/sphere/ref/sphere_side_mis_128spp.exr", 0.95,
+                   LookatConvention::kNori2015}),
+    [](const ::testing::TestParamInfo<ParityCase>& info) { return std::string(info.param.name); });
+
+// Materials (issue 4): glass text under Whitted.
+INSTANTIATE_TEST_SUITE_P(
+    Materials, ImageParity,
+    ::testing::Values(ParityCase{"motto_dielectric", "epfl/scenes/pa4/motto/motto-dielectric.xml",
+                                 "epfl/references/motto-dielectric.exr", 0.95,
+                                 LookatConvention::kNori, 0, 128}),
+    [](const ::testing::TestParamInfo<ParityCase>& info) { return std::string(info.param.name); });
+
+// Path tracing (issue 5): Veach's MIS plates (Beckmann rough plastic) and the table (glass,
+// water, rough plastic). The eth2015 table XMLs reach their meshes through a symlink that
+// ../shared/data stores as a plain file, so they are rendered from the byte-identical epfl
+// XMLs at the eth2015 XML's 512 spp.
+INSTANTIATE_TEST_SUITE_P(
+    PathTracing, ImageParity,
+    ::testing::Values(
+        // BSDF sampling alone rarely finds the small lights, and this reference is the noisiest
+        // of the three: at its own 256 spp our render agrees on 80 % of blocks (< 0.84; vs the
+        // less noisy veach_ems reference 88.5 %). Rendered at 4x the reference's samples
+        // (PARITY.md allows more): 87.2 %. Always at 1024 spp.
+        ParityCase{"veach_mats", "epfl/scenes/pa5/veach_mi/veach_mats.xml",
+                   "epfl/references/veach_mats.exr", 0.84, LookatConvention::kNori, 1024, 0},
+        ParityCase{"veach_ems", "epfl/scenes/pa5/veach_mi/veach_ems.xml",
+                   "epfl/references/veach_ems.exr", 0.84, LookatConvention::kNori, 0, 64},
+        ParityCase{"veach_mis", "epfl/scenes/pa5/veach_mi/veach_mis.xml",
+                   "epfl/references/veach_mis.exr", 0.88, LookatConvention::kNori, 0, 64},
+        ParityCase{"table_ems", "epfl/scenes/pa5/table/table_ems.xml",
+                   "epfl/references/table_ems.exr", 0.97, LookatConvention::kNori, 0, 64},
+        ParityCase{"table_path_mats_512spp", "epfl/scenes/pa5/table/table_mats.xml",
+                   "eth2015/scenes/pa4/table/ref/table_path_mats_512spp.exr", 0.97,
+                   LookatConvention::kNori2015, 512, 64},
+        ParityCase{"table_path_mis_512spp", "epfl/scenes/pa5/table/table_mis.xml",
+                   "eth2015/scenes/pa4/table/ref/table_path_mis_512spp.exr", 0.97,
+                   LookatConvention::kNori2015, 512, 64}),
     [](const ::testing::TestParamInfo<ParityCase>& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -1,6 +1,8 @@
 // Tests of the XML scene loader: the Nori scenes, transforms, and one test per malformed input.
 #include "engine/scene/xml_loader.h"
 
+#include "engine/bsdf/conductor_presets.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,8 +122,6 @@ TEST(SceneLoader, Eth2015TableScenesLoadWhenTheirMeshLinkIsADirectory) {
 
 TEST(SceneLoader, UnsupportedNoriScenesFailClearly) {
   PTLAB_SKIP_WITHOUT_NORI_DATA();
-  const std::string sphere = NoriDir() + "/eth2015/scenes/pa3/sphere/sphere_side_mis.xml";
-  ExpectError(LoadScene(sphere), sphere, 12, {"emitter type 'distantdisk' is not supported yet"});
   const std::string ttest = NoriDir() + "/epfl/scenes/pa5/tests/test-furnace.xml";
   ExpectError(LoadScene(ttest), ttest, 16, {"<test>", "not supported yet"});
 }
@@ -584,7 +584,7 @@ TEST(SceneLoader, UnknownObjectType) {
 }
 
 TEST(SceneLoader, UnsupportedFeatures) {
-  for (const char* type : {"envmap", "distantdisk", "point"}) {
+  for (const char* type : {"point"}) {
     SCOPED_TRACE(type);
     ExpectParseError("\n<emitter type=\"" + std::string(type) + "\"/>\n", 5,
                      {"emitter type '" + std::string(type) + "' is not supported yet"});
@@ -595,8 +595,13 @@ TEST(SceneLoader, UnsupportedFeatures) {
               {"<test>", "not supported yet"});
   ExpectParseError(
       "<shape type=\"cube\"><bsdf type=\"roughconductor\">\n"
-      "<string name=\"material\" value=\"Cu\"/></bsdf></shape>\n",
-      5, {"presets are not supported yet", "eta"});
+      "<string name=\"material\" value=\"Unobtainium\"/></bsdf></shape>\n",
+      5, {"unknown conductor 'Unobtainium'", "Au"});
+  ExpectParseError(
+      "<shape type=\"cube\"><bsdf type=\"roughconductor\">\n"
+      "<string name=\"material\" value=\"Au\"/><color name=\"eta\" value=\"1,1,1\"/>"
+      "<color name=\"k\" value=\"1,1,1\"/></bsdf></shape>\n",
+      5, {"either string 'material' or colors"});
   ExpectParseError("\n<bsdf type=\"diffuse\"/>\n", 5, {"<bsdf> is not allowed inside <scene>"});
   ExpectParseError("\n<test type=\"ttest\"/>\n", 5, {"<test>", "not supported yet"});
   ExpectParseError("\n<emitter type=\"area\"/>\n", 5, {"must be inside a <mesh> or <shape>"});
@@ -681,6 +686,52 @@ TEST(SceneLoaderLookat, Nori2015FrameIsMirroredAndUnnormalised) {
     EXPECT_NEAR(up_old[i], k * up_now[i], 1e-6);
     EXPECT_NEAR(z_old[i], dir[i], 1e-6);
   }
+}
+
+}  // namespace
+}  // namespace ptlab
+
+namespace ptlab {
+namespace {
+
+TEST(SceneLoaderConductor, PresetsAndDefaults) {
+  const auto load = [](const std::string& bsdf) {
+    return LoadSceneFromString("<scene><integrator type=\"normals\"/><camera type=\"perspective\"/>"
+                               "<shape type=\"cube\">" + bsdf + "</shape></scene>",
+                               ".", "c.xml");
+  };
+  StatusOr<Scene> au = load("<bsdf type=\"roughconductor\"><string name=\"material\" value=\"Au\"/></bsdf>");
+  StatusOr<Scene> cu = load("<bsdf type=\"roughconductor\"/>");
+  ASSERT_TRUE(au.ok()) << au.status().message();
+  ASSERT_TRUE(cu.ok()) << cu.status().message();
+  Color3f eta, k;
+  ASSERT_TRUE(LookupConductorPreset("Au", &eta, &k));
+  EXPECT_EQ(au->materials.conductor.eta_r[0], eta.r);
+  EXPECT_EQ(au->materials.conductor.k_b[0], k.b);
+  ASSERT_TRUE(LookupConductorPreset("Cu", &eta, &k));  // Mitsuba's default material
+  EXPECT_EQ(cu->materials.conductor.eta_g[0], eta.g);
+  EXPECT_FLOAT_EQ(cu->materials.conductor.alpha[0], 0.1f);
+}
+
+}  // namespace
+}  // namespace ptlab
+
+namespace ptlab {
+namespace {
+
+TEST(SceneLoaderDielectric, SchlickAndRadianceScalingFlags) {
+  StatusOr<Scene> s = LoadSceneFromString(
+      "<scene><integrator type=\"normals\"/><camera type=\"perspective\"/>"
+      "<shape type=\"cube\"><bsdf type=\"dielectric\"/></shape>"
+      "<shape type=\"cube\"><bsdf type=\"dielectric\"><boolean name=\"schlick\" value=\"true\"/>"
+      "<boolean name=\"scaleRadiance\" value=\"true\"/></bsdf></shape></scene>",
+      ".", "d.xml");
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  const DielectricTable& d = s->materials.dielectric;
+  ASSERT_EQ(d.size(), 2u);
+  ASSERT_EQ(d.flags.size(), 2u);
+  EXPECT_EQ(d.flags[0], 0);
+  EXPECT_EQ(d.flags[1], kDielectricSchlick | kDielectricScaleRadiance);
 }
 
 }  // namespace

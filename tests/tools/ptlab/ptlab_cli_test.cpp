@@ -111,6 +111,20 @@ TEST(PtlabCli, HelpOnEveryCommand) {
   EXPECT_NE(ReadFile(dir / "log").find("--spp"), std::string::npos);
 }
 
+TEST(PtlabCli, EnvmapPdfWritesTheDebugImage) {
+  const std::string map = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/envmaps/venice_sunset_1k.exr";
+  if (!fs::exists(map)) GTEST_SKIP() << "no " << map;
+  const fs::path dir = TempDir("cli_envmap_pdf");
+  ASSERT_EQ(RunPtlab("envmap-pdf " + map + " -o " + (dir / "pdf.png").string(), dir / "log"), 0)
+      << ReadFile(dir / "log");
+  StatusOr<Image> img = ReadImage((dir / "pdf.png").string());
+  ASSERT_TRUE(img.ok());
+  EXPECT_EQ(img->width, 1024);
+  EXPECT_EQ(img->height, 512);
+  EXPECT_NE(RunPtlab("envmap-pdf /nonexistent.exr -o " + (dir / "x.png").string(), dir / "log"), 0);
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 // Ctrl-C: the image of every completed pass is written, marked as interrupted, exit 130.
 TEST(PtlabCli, InterruptWritesWhatItHas) {
   const fs::path dir = TempDir("cli_sigint");

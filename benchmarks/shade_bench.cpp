@@ -1,0 +1,242 @@
+// Scalar oracle vs Highway SIMD throughput of the shading kernels, on the same fixed inputs.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/bsdf/beckmann.h"
+#include "engine/bsdf/conductor_presets.h"
+#include "engine/bsdf/shade_batch.h"
+#include "engine/core/rng.h"
+#include "engine/sampling/warp.h"
+#include "simd/shade8.h"
+
+namespace ptlab {
+namespace {
+
+// One batch: small enough to stay in L2, large enough to amortise the call.
+constexpr size_t kBatch = 4096;
+
+const bool kContext = [] {
+  benchmark::AddCustomContext("highway_target", simd::ShadeTargetName());
+  benchmark::AddCustomContext("batch", std::to_string(kBatch));
+  return true;
+}();
+
+Vec3f DirectionWithCos(float c, float phi) {
+  const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
+  return {s * std::cos(phi), s * std::sin(phi), c};
+}
+
+// Fixed inputs: α log-uniform in [1e-3, 1], wo on the upper hemisphere, wi half near-specular
+// (so D is not trivially 0) and half cosine-distributed, u uniform; Fresnel inputs uniform.
+struct Inputs {
+  std::vector<float> alpha, wo_x, wo_y, wo_z, wi_x, wi_y, wi_z, u_lobe, u_x, u_y;
+  std::vector<float> cos_i, cos_signed, eta, k, eta_d;
+  std::vector<MaterialRef> mixed;
+  std::vector<uint32_t> index[kMaterialTagCount];
+  MaterialTables tables;
+
+  Inputs() {
+    Pcg32 rng(42, 54);
+    for (int i = 0; i < 64; ++i) {
+      const float a = rng.NextFloat();
+      tables.AddDiffuse({a, 0.5f * a, 0.25f});
+      tables.AddMirror();
+      tables.AddDielectric(1.3f + 0.4f * rng.NextFloat(), 1.0f);
+      Color3f e, kk;
+      const char* names[] = {"Au", "Ag", "Al", "Cu", "Fe", "Na", "Si", "none"};
+      LookupConductorPreset(names[i % 8], &e, &kk);
+      tables.AddConductor(std::pow(10.0f, -3.0f * rng.NextFloat()), e, kk);
+      tables.AddRoughPlastic(std::pow(10.0f, -3.0f * rng.NextFloat()), 1.5f, 1.0f,
+                             {0.5f * a, 0.3f, 0.2f});
+    }
+    for (size_t i = 0; i < kBatch; ++i) {
+      const float al = std::pow(10.0f, -3.0f * rng.NextFloat());
+      const float c = 0.05f + 0.95f * rng.NextFloat();
+      const Vec3f wo = DirectionWithCos(c, 2 * kPi * rng.NextFloat());
+      const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+      const Vec3f wi = i % 2 ? ReflectAbout(wo, SampleBeckmannNormal(al, {u1, u2}))
+                             : SampleCosineHemisphere({u1, u2});
+      alpha.push_back(al);
+      wo_x.push_back(wo.x), wo_y.push_back(wo.y), wo_z.push_back(wo.z);
+      wi_x.push_back(wi.x), wi_y.push_back(wi.y), wi_z.push_back(wi.z);
+      u_lobe.push_back(rng.NextFloat()), u_x.push_back(rng.NextFloat());
+      u_y.push_back(rng.NextFloat());
+      cos_i.push_back(rng.NextFloat());
+      cos_signed.push_back(2.0f * rng.NextFloat() - 1.0f);
+      eta.push_back(0.05f + 3.0f * rng.NextFloat());
+      k.push_back(0.5f + 7.0f * rng.NextFloat());
+      eta_d.push_back(1.2f + 0.6f * rng.NextFloat());
+      const int tag = int(rng.NextFloat() * kMaterialTagCount) % kMaterialTagCount;
+      mixed.push_back(MaterialRef::Make(static_cast<MaterialTag>(tag), i % 64));
+      for (int t = 0; t < kMaterialTagCount; ++t)
+        index[t].push_back(uint32_t(rng.NextFloat() * 64) % 64);
+    }
+  }
+  DirectionArrays Wo() const { return {wo_x.data(), wo_y.data(), wo_z.data()}; }
+  DirectionArrays Wi() const { return {wi_x.data(), wi_y.data(), wi_z.data()}; }
+  ShadeInputs Shade() const {
+    ShadeInputs in;
+    in.wo = Wo(), in.wl = Wi();
+    in.u_lobe = u_lobe.data(), in.u_x = u_x.data(), in.u_y = u_y.data();
+    return in;
+  }
+};
+
+const Inputs& GetInputs() {
+  static const Inputs* inputs = new Inputs();
+  return *inputs;
+}
+
+struct Outputs {
+  std::vector<float> v[12] = {};
+  Outputs() {
+    for (auto& c : v) c.resize(kBatch);
+  }
+  ShadeOutputs Shade() {
+    ShadeOutputs o;
+    o.f = {v[0].data(), v[1].data(), v[2].data()};
+    o.pdf_l = v[3].data();
+    o.wi = {v[4].data(), v[5].data(), v[6].data()};
+    o.weight = {v[7].data(), v[8].data(), v[9].data()};
+    o.pdf = v[10].data();
+    o.eta = v[11].data();
+    return o;
+  }
+};
+
+template <bool kSimd>
+void BM_Shade8_BeckmannEvalPdf(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  Outputs out;
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::BeckmannEvalPdfBatch(in.alpha.data(), in.Wo(), in.Wi(), kBatch, out.v[0].data(),
+                                 out.v[1].data());
+    } else {
+      ptlab::BeckmannEvalPdfBatch(in.alpha.data(), in.Wo(), in.Wi(), kBatch, out.v[0].data(),
+                                  out.v[1].data());
+    }
+    benchmark::DoNotOptimize(out.v[0].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+template <bool kSimd>
+void BM_Shade8_BeckmannSample(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  Outputs out;
+  const DirectionOutArrays wi{out.v[0].data(), out.v[1].data(), out.v[2].data()};
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::SampleBeckmannReflectionBatch(in.alpha.data(), in.Wo(), in.u_x.data(), in.u_y.data(),
+                                          kBatch, wi, out.v[3].data());
+    } else {
+      ptlab::SampleBeckmannReflectionBatch(in.alpha.data(), in.Wo(), in.u_x.data(), in.u_y.data(),
+                                           kBatch, wi, out.v[3].data());
+    }
+    benchmark::DoNotOptimize(out.v[0].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+template <bool kSimd>
+void BM_Shade8_ConductorFresnel(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  Outputs out;
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::ConductorFresnelBatch(in.cos_i.data(), in.eta.data(), in.k.data(), kBatch,
+                                  out.v[0].data());
+    } else {
+      ptlab::ConductorFresnelBatch(in.cos_i.data(), in.eta.data(), in.k.data(), kBatch,
+                                   out.v[0].data());
+    }
+    benchmark::DoNotOptimize(out.v[0].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+template <bool kSimd>
+void BM_Shade8_DielectricFresnel(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  Outputs out;
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::DielectricFresnelBatch(in.cos_signed.data(), in.eta_d.data(), kBatch, out.v[0].data(),
+                                   out.v[1].data());
+    } else {
+      ptlab::DielectricFresnelBatch(in.cos_signed.data(), in.eta_d.data(), kBatch, out.v[0].data(),
+                                    out.v[1].data());
+    }
+    benchmark::DoNotOptimize(out.v[0].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+// The full per-material shade step (eval + pdf at a light direction, and a sample) for one
+// material tag (state.range(0)).
+template <bool kSimd>
+void BM_Shade8_ShadeBatch(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  const MaterialTag tag = static_cast<MaterialTag>(state.range(0));
+  const char* names[] = {"diffuse", "mirror", "dielectric", "conductor", "rough_plastic"};
+  state.SetLabel(names[state.range(0)]);
+  Outputs out;
+  const ShadeOutputs o = out.Shade();
+  const uint32_t* index = in.index[state.range(0)].data();
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::ShadeBatch(in.tables, tag, index, kBatch, in.Shade(), o);
+    } else {
+      ptlab::ShadeBatch(in.tables, tag, index, kBatch, in.Shade(), o);
+    }
+    benchmark::DoNotOptimize(out.v[10].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+// The whole shading stage on hits with mixed materials: partition, per-tag batches, scatter.
+template <bool kSimd>
+void BM_Shade8_ShadeHitsMixed(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  Outputs out;
+  const ShadeOutputs o = out.Shade();
+  ShadeScratch scratch;
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::ShadeHits(in.tables, in.mixed.data(), kBatch, in.Shade(), o, &scratch);
+    } else {
+      ptlab::ShadeHits(in.tables, in.mixed.data(), kBatch, in.Shade(), o, &scratch);
+    }
+    benchmark::DoNotOptimize(out.v[10].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+BENCHMARK_TEMPLATE(BM_Shade8_BeckmannEvalPdf, false)->Name("BM_Shade8_BeckmannEvalPdf/scalar");
+BENCHMARK_TEMPLATE(BM_Shade8_BeckmannEvalPdf, true)->Name("BM_Shade8_BeckmannEvalPdf/simd");
+BENCHMARK_TEMPLATE(BM_Shade8_BeckmannSample, false)->Name("BM_Shade8_BeckmannSample/scalar");
+BENCHMARK_TEMPLATE(BM_Shade8_BeckmannSample, true)->Name("BM_Shade8_BeckmannSample/simd");
+BENCHMARK_TEMPLATE(BM_Shade8_ConductorFresnel, false)->Name("BM_Shade8_ConductorFresnel/scalar");
+BENCHMARK_TEMPLATE(BM_Shade8_ConductorFresnel, true)->Name("BM_Shade8_ConductorFresnel/simd");
+BENCHMARK_TEMPLATE(BM_Shade8_DielectricFresnel, false)->Name("BM_Shade8_DielectricFresnel/scalar");
+BENCHMARK_TEMPLATE(BM_Shade8_DielectricFresnel, true)->Name("BM_Shade8_DielectricFresnel/simd");
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, false)
+    ->Name("BM_Shade8_ShadeBatch/scalar")
+    ->DenseRange(0, 4);
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd")->DenseRange(0, 4);
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, false)->Name("BM_Shade8_ShadeHitsMixed/scalar");
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, true)->Name("BM_Shade8_ShadeHitsMixed/simd");
+
+}  // namespace
+}  // namespace ptlab

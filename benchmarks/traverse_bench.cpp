@@ -1,0 +1,673 @@
+// Traversal throughput (rays/s) and BVH build time, single thread, on the very same rays: the
+// scalar oracle, simd/ BVH8 single-ray and 8-wide packets, and (when found) Embree 3.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/bvh/bvh.h"
+#include "engine/bvh/intersect1.h"
+#include "engine/bvh/ray_offset.h"
+#include "engine/core/frame.h"
+#include "engine/core/ray.h"
+#include "engine/core/rng.h"
+#include "engine/light/area_light.h"
+#include "engine/render/camera.h"
+#include "engine/render/film.h"
+#include "engine/render/filter.h"
+#include "engine/render/integrator.h"
+#include "engine/render/packet_render.h"
+#include "engine/sampling/warp.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/xml_loader.h"
+#include "simd/bvh8.h"
+#include "simd/traverse8.h"
+#include "simd/traverse8_backend.h"
+
+#ifdef PTLAB_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
+
+namespace ptlab {
+namespace {
+
+constexpr size_t kSecondaryRays = size_t{1} << 18;
+
+// ---------------------------------------------------------------------------------------------
+// Scenes: the Nori table and veach_mi scenes (when ../shared/data is there) and a fractal
+// terrain of 1,048,352 triangles that needs no data.
+
+float Hash2(int x, int y) {
+  uint32_t h = static_cast<uint32_t>(x) * 0x8da6b343u ^ static_cast<uint32_t>(y) * 0xd8163841u;
+  h = (h ^ (h >> 13)) * 0x85ebca6bu;
+  h ^= h >> 16;
+  return static_cast<float>(h & 0xffffffu) * 0x1p-24f;
+}
+
+// Value noise with a smooth fade, in [0, 1).
+float ValueNoise(float x, float y) {
+  const float fx = std::floor(x), fy = std::floor(y);
+  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+  const float tx = x - fx, ty = y - fy;
+  const float sx = tx * tx * (3 - 2 * tx), sy = ty * ty * (3 - 2 * ty);
+  const float a = Hash2(ix, iy), b = Hash2(ix + 1, iy), c = Hash2(ix, iy + 1),
+              d = Hash2(ix + 1, iy + 1);
+  return (a + (b - a) * sx) + ((c + (d - c) * sx) - (a + (b - a) * sx)) * sy;
+}
+
+// Ridged fBm terrain over [-1, 1]^2, n x n vertices, 2 (n-1)^2 triangles (n = 725: 1,048,352).
+TriangleTable MakeFractalTerrain(int n) {
+  std::vector<Vec3f> v(static_cast<size_t>(n) * n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const float x = -1.0f + 2.0f * static_cast<float>(i) / static_cast<float>(n - 1);
+      const float y = -1.0f + 2.0f * static_cast<float>(j) / static_cast<float>(n - 1);
+      float h = 0.0f, amp = 0.5f, freq = 3.0f;
+      for (int o = 0; o < 9; ++o) {
+        const float r = 1.0f - std::fabs(2.0f * ValueNoise(x * freq + 17.0f * o, y * freq) - 1.0f);
+        h += amp * r * r;
+        amp *= 0.5f;
+        freq *= 2.03f;
+      }
+      v[static_cast<size_t>(j) * n + i] = {x, y, 0.45f * h - 0.2f};
+    }
+  }
+  TriangleTable t;
+  auto at = [&](int i, int j) { return v[static_cast<size_t>(j) * n + i]; };
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      t.Append(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      t.Append(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  return t;
+}
+
+CameraDesc LookAtCamera(const Vec3f& eye, const Vec3f& target, const Vec3f& up, float fov,
+                        int width, int height) {
+  // Camera space looks along +z with +y up and +x to the image's left (Nori).
+  const Vec3f f = Normalize(target - eye);
+  const Vec3f l = Normalize(Cross(up, f));
+  const Vec3f u = Cross(f, l);
+  Matrix4 m;
+  for (int r = 0; r < 3; ++r) {
+    m.m[r][0] = l[r], m.m[r][1] = u[r], m.m[r][2] = f[r], m.m[r][3] = eye[r];
+  }
+  CameraDesc c;
+  c.camera_to_world = Transform(m);
+  c.fov_deg = fov;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+struct LightSampler {
+  // Either the scene's area lights or, for the terrain, a 0.6 x 0.6 quad at z = 1.5.
+  const Scene* scene = nullptr;
+  Vec3f Sample(Pcg32& rng, Vec3f* ng) const {
+    if (scene == nullptr || scene->area_lights.size() == 0) {
+      *ng = {0, 0, -1};
+      return {0.3f + 0.6f * rng.NextFloat(), 0.5f + 0.6f * rng.NextFloat(), 1.5f};
+    }
+    const uint32_t n = static_cast<uint32_t>(scene->area_lights.size());
+    const uint32_t k = std::min(n - 1, static_cast<uint32_t>(rng.NextFloat() * n));
+    const float u_tri = rng.NextFloat();
+    const Vec2f u{rng.NextFloat(), rng.NextFloat()};
+    const AreaLightSample s = SampleAreaLight(*scene, k, u_tri, u);
+    *ng = s.ng;
+    return s.p;
+  }
+};
+
+struct RaySet {
+  std::vector<Ray> rays;  // in packet order: rays [8k, 8k + 8) form packet k
+  std::vector<RayPacket8> packets;
+  std::vector<Mask8> masks;
+};
+
+struct BenchScene {
+  std::string error;  // non-empty: the scene could not be made
+  std::unique_ptr<Scene> scene;
+  TriangleTable terrain;
+  const TriangleTable* triangles = nullptr;
+  Bvh bvh;
+  simd::Bvh8 bvh8;
+  std::map<uint32_t, simd::Bvh8> merged;  // BVH8 variants by merge_leaf_size (tuning)
+  RaySet coherent, incoherent, shadow;
+#ifdef PTLAB_HAVE_EMBREE
+  RTCDevice device = nullptr;
+  RTCScene rtc_scene = nullptr;
+#endif
+};
+
+void Pack(RaySet* set) {
+  const size_t n = set->rays.size();
+  for (size_t base = 0; base < n; base += 8) {
+    RayPacket8 p{};
+    Mask8 m = 0;
+    for (int j = 0; j < 8 && base + j < n; ++j) {
+      const Ray& r = set->rays[base + j];
+      p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
+      p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
+      p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
+      m |= 1u << j;
+    }
+    set->packets.push_back(p);
+    set->masks.push_back(m);
+  }
+}
+
+#ifdef PTLAB_HAVE_EMBREE
+RTCScene MakeEmbreeScene(RTCDevice device, const TriangleTable& t, bool commit) {
+  RTCScene scene = rtcNewScene(device);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  const size_t n = t.size();
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3f p[3] = {t.V0(i), t.V1(i), t.V2(i)};
+    for (int k = 0; k < 3; ++k) {
+      v[9 * i + 3 * k + 0] = p[k].x, v[9 * i + 3 * k + 1] = p[k].y, v[9 * i + 3 * k + 2] = p[k].z;
+      idx[3 * i + k] = static_cast<unsigned>(3 * i + k);
+    }
+  }
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  if (commit) rtcCommitScene(scene);
+  return scene;
+}
+#endif
+
+// Camera rays through pixel centres in 4 x 2 pixel packets, then from their hits: cosine
+// bounce rays that hit something, and shadow rays to a light sample.
+void MakeRays(const CameraDesc& desc, const LightSampler& light, BenchScene* s) {
+  const Camera camera(desc);
+  const int w = desc.width, h = desc.height;
+  for (int y0 = 0; y0 < h; y0 += 2) {
+    for (int x0 = 0; x0 < w; x0 += 4) {
+      for (int j = 0; j < 8; ++j) {
+        const int x = std::min(w - 1, x0 + j % 4), y = std::min(h - 1, y0 + j / 4);
+        s->coherent.rays.push_back(camera.GenerateRay(x + 0.5f, y + 0.5f, {0.5f, 0.5f}));
+      }
+    }
+  }
+  struct SurfacePoint {
+    Vec3f p, n;  // n: unit geometric normal on the side the camera ray came from
+  };
+  std::vector<SurfacePoint> points;
+  const TriangleTable& t = *s->triangles;
+  for (const Ray& r : s->coherent.rays) {
+    Hit hit;
+    if (!Intersect1(s->bvh, r, &hit)) continue;
+    const Vec3f v0 = t.V0(hit.prim), v1 = t.V1(hit.prim), v2 = t.V2(hit.prim);
+    const Vec3f p = v0 * (1.0f - hit.b1 - hit.b2) + v1 * hit.b1 + v2 * hit.b2;
+    Vec3f n = Normalize(Cross(v1 - v0, v2 - v0));
+    if (Dot(n, r.d) > 0) n = -n;
+    points.push_back({p, n});
+  }
+  if (points.empty()) return;
+  Pcg32 rng(7, 3);
+  for (size_t i = 0; s->incoherent.rays.size() < kSecondaryRays && i < 64 * kSecondaryRays; ++i) {
+    const SurfacePoint& sp = points[i % points.size()];
+    const Frame frame(sp.n);
+    const Vec3f d = frame.ToWorld(SampleCosineHemisphere({rng.NextFloat(), rng.NextFloat()}));
+    const Ray r{OffsetRayOrigin(sp.p, sp.n), d, 0.0f, 1e30f};
+    Hit hit;
+    if (Intersect1(s->bvh, r, &hit)) s->incoherent.rays.push_back(r);
+  }
+  for (size_t i = 0; s->shadow.rays.size() < kSecondaryRays && i < kSecondaryRays; ++i) {
+    const SurfacePoint& sp = points[i % points.size()];
+    Vec3f lng;
+    const Vec3f lp = light.Sample(rng, &lng);
+    const Vec3f wi = lp - sp.p;
+    if (Dot(wi, sp.n) <= 0) continue;  // the light is behind the surface: no shadow ray
+    Ray r;
+    r.o = OffsetRayOrigin(sp.p, sp.n);
+    r.d = OffsetRayOrigin(lp, Dot(lng, wi) <= 0 ? lng : -lng) - r.o;
+    r.t_min = 0.0f;
+    r.t_max = 1.0f;
+    s->shadow.rays.push_back(r);
+  }
+  Pack(&s->coherent);
+  Pack(&s->incoherent);
+  Pack(&s->shadow);
+}
+
+std::string DataPath(const char* rel) {
+  return std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/epfl/scenes/pa5/" + rel;
+}
+
+std::unique_ptr<BenchScene> MakeScene(const std::string& name) {
+  auto s = std::make_unique<BenchScene>();
+  CameraDesc camera;
+  LightSampler light;
+  if (name == "terrain") {
+    s->terrain = MakeFractalTerrain(725);
+    s->triangles = &s->terrain;
+    camera = LookAtCamera({0.0f, -1.55f, 0.75f}, {0.0f, 0.2f, -0.05f}, {0, 0, 1}, 50.0f, 768, 512);
+  } else {
+    const std::string path =
+        DataPath(name == "table" ? "table/table_mis.xml" : "veach_mi/veach_mis.xml");
+    if (!std::filesystem::exists(path)) {
+      s->error = "no shared data: " + path;
+      return s;
+    }
+    StatusOr<Scene> loaded = LoadScene(path);
+    if (!loaded.ok()) {
+      s->error = loaded.status().message();
+      return s;
+    }
+    s->scene = std::make_unique<Scene>(std::move(*loaded));
+    s->triangles = &s->scene->triangles;
+    camera = s->scene->camera;
+    light.scene = s->scene.get();
+  }
+  s->bvh = BuildBvh(*s->triangles);
+  s->bvh8 = simd::BuildBvh8(s->bvh);
+  MakeRays(camera, light, s.get());
+#ifdef PTLAB_HAVE_EMBREE
+  s->device = rtcNewDevice("threads=1,set_affinity=0");
+  s->rtc_scene = MakeEmbreeScene(s->device, *s->triangles, /*commit=*/true);
+#endif
+  return s;
+}
+
+BenchScene* GetScene(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<BenchScene>> cache;
+  auto it = cache.find(name);
+  if (it == cache.end()) it = cache.emplace(name, MakeScene(name)).first;
+  return it->second.get();
+}
+
+const RaySet& GetRays(const BenchScene& s, const std::string& set) {
+  return set == "coherent" ? s.coherent : (set == "incoherent" ? s.incoherent : s.shadow);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cases.
+
+enum class Case {
+  kOracleIntersect1,
+  kOracleOccluded1,
+  kBvh8Intersect1,
+  kBvh8Occluded1,
+  kIntersect8,
+  kOccluded8,
+  kIntersectStream,
+  kEmbreeIntersect1,
+  kEmbreeIntersect8,
+  kEmbreeOccluded1,
+  kEmbreeOccluded8,
+};
+
+// Every benchmark reports the same counters (the CSV reporter of benchmarks/report needs a
+// fixed set of columns).
+void SetCounters(benchmark::State& state, double hit_fraction, double triangles,
+                 double rays_per_second) {
+  state.counters["hit_fraction"] = hit_fraction;
+  state.counters["triangles"] = triangles;
+  state.counters["rays_per_second"] = rays_per_second;
+}
+
+void Finish(benchmark::State& state, size_t rays, int64_t hits) {
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(rays));
+  SetCounters(state, static_cast<double>(hits) / static_cast<double>(state.iterations() * rays),
+              0.0, 0.0);
+  state.counters["rays_per_second"] = benchmark::Counter(
+      static_cast<double>(state.iterations() * rays), benchmark::Counter::kIsRate);
+  state.SetLabel(simd::Traverse8TargetName());
+}
+
+void RunCase(benchmark::State& state, const std::string& scene_name, const std::string& set_name,
+             Case c, simd::Traverse8Options options, int merge_leaf_size = -1) {
+  BenchScene* s = GetScene(scene_name);
+  if (!s->error.empty()) {
+    state.SkipWithError(s->error.c_str());
+    return;
+  }
+  const simd::Bvh8* bvh8 = &s->bvh8;
+  if (merge_leaf_size >= 0) {
+    const uint32_t merge = static_cast<uint32_t>(merge_leaf_size);
+    auto it = s->merged.find(merge);
+    if (it == s->merged.end())
+      it = s->merged.emplace(merge, simd::BuildBvh8(s->bvh, {merge})).first;
+    bvh8 = &it->second;
+  }
+  const RaySet& set = GetRays(*s, set_name);
+  const size_t n = set.rays.size();
+  int64_t hits = 0;
+  switch (c) {
+    case Case::kOracleIntersect1:
+      for (auto _ : state) {
+        for (const Ray& r : set.rays) {
+          Hit h;
+          hits += Intersect1(s->bvh, r, &h);
+          benchmark::DoNotOptimize(h);
+        }
+      }
+      break;
+    case Case::kOracleOccluded1:
+      for (auto _ : state) {
+        for (const Ray& r : set.rays) hits += Occluded1(s->bvh, r);
+      }
+      break;
+    case Case::kBvh8Intersect1:
+      for (auto _ : state) {
+        for (const Ray& r : set.rays) {
+          Hit h;
+          hits += simd::Intersect1(*bvh8, r, &h);
+          benchmark::DoNotOptimize(h);
+        }
+      }
+      break;
+    case Case::kBvh8Occluded1:
+      for (auto _ : state) {
+        for (const Ray& r : set.rays) hits += simd::Occluded1(*bvh8, r);
+      }
+      break;
+    case Case::kIntersect8:
+      for (auto _ : state) {
+        for (size_t k = 0; k < set.packets.size(); ++k) {
+          HitPacket8 h;
+          hits += std::popcount(simd::Intersect8(*bvh8, set.packets[k], set.masks[k], &h, options));
+          benchmark::DoNotOptimize(h);
+        }
+      }
+      break;
+    case Case::kOccluded8:
+      for (auto _ : state) {
+        for (size_t k = 0; k < set.packets.size(); ++k) {
+          hits += std::popcount(simd::Occluded8(*bvh8, set.packets[k], set.masks[k], options));
+        }
+      }
+      break;
+    case Case::kIntersectStream: {
+      std::vector<Hit> out(n);
+      std::vector<uint8_t> mask(n);
+      std::vector<uint32_t> scratch(n);
+      for (auto _ : state) {
+        simd::IntersectStream(*bvh8, set.rays.data(), n, out.data(), mask.data(), scratch.data(),
+                              options);
+        for (uint8_t m : mask) hits += m;
+      }
+      break;
+    }
+#ifdef PTLAB_HAVE_EMBREE
+    case Case::kEmbreeIntersect1:
+    case Case::kEmbreeOccluded1: {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      ctx.flags = set_name == "coherent" ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                         : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+      for (auto _ : state) {
+        for (const Ray& r : set.rays) {
+          RTCRayHit rh;
+          rh.ray.org_x = r.o.x, rh.ray.org_y = r.o.y, rh.ray.org_z = r.o.z;
+          rh.ray.dir_x = r.d.x, rh.ray.dir_y = r.d.y, rh.ray.dir_z = r.d.z;
+          rh.ray.tnear = r.t_min, rh.ray.tfar = r.t_max;
+          rh.ray.time = 0.0f, rh.ray.mask = 0xffffffffu, rh.ray.id = 0, rh.ray.flags = 0;
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          if (c == Case::kEmbreeIntersect1) {
+            rtcIntersect1(s->rtc_scene, &ctx, &rh);
+            hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+          } else {
+            rtcOccluded1(s->rtc_scene, &ctx, &rh.ray);
+            hits += rh.ray.tfar < 0.0f;
+          }
+          benchmark::DoNotOptimize(rh);
+        }
+      }
+      break;
+    }
+    case Case::kEmbreeIntersect8:
+    case Case::kEmbreeOccluded8: {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      ctx.flags = set_name == "coherent" ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                         : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+      // Embree writes its results into the packet, so each call starts from a fresh copy
+      // (288 bytes; the same packets our Intersect8 reads).
+      for (auto _ : state) {
+        for (size_t k = 0; k < set.packets.size(); ++k) {
+          const RayPacket8& p = set.packets[k];
+          alignas(32) int valid[8];
+          alignas(32) RTCRayHit8 rh;
+          for (int j = 0; j < 8; ++j) valid[j] = ((set.masks[k] >> j) & 1) ? -1 : 0;
+          std::memcpy(rh.ray.org_x, p.org_x, sizeof(float) * 8 * 3);
+          std::memcpy(rh.ray.dir_x, p.dir_x, sizeof(float) * 8 * 3);
+          std::memcpy(rh.ray.tnear, p.t_min, sizeof(float) * 8);
+          std::memcpy(rh.ray.tfar, p.t_max, sizeof(float) * 8);
+          for (int j = 0; j < 8; ++j) {
+            rh.ray.time[j] = 0.0f, rh.ray.mask[j] = 0xffffffffu, rh.ray.id[j] = 0;
+            rh.ray.flags[j] = 0, rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+          }
+          if (c == Case::kEmbreeIntersect8) {
+            rtcIntersect8(valid, s->rtc_scene, &ctx, &rh);
+            for (int j = 0; j < 8; ++j)
+              hits += valid[j] && rh.hit.geomID[j] != RTC_INVALID_GEOMETRY_ID;
+          } else {
+            rtcOccluded8(valid, s->rtc_scene, &ctx, &rh.ray);
+            for (int j = 0; j < 8; ++j) hits += valid[j] && rh.ray.tfar[j] < 0.0f;
+          }
+          benchmark::DoNotOptimize(rh);
+        }
+      }
+      break;
+    }
+#else
+    default:
+      state.SkipWithError("built without Embree");
+      return;
+#endif
+  }
+  Finish(state, n, hits);
+}
+
+// BVH build: ours = the oracle's binned SAH build plus the BVH8 collapse; Embree = one
+// rtcCommitScene (geometry set up outside the timed region), both single-threaded.
+void RunBuild(benchmark::State& state, const std::string& scene_name, bool embree) {
+  BenchScene* s = GetScene(scene_name);
+  if (!s->error.empty()) {
+    state.SkipWithError(s->error.c_str());
+    return;
+  }
+  if (!embree) {
+    for (auto _ : state) {
+      const Bvh bvh = BuildBvh(*s->triangles);
+      const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
+      benchmark::DoNotOptimize(bvh8.nodes.data());
+    }
+  } else {
+#ifdef PTLAB_HAVE_EMBREE
+    for (auto _ : state) {
+      state.PauseTiming();
+      RTCScene scene = MakeEmbreeScene(s->device, *s->triangles, /*commit=*/false);
+      state.ResumeTiming();
+      rtcCommitScene(scene);
+      state.PauseTiming();
+      rtcReleaseScene(scene);
+      state.ResumeTiming();
+    }
+#else
+    state.SkipWithError("built without Embree");
+    return;
+#endif
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(s->triangles->size()));
+  SetCounters(state, 0.0, static_cast<double>(s->triangles->size()), 0.0);
+}
+
+// Rendering throughput, single thread: the Nori table scene with a direct-lighting (or path)
+// integrator at 200 x 150 pixels, 4 samples per pixel, rendered tile by tile (32 x 32) with
+// render.cpp's scalar loop (what PTLAB_FORCE_SCALAR=1 runs) or the 8-wide packet path.
+struct RenderBench {
+  std::string error;
+  std::unique_ptr<Scene> scene;
+  Bvh bvh;
+  simd::Bvh8 bvh8;
+};
+
+RenderBench* GetRenderScene(IntegratorDesc::Type type) {
+  static std::map<int, std::unique_ptr<RenderBench>> cache;
+  auto it = cache.find(static_cast<int>(type));
+  if (it != cache.end()) return it->second.get();
+  auto r = std::make_unique<RenderBench>();
+  const std::string path = DataPath("table/table_mis.xml");
+  StatusOr<Scene> loaded = std::filesystem::exists(path)
+                               ? LoadScene(path)
+                               : StatusOr<Scene>(Status::Error("no shared data: " + path));
+  if (!loaded.ok()) {
+    r->error = loaded.status().message();
+  } else {
+    r->scene = std::make_unique<Scene>(std::move(*loaded));
+    r->scene->camera.width = 200;
+    r->scene->camera.height = 150;
+    r->scene->integrator.type = type;
+    r->bvh = BuildBvh(r->scene->triangles);
+    r->bvh8 = simd::BuildBvh8(r->bvh);
+  }
+  return cache.emplace(static_cast<int>(type), std::move(r)).first->second.get();
+}
+
+void RunRender(benchmark::State& state, IntegratorDesc::Type type, bool packets) {
+  RenderBench* r = GetRenderScene(type);
+  if (!r->error.empty()) {
+    state.SkipWithError(r->error.c_str());
+    return;
+  }
+  const Scene& scene = *r->scene;
+  const Camera camera(scene.camera);
+  const PixelFilter filter(scene.filter);
+  const RenderContext ctx{scene, r->bvh};
+  const TraversalBackend8 backend = simd::PacketTraversalBackend(r->bvh8);
+  const int w = camera.width(), h = camera.height();
+  constexpr uint32_t kSpp = 4;
+  constexpr int kTile = 32;
+  FilmBlock block(0, 0, w, h);
+  uint64_t rays = 0;
+  for (auto _ : state) {
+    block.Clear();
+    TileSampleStats stats;
+    for (int y = 0; y < h; y += kTile) {
+      for (int x = 0; x < w; x += kTile) {
+        const int x1 = std::min(w, x + kTile), y1 = std::min(h, y + kTile);
+        if (packets) {
+          RenderTilePacket8(ctx, backend, camera, filter, x, y, x1, y1, 0, kSpp, 0, &block, &stats);
+        } else {
+          RenderTileScalar(ctx, camera, filter, x, y, x1, y1, 0, kSpp, 0, &block, &stats);
+        }
+      }
+    }
+    rays += stats.rays;
+  }
+  state.SetItemsProcessed(state.iterations() * int64_t{w} * h * kSpp);
+  SetCounters(state, 0.0, static_cast<double>(scene.triangles.size()), 0.0);
+  state.counters["rays_per_second"] =
+      benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.SetLabel(packets ? simd::Traverse8TargetName() : "scalar");
+}
+
+struct CaseName {
+  Case c;
+  const char* name;
+};
+
+int RegisterAll() {
+  benchmark::AddCustomContext("highway_target", simd::Traverse8TargetName());
+#ifdef PTLAB_HAVE_EMBREE
+  benchmark::AddCustomContext("embree", RTC_VERSION_STRING);
+#else
+  benchmark::AddCustomContext("embree", "not found at configure time");
+#endif
+  const CaseName cases[] = {
+      {Case::kOracleIntersect1, "OracleIntersect1"},
+      {Case::kOracleOccluded1, "OracleOccluded1"},
+      {Case::kBvh8Intersect1, "Bvh8Intersect1"},
+      {Case::kBvh8Occluded1, "Bvh8Occluded1"},
+      {Case::kIntersect8, "Intersect8"},
+      {Case::kOccluded8, "Occluded8"},
+      {Case::kIntersectStream, "IntersectStream"},
+      {Case::kEmbreeIntersect1, "EmbreeIntersect1"},
+      {Case::kEmbreeIntersect8, "EmbreeIntersect8"},
+      {Case::kEmbreeOccluded1, "EmbreeOccluded1"},
+      {Case::kEmbreeOccluded8, "EmbreeOccluded8"},
+  };
+  using Type = IntegratorDesc::Type;
+  for (const auto& [type, name] :
+       {std::pair{Type::kDirectMis, "direct_mis"}, std::pair{Type::kPathMis, "path_mis"}}) {
+    const Type t = type;
+    for (const bool packets : {false, true}) {
+      benchmark::RegisterBenchmark(
+          ("BM_Render_Table/" + std::string(name) + (packets ? "/packet" : "/scalar")).c_str(),
+          [t, packets](benchmark::State& st) { RunRender(st, t, packets); })
+          ->Unit(benchmark::kMillisecond);
+    }
+  }
+  for (const char* scene : {"table", "veach", "terrain"}) {
+    const std::string sc = scene;
+    benchmark::RegisterBenchmark(("BM_Traverse_Build/" + sc + "/ours").c_str(),
+                                 [sc](benchmark::State& st) { RunBuild(st, sc, false); })
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_Traverse_Build/" + sc + "/embree").c_str(),
+                                 [sc](benchmark::State& st) { RunBuild(st, sc, true); })
+        ->Unit(benchmark::kMillisecond);
+    for (const char* set : {"coherent", "incoherent", "shadow"}) {
+      const std::string st_name = set;
+      for (const CaseName& cn : cases) {
+        if (cn.c == Case::kIntersectStream && st_name == "coherent") continue;
+        const Case c = cn.c;
+        benchmark::RegisterBenchmark(
+            ("BM_Traverse_" + std::string(cn.name) + "/" + sc + "/" + st_name).c_str(),
+            [sc, st_name, c](benchmark::State& st) { RunCase(st, sc, st_name, c, {}); })
+            ->Unit(benchmark::kMillisecond);
+      }
+      // Leaf merging in the collapse (merge_leaf_size), for Intersect8 and single rays.
+      for (const int merge : {0, 4, 8}) {
+        for (const Case c : {Case::kIntersect8, Case::kBvh8Intersect1, Case::kOccluded8}) {
+          const char* cname = c == Case::kIntersect8  ? "Intersect8"
+                              : c == Case::kOccluded8 ? "Occluded8"
+                                                      : "Bvh8Intersect1";
+          benchmark::RegisterBenchmark(("BM_Tune_Merge/" + sc + "/" + st_name + "/" + cname +
+                                        "/merge:" + std::to_string(merge))
+                                           .c_str(),
+                                       [sc, st_name, c, merge](benchmark::State& st) {
+                                         RunCase(st, sc, st_name, c, {}, merge);
+                                       })
+              ->Unit(benchmark::kMillisecond);
+        }
+      }
+      // Tuning sweeps (run with --benchmark_filter=BM_Tune): the hybrid switch threshold
+      // and the leaf strategy of Intersect8.
+      for (uint32_t k = 0; k <= 8; ++k) {
+        for (const int variant : {0, 1, 2}) {
+          // 0: default leaves and octant fallback; 1: per-lane leaves; 2: no octant fallback.
+          const simd::Traverse8Options o{k, variant != 1, variant != 2};
+          benchmark::RegisterBenchmark(
+              ("BM_Tune_Intersect8/" + sc + "/" + st_name + "/switch:" + std::to_string(k) +
+               (variant == 0 ? "/default" : (variant == 1 ? "/per_lane_leaves" : "/no_octant")))
+                  .c_str(),
+              [sc, st_name, o](benchmark::State& st) {
+                RunCase(st, sc, st_name, Case::kIntersect8, o);
+              })
+              ->Unit(benchmark::kMillisecond);
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+const int kRegistered = RegisterAll();
+
+}  // namespace
+}  // namespace ptlab

@@ -1,0 +1,159 @@
+// Per-vertex pieces of the integrators (emission, MIS weights, emitter samples with a deferred
+// shadow test), shared by the scalar integrators and the 8-wide packet render path.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/bsdf/bsdf.h"
+#include "engine/bvh/ray_offset.h"
+#include "engine/core/ray.h"
+#include "engine/core/rng.h"
+#include "engine/light/area_light.h"
+#include "engine/light/infinite_light.h"
+#include "engine/render/interaction.h"
+#include "engine/scene/scene.h"
+
+// These mirror the helpers of engine/render/integrator.cpp operation for operation (the packet
+// path must produce the scalar path's bits); integrator.cpp can include this header and drop
+// its private copies. tests/simd/traverse8_test.cpp (Traverse8Render*) checks the two paths
+// bit for bit.
+namespace ptlab::integrator {
+
+/// Nori's Whitted integrator continues specular chains with probability 0.95.
+inline constexpr float kWhittedContinuation = 0.95f;
+/// Recursion guard for the Whitted integrator (paths this long carry ~0.95^64 of the weight).
+inline constexpr int kWhittedMaxDepth = 64;
+inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+inline Vec2f Next2D(Pcg32& rng) {
+  const float a = rng.NextFloat();
+  return {a, rng.NextFloat()};
+}
+
+/// Origin of a ray leaving its.p toward direction w, pushed off the surface on w's side.
+inline Vec3f SpawnOrigin(const SurfaceInteraction& its, const Vec3f& w) {
+  return OffsetRayOrigin(its.p, Dot(its.ng, w) >= 0 ? its.ng : -its.ng);
+}
+
+/// Radiance emitted by the surface at its toward direction w (unit, away from the surface).
+inline Color3f Emitted(const Scene& scene, const SurfaceInteraction& its, const Vec3f& w) {
+  if (!its.emitter.valid() || its.emitter.tag() != EmitterTag::kArea) return {};
+  return AreaLightRadiance(scene.area_lights.radiance[its.emitter.index()], its.frame.n, w);
+}
+
+/// Solid-angle density with which emitter sampling (one emitter chosen uniformly, a point
+/// uniform by area) produces the point `its` on a light seen from `from`.
+inline float EmitterPdf(const Scene& scene, const SurfaceInteraction& its, const Vec3f& from) {
+  if (!its.emitter.valid() || its.emitter.tag() != EmitterTag::kArea) return 0.0f;
+  const Vec3f d = its.p - from;
+  const float dist2 = Dot(d, d);
+  const float cos_l = -Dot(its.frame.n, d) / std::sqrt(dist2);
+  if (cos_l <= 0) return 0.0f;
+  const float area = scene.area_lights.area[its.emitter.index()];
+  return dist2 / (cos_l * area * float(scene.emitters.size()));
+}
+
+/// MIS weight of a strategy with density pdf_a against one with density pdf_b (one sample
+/// each): the balance heuristic, or Veach's power heuristic with exponent 2.
+inline float MisWeight(float pdf_a, float pdf_b, bool power) {
+  if (power) {
+    pdf_a *= pdf_a;
+    pdf_b *= pdf_b;
+  }
+  const float sum = pdf_a + pdf_b;
+  return sum > 0 ? pdf_a / sum : 0.0f;
+}
+
+/// Radiance of the infinite emitters along an escaping ray of direction w. With mis, each
+/// emitter's share is weighted against its own emitter-sampling density (one emitter is chosen
+/// uniformly among all of them), bsdf_pdf being the density of the BSDF sample that made w.
+inline Color3f Escaped(const Scene& scene, const Vec3f& w, bool mis, float bsdf_pdf) {
+  if (scene.environment_maps.size() + scene.distant_disks.size() == 0) return {};
+  if (!mis) return EscapedRadiance(scene, w);
+  Color3f L;
+  const float n = float(scene.emitters.size());
+  for (const EmitterRef e : scene.emitters) {
+    if (!IsInfiniteLight(e)) continue;
+    const Color3f Le = InfiniteLightRadiance(scene, e, w);
+    if (IsBlack(Le)) continue;
+    L += Le *
+         MisWeight(bsdf_pdf, InfiniteLightPdf(scene, e, w) / n, scene.integrator.power_heuristic);
+  }
+  return L;
+}
+
+/// One emitter sample for the direct light at its (wo: local direction to the viewer), with
+/// the shadow test left to the caller: when `traced`, the sample adds `contribution` unless
+/// `shadow` is occluded; otherwise it adds nothing and no ray is traced. Draws exactly the
+/// random numbers the scalar SampleEmitterDirect draws (before its shadow test), so the
+/// stream stays in step whatever the visibility.
+struct EmitterSampleRequest {
+  bool traced = false;
+  Ray shadow;
+  Color3f contribution;
+};
+
+inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const SurfaceInteraction& its,
+                                                 const Vec3f& wo, bool mis, Pcg32& rng) {
+  EmitterSampleRequest req;
+  const size_t n = scene.emitters.size();
+  if (n == 0) return req;
+  const size_t k = std::min(n - 1, size_t(rng.NextFloat() * float(n)));
+  const float u_tri = rng.NextFloat();
+  const Vec2f u = Next2D(rng);
+  const EmitterRef emitter = scene.emitters[k];
+  if (IsInfiniteLight(emitter)) {
+    EnvironmentSample es;
+    if (!SampleInfiniteLight(scene, emitter, u, &es)) return req;
+    const Vec3f wi_local = its.frame.ToLocal(es.wi);
+    const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+    if (IsBlack(f)) return req;
+    req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
+    const float pdf_light = es.pdf / float(n);
+    float weight = 1.0f;
+    if (mis) {
+      const float pdf_bsdf = BsdfPdf(scene.materials, its.material, wo, wi_local);
+      weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
+    }
+    req.contribution = f * es.radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
+    req.traced = true;
+    return req;
+  }
+  if (emitter.tag() != EmitterTag::kArea) return req;
+  const AreaLightSample ls = SampleAreaLight(scene, emitter.index(), u_tri, u);
+  const Vec3f d = ls.p - its.p;
+  const float dist2 = Dot(d, d);
+  if (!(dist2 > 0) || !(ls.pdf_area > 0)) return req;
+  const Vec3f wi = d / std::sqrt(dist2);
+  const float cos_l = -Dot(ls.n, wi);
+  if (cos_l <= 0) return req;
+  const Vec3f wi_local = its.frame.ToLocal(wi);
+  const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+  if (IsBlack(f)) return req;
+  // Shadow ray between the two offset points; d is not normalised, so t runs over [0, 1).
+  req.shadow.o = SpawnOrigin(its, wi);
+  const Vec3f target = OffsetRayOrigin(ls.p, Dot(ls.ng, wi) <= 0 ? ls.ng : -ls.ng);
+  req.shadow.d = target - req.shadow.o;
+  req.shadow.t_min = 0.0f;
+  req.shadow.t_max = 1.0f;
+  const float pdf_light = ls.pdf_area * dist2 / (cos_l * float(n));
+  float weight = 1.0f;
+  if (mis) {
+    const float pdf_bsdf = BsdfPdf(scene.materials, its.material, wo, wi_local);
+    weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
+  }
+  req.contribution = f * ls.radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
+  req.traced = true;
+  return req;
+}
+
+/// What a prepared emitter sample adds once its shadow ray's visibility is known (the scalar
+/// SampleEmitterDirect's return value).
+inline Color3f EmitterSampleResult(const EmitterSampleRequest& req, bool occluded) {
+  if (!req.traced || occluded) return {};
+  return req.contribution;
+}
+
+}  // namespace ptlab::integrator

@@ -1,0 +1,75 @@
+// Eight-wide BVH (BVH8) collapsed from the oracle's binary SAH tree, laid out for SIMD traversal.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/bvh/bvh.h"
+#include "engine/core/aligned.h"
+
+namespace ptlab::simd {
+
+/// Reference to a child of a Bvh8Node: an inner node index (bit 31 clear), or a leaf (bit 31
+/// set) covering leaf-ordered triangles [first, first + count) with
+/// ref = 0x80000000 | first << 3 | (count - 1).
+using Bvh8Ref = uint32_t;
+inline constexpr Bvh8Ref kBvh8LeafBit = 0x80000000u;
+inline constexpr uint32_t kBvh8MaxLeafSize = 8;
+inline constexpr uint32_t kBvh8MaxTriangles = 1u << 28;
+
+inline bool IsLeaf(Bvh8Ref r) { return (r & kBvh8LeafBit) != 0; }
+inline uint32_t LeafFirst(Bvh8Ref r) { return (r & ~kBvh8LeafBit) >> 3; }
+inline uint32_t LeafCount(Bvh8Ref r) { return (r & 7u) + 1; }
+inline Bvh8Ref MakeLeafRef(uint32_t first, uint32_t count) {
+  return kBvh8LeafBit | (first << 3) | (count - 1);
+}
+
+/// One node: the world-space boxes of up to eight children as SoA columns (one 8-float load
+/// per plane tests a ray against all children at once), then the child references. Children
+/// are packed to the front; unused slots hold the empty box (lo = +inf, hi = -inf), which
+/// every slab test rejects, so the kernels need no slot mask. 256 bytes = 4 cache lines.
+struct alignas(64) Bvh8Node {
+  float lo_x[8], lo_y[8], lo_z[8];
+  float hi_x[8], hi_y[8], hi_z[8];
+  Bvh8Ref child[8];
+  uint32_t num_children;
+  uint32_t pad_[7];
+};
+static_assert(sizeof(Bvh8Node) == 256, "Bvh8Node must stay 4 cache lines");
+
+/// Options of the collapse.
+struct Bvh8BuildOptions {
+  /// A binary subtree with at most this many triangles becomes one leaf (≤ kBvh8MaxLeafSize),
+  /// so that one 8-wide triangle test replaces the box tests below it. 0 keeps the binary
+  /// tree's leaves as they are. Measured (benchmarks/traverse_bench.cpp, BM_Tune_Merge): 8 is
+  /// as fast or faster than 0 and 4 for every ray kind and scene.
+  uint32_t merge_leaf_size = 8;
+};
+
+/// A BVH8 over the triangles of a binary Bvh, with its own copy of the positions packed leaf
+/// by leaf: the leaf [first, first + n) stores nine columns of n floats at
+/// tris[9 * first + c * n + j] (c = v0.x, v0.y, v0.z, v1.x, ..., v2.z; j < n), so a leaf is
+/// contiguous and an unaligned 8-float load at any column reads only this leaf's triangles in
+/// its first n lanes (the arrays are padded at the end). prim maps leaf order to scene rows.
+struct Bvh8 {
+  AlignedVector<Bvh8Node> nodes;  // nodes[0] is the root (empty: nothing can be hit)
+  AlignedVector<float> tris;
+  AlignedVector<uint32_t> prim;
+  /// The binary tree this was built from (the oracle; used when simd::ForceScalar() is set).
+  /// Must outlive the Bvh8.
+  const Bvh* source = nullptr;
+  uint32_t num_triangles = 0;
+  uint32_t depth = 0;  // nodes on the longest root-to-leaf path
+
+  bool empty() const { return nodes.empty(); }
+};
+
+/// Collapses `bvh` into a BVH8: each node takes up to eight descendants of a binary node,
+/// opening the inner child of largest surface area first (Wald et al. 2008, "Getting rid of
+/// packets"). Child boxes are the binary nodes' boxes bit for bit, and the binary leaves (or
+/// merged subtrees) keep their triangles, so traversal visits the same triangles the oracle
+/// would. O(nodes); keeps a pointer to `bvh`.
+Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options = {});
+
+}  // namespace ptlab::simd

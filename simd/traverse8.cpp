@@ -1,0 +1,193 @@
+// Highway dynamic dispatch of simd/traverse8 (foreach_target over traverse8-inl.h) and the
+// plain C++ entry points, with the PTLAB_FORCE_SCALAR route to the oracle.
+
+// Bit-identity with the oracle needs every a * b + c evaluated as two rounded operations: GCC
+// contracts vector (and scalar) multiply-add into FMA on the AVX2/AVX-512 targets otherwise.
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
+// clang-format off
+#include "simd/targets.h"  // first: the target policy
+// clang-format on
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/traverse8.cpp"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+#include "simd/traverse8-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace ptlab::simd {
+namespace HWY_NAMESPACE {
+
+Mask8 Intersect8Impl(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacket8* hits,
+                     const Traverse8Options& options) {
+  return Intersect8Kernel(bvh, rays, active, hits, options);
+}
+
+Mask8 Occluded8Impl(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
+                    const Traverse8Options& options) {
+  return Occluded8Kernel(bvh, rays, active, options);
+}
+
+bool Intersect1Impl(const Bvh8& bvh, const Ray& ray, Hit* hit) {
+  return Intersect1Kernel(bvh, ray, hit);
+}
+
+bool Occluded1Impl(const Bvh8& bvh, const Ray& ray) { return Occluded1Kernel(bvh, ray); }
+
+int64_t TargetImpl() { return HWY_TARGET; }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ptlab::simd
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include "engine/bvh/intersect1.h"
+#include "engine/core/check.h"
+
+namespace ptlab::simd {
+
+HWY_EXPORT(Intersect8Impl);
+HWY_EXPORT(Occluded8Impl);
+HWY_EXPORT(Intersect1Impl);
+HWY_EXPORT(Occluded1Impl);
+HWY_EXPORT(TargetImpl);
+
+namespace {
+
+// Read once: the environment does not change during a run.
+bool UseOracle() {
+  static const bool force = ForceScalar();
+  return force;
+}
+
+Ray LaneRay(const RayPacket8& rays, int j) {
+  Ray r;
+  r.o = {rays.org_x[j], rays.org_y[j], rays.org_z[j]};
+  r.d = {rays.dir_x[j], rays.dir_y[j], rays.dir_z[j]};
+  r.t_min = rays.t_min[j];
+  r.t_max = rays.t_max[j];
+  return r;
+}
+
+// Interleaves the low 10 bits of x, y, z (Morton order).
+uint32_t Morton3(uint32_t x, uint32_t y, uint32_t z) {
+  auto spread = [](uint32_t v) {
+    v &= 0x3ffu;
+    v = (v | (v << 16)) & 0x030000ffu;
+    v = (v | (v << 8)) & 0x0300f00fu;
+    v = (v | (v << 4)) & 0x030c30c3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+  };
+  return spread(x) | (spread(y) << 1) | (spread(z) << 2);
+}
+
+}  // namespace
+
+Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacket8* hits,
+                 const Traverse8Options& options) {
+  if (UseOracle() && bvh.source != nullptr) {
+    Mask8 result = 0;
+    for (int j = 0; j < 8; ++j) {
+      if (!((active >> j) & 1)) continue;
+      Hit h;
+      if (!ptlab::Intersect1(*bvh.source, LaneRay(rays, j), &h)) continue;
+      result |= 1u << j;
+      hits->t[j] = h.t, hits->b1[j] = h.b1, hits->b2[j] = h.b2, hits->prim[j] = h.prim;
+    }
+    return result;
+  }
+  return HWY_DYNAMIC_DISPATCH(Intersect8Impl)(bvh, rays, active, hits, options);
+}
+
+Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
+                const Traverse8Options& options) {
+  if (UseOracle() && bvh.source != nullptr) {
+    Mask8 result = 0;
+    for (int j = 0; j < 8; ++j) {
+      if (((active >> j) & 1) && ptlab::Occluded1(*bvh.source, LaneRay(rays, j))) {
+        result |= 1u << j;
+      }
+    }
+    return result;
+  }
+  return HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);
+}
+
+bool Intersect1(const Bvh8& bvh, const Ray& ray, Hit* hit) {
+  if (UseOracle() && bvh.source != nullptr) return ptlab::Intersect1(*bvh.source, ray, hit);
+  return HWY_DYNAMIC_DISPATCH(Intersect1Impl)(bvh, ray, hit);
+}
+
+bool Occluded1(const Bvh8& bvh, const Ray& ray) {
+  if (UseOracle() && bvh.source != nullptr) return ptlab::Occluded1(*bvh.source, ray);
+  return HWY_DYNAMIC_DISPATCH(Occluded1Impl)(bvh, ray);
+}
+
+void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint8_t* hit_mask,
+                     uint32_t* scratch, const Traverse8Options& options) {
+  std::fill(hit_mask, hit_mask + n, uint8_t{0});
+  if (bvh.empty() || n == 0) return;
+  // Scene box = union of the root's child boxes.
+  const Bvh8Node& root = bvh.nodes[0];
+  Vec3f lo = {root.lo_x[0], root.lo_y[0], root.lo_z[0]};
+  Vec3f hi = {root.hi_x[0], root.hi_y[0], root.hi_z[0]};
+  for (uint32_t c = 1; c < root.num_children; ++c) {
+    lo = Min(lo, Vec3f{root.lo_x[c], root.lo_y[c], root.lo_z[c]});
+    hi = Max(hi, Vec3f{root.hi_x[c], root.hi_y[c], root.hi_z[c]});
+  }
+  const Vec3f extent = hi - lo;
+  auto quantize = [](float v, float l, float e) {
+    const float q = e > 0.0f ? (v - l) / e * 1023.0f : 0.0f;
+    return static_cast<uint32_t>(std::clamp(q, 0.0f, 1023.0f));
+  };
+  // Key: direction octant (3 bits) above the Morton code of the origin (30 bits), above the
+  // ray index (the low 29 bits; streams are limited to 2^29 rays).
+  PTLAB_CHECK(n < (size_t{1} << 29));
+  std::vector<uint64_t> keys(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Ray& r = rays[i];
+    const uint32_t octant = (r.d.x < 0 ? 1u : 0u) | (r.d.y < 0 ? 2u : 0u) | (r.d.z < 0 ? 4u : 0u);
+    const uint32_t morton =
+        Morton3(quantize(r.o.x, lo.x, extent.x), quantize(r.o.y, lo.y, extent.y),
+                quantize(r.o.z, lo.z, extent.z));
+    keys[i] = (uint64_t{octant} << 59) | (uint64_t{morton} << 29) | i;
+  }
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < n; ++i) scratch[i] = static_cast<uint32_t>(keys[i] & ((1u << 29) - 1));
+  for (size_t base = 0; base < n; base += 8) {
+    RayPacket8 p;
+    const int count = static_cast<int>(std::min<size_t>(8, n - base));
+    for (int j = 0; j < count; ++j) {
+      const Ray& r = rays[scratch[base + j]];
+      p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
+      p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
+      p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
+    }
+    HitPacket8 h;
+    const Mask8 got = Intersect8(bvh, p, (1u << count) - 1, &h, options);
+    for (int j = 0; j < count; ++j) {
+      if (!((got >> j) & 1)) continue;
+      const uint32_t i = scratch[base + j];
+      hits[i] = {h.t[j], h.b1[j], h.b2[j], h.prim[j]};
+      hit_mask[i] = 1;
+    }
+  }
+}
+
+const char* Traverse8TargetName() {
+  if (UseOracle()) return "scalar-oracle";
+  return hwy::TargetName(HWY_DYNAMIC_DISPATCH(TargetImpl)());
+}
+
+}  // namespace ptlab::simd
+#endif  // HWY_ONCE

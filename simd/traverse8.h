@@ -1,0 +1,70 @@
+// 8-wide packet and single-ray BVH8 traversal with the watertight triangle test (plain C++ API).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/bvh/bvh.h"
+#include "engine/core/ray.h"
+#include "simd/bvh8.h"
+#include "simd/packet8.h"
+
+namespace ptlab::simd {
+
+// Every function here runs a Highway kernel (hn::CappedTag<float, 8>: one 8-lane vector on
+// AVX2/AVX-512, two 4-lane halves on SSE4) chosen at run time among the compiled targets
+// (simd/targets.h). Oracle: ptlab::Intersect1 / ptlab::Occluded1 (engine/bvh/intersect1.h) on
+// the binary Bvh the Bvh8 was built from. Contract, per ray: the same hit or miss, the same
+// primitive, and t, b1, b2 bit-identical (the kernel performs the oracle's float operations in
+// the oracle's order, with FMA contraction disabled, and the same double-precision fallback
+// on edges). With PTLAB_FORCE_SCALAR=1 (simd::ForceScalar) every call runs the oracle itself.
+
+/// Tuning of packet traversal (defaults are the measured best; see benchmarks/).
+struct Traverse8Options {
+  /// Hybrid traversal: when at most this many lanes of a packet still need a subtree, each of
+  /// them traverses it alone (single-ray BVH8 traversal, all eight child boxes in one vector)
+  /// instead of the packet testing every child box for 8 lanes. 0 = pure packet traversal.
+  uint32_t single_ray_lanes = 2;
+  /// In a leaf reached by a packet whose lanes share the watertight axis permutation, test
+  /// one triangle against all lanes at a time when the leaf has fewer triangles than active
+  /// lanes (else each active lane tests the whole leaf in one vector).
+  bool broadcast_leaves = true;
+  /// A packet whose lanes point into different direction octants is incoherent: each lane
+  /// traverses alone from the root (else the packet starts and the switch above applies).
+  bool octant_fallback = true;
+};
+
+/// Closest hits of the lanes in `active` (bit i = lane i) with t in (t_min, t_max). Returns
+/// the lanes that hit; writes hits->{t, b1, b2, prim} of exactly those lanes and leaves every
+/// other lane of *hits bit-identical (like the oracle, a miss does not write). Lanes outside
+/// `active` are never read for decisions (they may hold NaN). Active lanes need finite o and
+/// finite non-zero d; t_min >= t_max is an empty interval (no hit).
+Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacket8* hits,
+                 const Traverse8Options& options = {});
+
+/// Lanes of `active` whose ray hits any triangle with t in (t_min, t_max); any-hit traversal
+/// that stops a lane at its first hit and returns when every active lane is done. Same
+/// per-lane answer as ptlab::Occluded1.
+Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
+                const Traverse8Options& options = {});
+
+/// Single-ray closest hit on the BVH8 (one ray, eight child boxes or up to eight leaf
+/// triangles per vector). Same contract as ptlab::Intersect1, bit-identical.
+bool Intersect1(const Bvh8& bvh, const Ray& ray, Hit* hit);
+
+/// Single-ray any hit on the BVH8; same answer as ptlab::Occluded1.
+bool Occluded1(const Bvh8& bvh, const Ray& ray);
+
+/// Incoherent rays handled as a stream (Wald et al. 2014 style regrouping, measured in
+/// benchmarks/traverse_bench.cpp): rays are sorted by direction octant and then by the Morton
+/// code of their origin, cut into packets of eight, and traced with Intersect8. hit_mask[i]
+/// is 1 for a hit (hits[i] written) and 0 for a miss (hits[i] untouched). Same per-ray
+/// contract as Intersect1. `scratch` must hold n entries.
+void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint8_t* hit_mask,
+                     uint32_t* scratch, const Traverse8Options& options = {});
+
+/// Name of the Highway target the dispatched kernels run on (e.g. "AVX3", "AVX2", "SSE4"),
+/// or "scalar-oracle" when simd::ForceScalar() is set.
+const char* Traverse8TargetName();
+
+}  // namespace ptlab::simd

@@ -1,0 +1,130 @@
+// Hard cases for every scalar BSDF: grazing/denormal/huge inputs never give NaN, Inf or < 0.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "engine/bsdf/bsdf.h"
+#include "engine/bsdf/conductor_presets.h"
+#include "tests/engine/bsdf/bsdf_test_inputs.h"
+
+namespace ptlab {
+namespace {
+
+// One row per hard parameter combination of every model.
+std::vector<MaterialRef> HardMaterials(MaterialTables* m) {
+  std::vector<MaterialRef> refs;
+  for (float a : {0.0f, 0.5f, 1.0f, 1e30f}) refs.push_back(m->AddDiffuse({a, a, a}));
+  refs.push_back(m->AddMirror());
+  for (float eta : bsdf_test::HardEtas())
+    for (uint8_t flags : {0, int(kDielectricSchlick), int(kDielectricScaleRadiance)})
+      refs.push_back(m->AddDielectric(eta, 1.0f, flags));
+  refs.push_back(m->AddDielectric(1.5f, 0.0f));
+  for (float alpha : bsdf_test::HardAlphas()) {
+    for (const char* name : {"Au", "none", "Si"}) {
+      Color3f eta, k;
+      LookupConductorPreset(name, &eta, &k);
+      refs.push_back(m->AddConductor(alpha, eta, k));
+    }
+    refs.push_back(m->AddConductor(alpha, {1e30f, 1e30f, 1e30f}, {1e30f, 0.0f, 1e-40f}));
+    refs.push_back(m->AddConductor(alpha, {1e-40f, 0.0f, 1.0f}, {0.0f, 1e-40f, 0.0f}));
+    for (float kd : {0.0f, 0.5f, 1.0f})
+      for (float int_ior : {1.5f, 1.0f, 1e30f})
+        refs.push_back(m->AddRoughPlastic(alpha, int_ior, 1.0f, {kd, kd * 0.5f, kd}));
+  }
+  return refs;
+}
+
+bool Finite(const Vec3f& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+TEST(BsdfHardCases, NoNanInfOrNegativeValuesAnywhere) {
+  MaterialTables m;
+  const std::vector<MaterialRef> refs = HardMaterials(&m);
+  const std::vector<Vec3f> dirs = bsdf_test::HardDirections();
+  const std::vector<float> us = bsdf_test::HardUs();
+  size_t evals = 0, samples = 0, valid = 0;
+  for (MaterialRef ref : refs) {
+    for (size_t a = 0; a < dirs.size(); ++a) {
+      const Vec3f& wo = dirs[a];
+      for (const Vec3f& wi : dirs) {
+        const Color3f f = BsdfEval(m, ref, wo, wi);
+        const float pdf = BsdfPdf(m, ref, wo, wi);
+        ++evals;
+        ASSERT_TRUE(IsFinite(f) && f.r >= 0 && f.g >= 0 && f.b >= 0 && std::isfinite(pdf) &&
+                    pdf >= 0)
+            << "tag " << int(ref.tag()) << " row " << ref.index() << " wo " << wo.x << "," << wo.y
+            << "," << wo.z << " wi " << wi.x << "," << wi.y << "," << wi.z;
+      }
+      const bool unit = std::fabs(Length(wo) - 1.0f) < 1e-5f;
+      for (float ul : {0.0f, 0.5f, kOneMinusEpsilon})
+        for (float ux : us)
+          for (float uy : {0.0f, 0.3f, kOneMinusEpsilon}) {
+            BsdfSample s;
+            ++samples;
+            if (!BsdfSampleDirection(m, ref, wo, ul, {ux, uy}, &s)) continue;
+            ++valid;
+            ASSERT_TRUE(Finite(s.wi) && IsFinite(s.weight) && std::isfinite(s.pdf) && s.pdf > 0 &&
+                        std::isfinite(s.eta) && s.eta > 0)
+                << "tag " << int(ref.tag()) << " row " << ref.index() << " wo " << wo.x << ","
+                << wo.y << "," << wo.z << " u " << ul << "," << ux << "," << uy;
+            ASSERT_TRUE(s.weight.r >= 0 && s.weight.g >= 0 && s.weight.b >= 0);
+            if (!unit) continue;
+            ASSERT_NEAR(Length(s.wi), 1.0f, 1e-4f) << "tag " << int(ref.tag());
+            if (IsDeltaMaterial(ref.tag())) continue;
+            // weight = Eval cos / Pdf for the sampled direction.
+            const Color3f f = BsdfEval(m, ref, wo, s.wi);
+            const float pdf = BsdfPdf(m, ref, wo, s.wi);
+            ASSERT_EQ(pdf, s.pdf);
+            for (int c = 0; c < 3; ++c) {
+              const float ref_w = f[c] * s.wi.z / pdf;
+              ASSERT_NEAR(s.weight[c], ref_w, 1e-4f * std::fabs(ref_w) + 1e-20f)
+                  << "tag " << int(ref.tag()) << " row " << ref.index() << " wo.z " << wo.z;
+            }
+          }
+    }
+  }
+  EXPECT_GT(valid, samples / 5);
+  EXPECT_GT(evals, 100000u);
+}
+
+TEST(BsdfHardCases, WoBelowTheSurface) {
+  MaterialTables m;
+  const Vec3f below = bsdf_test::DirectionWithCos(-0.3f, 0.2f);
+  const Vec3f above = bsdf_test::DirectionWithCos(0.7f, 1.2f);
+  for (MaterialRef ref : {m.AddDiffuse({0.5f, 0.5f, 0.5f}), m.AddMirror(),
+                          m.AddConductor(0.2f, {0.2f, 0.4f, 1.4f}, {3, 2.7f, 1.8f}),
+                          m.AddRoughPlastic(0.2f, 1.5f, 1.0f, {0.5f, 0.5f, 0.5f})}) {
+    BsdfSample s;
+    EXPECT_FALSE(BsdfSampleDirection(m, ref, below, 0.3f, {0.4f, 0.6f}, &s)) << int(ref.tag());
+    EXPECT_TRUE(IsBlack(BsdfEval(m, ref, below, above)));
+    EXPECT_TRUE(IsBlack(BsdfEval(m, ref, above, below)));
+    EXPECT_EQ(BsdfPdf(m, ref, below, above), 0.0f);
+    EXPECT_EQ(BsdfPdf(m, ref, above, below), 0.0f);
+  }
+  // The dielectric is two-sided: wo below means "inside".
+  BsdfSample s;
+  EXPECT_TRUE(BsdfSampleDirection(m, m.AddDielectric(1.5f, 1.0f), below, 0.99f, {0, 0}, &s));
+}
+
+TEST(BsdfHardCases, ExactlyGrazingWo) {
+  MaterialTables m;
+  const Vec3f grazing{1.0f, 0.0f, 0.0f};
+  for (MaterialRef ref : {m.AddDiffuse({0.5f, 0.5f, 0.5f}), m.AddMirror(),
+                          m.AddConductor(0.2f, {0.2f, 0.4f, 1.4f}, {3, 2.7f, 1.8f}),
+                          m.AddRoughPlastic(0.2f, 1.5f, 1.0f, {0.5f, 0.5f, 0.5f})}) {
+    BsdfSample s;
+    EXPECT_FALSE(BsdfSampleDirection(m, ref, grazing, 0.3f, {0.4f, 0.6f}, &s)) << int(ref.tag());
+    EXPECT_TRUE(IsBlack(BsdfEval(m, ref, grazing, {0, 0, 1})));
+  }
+  // A smooth dielectric reflects everything at exactly grazing incidence (F = 1).
+  BsdfSample s;
+  ASSERT_TRUE(
+      BsdfSampleDirection(m, m.AddDielectric(1.5f, 1.0f), grazing, kOneMinusEpsilon, {0, 0}, &s));
+  EXPECT_EQ(s.pdf, 1.0f);
+  EXPECT_EQ(s.wi, (Vec3f{-1.0f, 0.0f, 0.0f}));
+}
+
+}  // namespace
+}  // namespace ptlab

@@ -1,0 +1,185 @@
+// Tests of the smooth dielectric and its Fresnel term: values, TIR, η → 1, Snell, options.
+#include "engine/bsdf/dielectric.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/bsdf/bsdf.h"
+#include "engine/bsdf/fresnel.h"
+#include "tests/engine/bsdf/bsdf_test_inputs.h"
+
+namespace ptlab {
+namespace {
+
+// Textbook form with cosines and sines in double (the inverted index for light from inside is
+// rounded to float, as the code under test sees it). *cos_t_out gets the refracted cosine.
+double FresnelReference(float cos_i_f, float eta_f, double* cos_t_out = nullptr) {
+  double cos_i = cos_i_f, eta = eta_f;
+  if (cos_i < 0) eta = 1.0f / eta_f, cos_i = -cos_i;
+  const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+  if (cos_t_out) *cos_t_out = 0;
+  if (sin2_t >= 1) return 1;
+  const double ct = std::sqrt(1 - sin2_t);
+  if (cos_t_out) *cos_t_out = ct;
+  const double rs = (cos_i - eta * ct) / (cos_i + eta * ct);
+  const double rp = (eta * cos_i - ct) / (eta * cos_i + ct);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+TEST(Dielectric, FresnelMatchesTextbookFormula) {
+  for (float eta : {1.5f, 1.0f / 1.5f, 1.33f, 2.4f})
+    for (float c = -1.0f; c <= 1.0f; c += 0.001f) {
+      float cos_t;
+      const float f = FresnelDielectric(c, eta, &cos_t);
+      // Near the critical angle F ∝ √(cos² − cos²_crit) amplifies the float rounding of the
+      // inputs: allow ~1e-7 / cos θt there.
+      double ct;
+      const double ref = FresnelReference(c, eta, &ct);
+      ASSERT_NEAR(f, ref, 2e-6 + 2e-7 / std::max(ct, 1e-6)) << eta << " " << c;
+      ASSERT_NEAR(cos_t, ct, 2e-6 + 2e-7 / std::max(ct, 1e-6)) << eta << " " << c;
+      ASSERT_GE(f, 0.0f);
+      ASSERT_LE(f, 1.0f);
+    }
+  float cos_t;
+  EXPECT_NEAR(FresnelDielectric(1.0f, 1.5f, &cos_t), 0.04f, 1e-7f);
+  EXPECT_EQ(cos_t, 1.0f);
+}
+
+TEST(Dielectric, TotalInternalReflectionIncludingTheCriticalAngle) {
+  const float eta = 1.5f;
+  const float cos_crit = std::sqrt(1.0f - 1.0f / (eta * eta));
+  float cos_t = -1;
+  // From inside, beyond the critical angle.
+  EXPECT_EQ(FresnelDielectric(-0.5f * cos_crit, eta, &cos_t), 1.0f);
+  EXPECT_EQ(cos_t, 0.0f);
+  // Exactly at the critical angle: from outside with η < 1, walk η up one ulp at a time across
+  // sin θi; the last η with total internal reflection is "at" the critical angle in float.
+  for (float c : {0.6f, 0.3f, 0.01f, 0.9f}) {
+    float tir_eta = std::nextafter(std::sqrt(1.0f - c * c), 0.0f);
+    for (int k = 0; k < 64; ++k) tir_eta = std::nextafter(tir_eta, 0.0f);
+    ASSERT_EQ(FresnelDielectric(c, tir_eta, &cos_t), 1.0f) << c;
+    while (FresnelDielectric(c, std::nextafter(tir_eta, 2.0f), &cos_t) == 1.0f)
+      tir_eta = std::nextafter(tir_eta, 2.0f);
+    EXPECT_EQ(FresnelDielectric(c, tir_eta, &cos_t), 1.0f) << c;
+    EXPECT_EQ(cos_t, 0.0f);
+    BsdfSample smp;
+    ASSERT_TRUE(
+        DielectricSample(tir_eta, bsdf_test::DirectionWithCos(c, 0.0f), kOneMinusEpsilon, &smp));
+    EXPECT_EQ(smp.pdf, 1.0f);
+    EXPECT_EQ(smp.wi.z, c);
+    // One ulp above, light refracts (barely); F is the Fresnel formula at that cos θt.
+    const double next = std::nextafter(tir_eta, 2.0f);
+    const float f = FresnelDielectric(c, float(next), &cos_t);
+    EXPECT_GT(cos_t, 0.0f);
+    EXPECT_LT(cos_t, 1e-3f);
+    const double rs = (c - next * cos_t) / (c + next * cos_t);
+    const double rp = (c - cos_t / next) / (c + cos_t / next);
+    EXPECT_NEAR(f, 0.5 * (rs * rs + rp * rp), 1e-5) << c;
+  }
+  // Approaching it, F rises continuously to 1 and follows the reference.
+  float prev = 0.0f;
+  for (int j = 200; j >= 0; --j) {
+    const float c = -cos_crit * (1.0f + j * 1e-5f);
+    const float f = FresnelDielectric(c, eta, &cos_t);
+    EXPECT_GE(f, prev - 1e-6f);
+    double ct;
+    const double ref = FresnelReference(c, eta, &ct);
+    EXPECT_NEAR(f, ref, 2e-6 + 2e-7 / std::max(ct, 1e-6)) << c;
+    prev = f;
+  }
+  EXPECT_GT(prev, 0.99f);
+  BsdfSample s;
+  for (float u : {0.0f, 0.5f, kOneMinusEpsilon}) {
+    const Vec3f wo = bsdf_test::DirectionWithCos(-0.5f * cos_crit, 0.2f);
+    ASSERT_TRUE(DielectricSample(eta, wo, u, &s));
+    EXPECT_EQ(s.wi, (Vec3f{-wo.x, -wo.y, wo.z}));
+    EXPECT_EQ(s.pdf, 1.0f);
+  }
+}
+
+TEST(Dielectric, IndexMatchedInterfaceIsInvisible) {
+  for (float eta : {1.0f, 1.0f + 1e-6f, 1.0f - 1e-6f}) {
+    for (float c : {1.0f, 0.5f, 0.1f, -0.5f}) {
+      float cos_t;
+      EXPECT_LT(FresnelDielectric(c, eta, &cos_t), 1e-8f) << eta << " " << c;
+      EXPECT_NEAR(cos_t, std::fabs(c), 2e-5f);
+      BsdfSample s;
+      const Vec3f wo = bsdf_test::DirectionWithCos(c, 0.9f);
+      ASSERT_TRUE(DielectricSample(eta, wo, 0.5f, &s));
+      EXPECT_NEAR(s.wi.x, -wo.x, 1e-5f);
+      EXPECT_NEAR(s.wi.y, -wo.y, 1e-5f);
+      EXPECT_NEAR(s.wi.z, -wo.z, 2e-5f);
+    }
+    // Near grazing the tiny index step still matters (η = 1 − 1e-6 has a critical angle at
+    // cos θ ≈ 1.4e-3): follow the reference there.
+    for (float c : {1e-1f, 1e-2f, 2e-3f, 1e-3f, 1e-4f, 1e-6f, -1e-3f, -1e-6f}) {
+      float cos_t;
+      double ct;
+      const double ref = FresnelReference(c, eta, &ct);
+      EXPECT_NEAR(FresnelDielectric(c, eta, &cos_t), ref, 2e-6 + 2e-7 / std::max(ct, 1e-6))
+          << eta << " " << c;
+      EXPECT_NEAR(cos_t, ct, 1e-6 * ct + 1e-9) << eta << " " << c;
+    }
+    float cos_t;
+    EXPECT_EQ(FresnelDielectric(0.0f, eta, &cos_t), 1.0f);  // exactly grazing
+  }
+}
+
+TEST(Dielectric, RefractionObeysSnellAndLobesSumToOne) {
+  for (float eta : {1.5f, 1.0f / 1.5f, 1.5046f / 1.000277f})
+    for (float c : {0.9f, 0.5f, 0.2f, -0.2f, -0.9f}) {
+      const Vec3f wo = bsdf_test::DirectionWithCos(c, 0.4f);
+      BsdfSample refl, refr;
+      ASSERT_TRUE(DielectricSample(eta, wo, 0.0f, &refl));
+      ASSERT_TRUE(DielectricSample(eta, wo, kOneMinusEpsilon, &refr));
+      if (refl.pdf == 1.0f) continue;  // TIR
+      EXPECT_NEAR(refl.pdf + refr.pdf, 1.0f, 1e-6f);
+      EXPECT_NEAR(Length(refr.wi), 1.0f, 1e-5f);
+      EXPECT_LT(refr.wi.z * wo.z, 0.0f);
+      // η_o sin θo = η_i sin θi, with s.eta = η_i / η_o.
+      const float sin_o = std::sqrt(wo.x * wo.x + wo.y * wo.y);
+      const float sin_i = std::sqrt(refr.wi.x * refr.wi.x + refr.wi.y * refr.wi.y);
+      EXPECT_NEAR(sin_o, refr.eta * sin_i, 1e-5f);
+      EXPECT_FLOAT_EQ(refr.eta, c > 0 ? eta : 1.0f / eta);
+      EXPECT_EQ(refr.weight.g, 1.0f);
+      EXPECT_TRUE(refr.delta);
+    }
+}
+
+TEST(Dielectric, SchlickAndRadianceScalingOptions) {
+  const float eta = 1.5f;
+  const Vec3f wo = bsdf_test::DirectionWithCos(0.6f, 0.0f);
+  BsdfSample s;
+  ASSERT_TRUE(DielectricSample(eta, wo, 0.0f, &s, kDielectricSchlick));
+  EXPECT_FLOAT_EQ(s.pdf, FresnelSchlick(0.6f, eta));
+  EXPECT_FLOAT_EQ(FresnelSchlick(1.0f, eta), 0.04f);
+  EXPECT_FLOAT_EQ(FresnelSchlick(0.0f, eta), 1.0f);
+  // Schlick still detects TIR exactly.
+  ASSERT_TRUE(
+      DielectricSample(eta, bsdf_test::DirectionWithCos(-0.1f, 0.0f), 0.99f, &s, kDielectricSchlick));
+  EXPECT_EQ(s.pdf, 1.0f);
+  // Radiance scaling: entering glass from air divides by η², leaving multiplies by η².
+  ASSERT_TRUE(DielectricSample(eta, wo, kOneMinusEpsilon, &s, kDielectricScaleRadiance));
+  EXPECT_FLOAT_EQ(s.weight.r, 1.0f / (eta * eta));
+  ASSERT_TRUE(DielectricSample(eta, bsdf_test::DirectionWithCos(-0.95f, 0.0f), kOneMinusEpsilon, &s,
+                               kDielectricScaleRadiance));
+  EXPECT_FLOAT_EQ(s.weight.r, eta * eta);
+  // Through the tables and the dispatch.
+  MaterialTables m;
+  const MaterialRef plain = m.AddDielectric(1.5f, 1.0f);
+  EXPECT_TRUE(m.dielectric.flags.empty());  // nothing is stored until a row needs it
+  const MaterialRef scaled = m.AddDielectric(1.5f, 1.0f, kDielectricScaleRadiance);
+  EXPECT_EQ(m.dielectric.Flags(plain.index()), 0);
+  EXPECT_EQ(m.dielectric.Flags(scaled.index()), kDielectricScaleRadiance);
+  ASSERT_TRUE(BsdfSampleDirection(m, scaled, wo, kOneMinusEpsilon, {0, 0}, &s));
+  EXPECT_FLOAT_EQ(s.weight.r, 1.0f / 2.25f);
+  ASSERT_TRUE(BsdfSampleDirection(m, plain, wo, kOneMinusEpsilon, {0, 0}, &s));
+  EXPECT_EQ(s.weight.r, 1.0f);
+  EXPECT_TRUE(IsBlack(BsdfEval(m, plain, wo, s.wi)));
+  EXPECT_EQ(BsdfPdf(m, plain, wo, s.wi), 0.0f);
+}
+
+}  // namespace
+}  // namespace ptlab

@@ -1,0 +1,20 @@
+// Renders as `ptlab render` does by default: BVH, BVH8 and the 8-wide packet traversal.
+#pragma once
+
+#include "engine/bvh/bvh.h"
+#include "engine/render/render.h"
+#include "simd/bvh8.h"
+#include "simd/traverse8_backend.h"
+
+namespace ptlab {
+
+/// Render(scene) through the packet path (bit-identical to the scalar path, only faster).
+inline RenderResult RenderWithPackets(const Scene& scene, RenderOptions options) {
+  const Bvh bvh = BuildBvh(scene.triangles);
+  const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
+  const TraversalBackend8 backend = simd::PacketTraversalBackend(bvh8);
+  options.packets = &backend;
+  return Render(scene, bvh, options);
+}
+
+}  // namespace ptlab

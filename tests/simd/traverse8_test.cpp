@@ -1,0 +1,574 @@
+// simd/traverse8 against the scalar oracle (Intersect1 / Occluded1), lane by lane, on every
+// compiled Highway target: same hit, same primitive, bit-identical t and barycentrics.
+// clang-format off
+#include "simd/targets.h"  // first: the same target policy as simd/
+// clang-format on
+
+#include "simd/traverse8.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "engine/bvh/intersect1.h"
+#include "engine/core/rng.h"
+#include "engine/render/camera.h"
+#include "engine/render/film.h"
+#include "engine/render/filter.h"
+#include "engine/render/packet_render.h"
+#include "engine/scene/xml_loader.h"
+#include "hwy/targets.h"
+#include "simd/bvh8.h"
+#include "simd/traverse8_backend.h"
+#include "tests/engine/bvh/test_meshes.h"
+
+namespace ptlab::simd {
+namespace {
+
+using bvh_test::IndexedMesh;
+using bvh_test::Uniform;
+using bvh_test::UniformInBox;
+using bvh_test::UniformSphereDirection;
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr uint32_t kSentinel = 0x7fc0dead;  // a NaN pattern no kernel would produce
+
+void Append(const IndexedMesh& m, TriangleTable* t) {
+  for (const auto& tri : m.triangles) {
+    t->Append(m.vertices[tri[0]], m.vertices[tri[1]], m.vertices[tri[2]]);
+  }
+}
+
+// A scene with every kind of trouble: a flat grid with exactly representable vertices (rays
+// through shared edges and vertices), a sphere, rotated and axis-aligned cubes (box faces
+// coincide with node planes), a random soup of tiny to large triangles, triangles in the
+// planes of others, and degenerate (NaN-free) triangles that must never be hit.
+TriangleTable MakeAdversarialScene() {
+  TriangleTable t;
+  Pcg32 rng(2024, 3);
+  Append(bvh_test::MakeFlatGrid(32), &t);
+  Append(bvh_test::MakeIcosphere(4, {0.3f, -0.2f, 0.6f}, 0.5f), &t);
+  Append(bvh_test::MakeCube({-0.9f, -0.9f, -0.9f}, {-0.4f, -0.4f, -0.4f}), &t);
+  Append(bvh_test::Rotated(bvh_test::MakeCube({0.2f, 0.2f, -0.8f}, {0.7f, 0.7f, -0.3f}), {1, 2, 3},
+                           0.7f),
+         &t);
+  const TriangleTable soup = bvh_test::MakeRandomSoup(3000, rng);
+  for (size_t i = 0; i < soup.size(); ++i) t.Append(soup.V0(i), soup.V1(i), soup.V2(i));
+  // Degenerate: repeated vertices, collinear vertices, a point.
+  t.Append({0, 0, 0.25f}, {0.5f, 0, 0.25f}, {0.5f, 0, 0.25f});
+  t.Append({-0.5f, -0.5f, 0.1f}, {0.5f, 0.5f, 0.1f}, {0, 0, 0.1f});
+  t.Append({0.1f, 0.1f, 0.1f}, {0.1f, 0.1f, 0.1f}, {0.1f, 0.1f, 0.1f});
+  // Exact duplicates of grid triangles under other rows: ties on t, won by the lower row.
+  for (int i = 0; i < 64; ++i) t.Append(t.V0(i), t.V1(i), t.V2(i));
+  return t;
+}
+
+Vec3f Vertex(const TriangleTable& t, uint32_t row, int k) {
+  return k == 0 ? t.V0(row) : (k == 1 ? t.V1(row) : t.V2(row));
+}
+
+// Rays of every adversarial kind, in groups of eight that share an origin where the kind
+// allows (so packets are coherent and the packet path, not only the single-ray fallback,
+// sees the hard cases).
+std::vector<Ray> MakeRays(const TriangleTable& table, const Bvh& bvh, size_t count, uint64_t seed) {
+  const Vec3f lo = bvh.nodes[0].bounds_min, hi = bvh.nodes[0].bounds_max;
+  const float half = 0.5f * MaxComponent(hi - lo);
+  const Vec3f outer_lo = lo - Vec3f{half, half, half}, outer_hi = hi + Vec3f{half, half, half};
+  Pcg32 rng(seed, 11);
+  const uint32_t n = static_cast<uint32_t>(table.size());
+  auto row = [&] { return rng.NextUint() % n; };
+  std::vector<Ray> rays;
+  rays.reserve(count + 16);
+  while (rays.size() < count) {
+    const uint32_t kind = rng.NextUint() % 9;
+    const Vec3f o = UniformInBox(rng, outer_lo, outer_hi);
+    switch (kind) {
+      case 0:  // random
+        for (int j = 0; j < 8; ++j) {
+          rays.push_back({UniformInBox(rng, outer_lo, outer_hi), UniformSphereDirection(rng)});
+        }
+        break;
+      case 1: {  // one origin, aimed at the vertices, edge midpoints and centroid of a triangle
+        const uint32_t r = row();
+        const Vec3f a = table.V0(r), b = table.V1(r), c = table.V2(r);
+        for (const Vec3f& p : {a, b, c, (a + b) * 0.5f, (b + c) * 0.5f, (c + a) * 0.5f,
+                               (a + b + c) * (1.0f / 3.0f), a + (b - a) * 0.25f}) {
+          rays.push_back({o, p - o});
+        }
+        break;
+      }
+      case 2:  // one origin, aimed at random vertices (shared by several triangles)
+        for (int j = 0; j < 8; ++j) rays.push_back({o, Vertex(table, row(), j % 3) - o});
+        break;
+      case 3: {  // axis-parallel through exact vertices, signed zeros in the other components
+        const int axis = static_cast<int>(rng.NextUint() % 3);
+        const float sign = (rng.NextUint() & 1) ? 1.0f : -1.0f;
+        for (int j = 0; j < 8; ++j) {
+          const Vec3f v = Vertex(table, row(), j % 3);
+          Vec3f p = v, d;
+          p[axis] = v[axis] - sign * Uniform(rng, 0.1f, 2.0f);
+          d[axis] = sign;
+          d[(axis + 1) % 3] = (rng.NextUint() & 1) ? 0.0f : -0.0f;
+          d[(axis + 2) % 3] = (rng.NextUint() & 1) ? 0.0f : -0.0f;
+          rays.push_back({j < 6 ? p : o, d});
+        }
+        break;
+      }
+      case 4: {  // zero direction component, origin on a vertex's plane of that axis
+        const int axis = static_cast<int>(rng.NextUint() % 3);
+        for (int j = 0; j < 8; ++j) {
+          const Vec3f v = Vertex(table, row(), j % 3);
+          Vec3f p = o;
+          p[axis] = v[axis];
+          Vec3f d = (j & 1) ? v - p : UniformSphereDirection(rng);
+          d[axis] = 0.0f;
+          rays.push_back({p, d});
+        }
+        break;
+      }
+      case 5:  // grazing: in a triangle's plane, along its edges
+        for (int j = 0; j < 4; ++j) {
+          const uint32_t r = row();
+          const Vec3f a = table.V0(r), b = table.V1(r), c = table.V2(r);
+          rays.push_back({a + (b - a) * Uniform(rng, -1.0f, 2.0f), c - a});
+          rays.push_back({a - (c - a), c - a});
+        }
+        break;
+      case 6: {  // origins inside node boxes
+        const BvhNode& node = bvh.nodes[rng.NextUint() % bvh.nodes.size()];
+        const Vec3f p = UniformInBox(rng, node.bounds_min, node.bounds_max);
+        for (int j = 0; j < 8; ++j) rays.push_back({p, UniformSphereDirection(rng)});
+        break;
+      }
+      case 7: {  // intervals: t_max = 0, empty, reversed, short, ending exactly at a hit
+        for (int j = 0; j < 8; ++j) {
+          Ray r{o, Vertex(table, row(), j % 3) - o};
+          switch (j) {
+            case 0:
+              r.t_min = 0.0f, r.t_max = 0.0f;
+              break;
+            case 1:
+              r.t_min = 0.5f, r.t_max = 0.25f;
+              break;
+            case 2:
+              r.t_min = r.t_max = 0.5f;
+              break;
+            case 3:
+              r.t_min = Uniform(rng, 0.0f, 0.9f), r.t_max = r.t_min + 0.1f;
+              break;
+            default: {
+              Hit h;
+              if (Intersect1(bvh, r, &h)) {
+                // The interval is open: a hit exactly at t_min or t_max does not count.
+                if (j == 4) r.t_max = h.t;
+                if (j == 5) r.t_min = h.t;
+                if (j == 6) r.t_max = std::nextafter(h.t, kInf);
+                if (j == 7) r.t_min = std::nextafter(h.t, -kInf);
+              }
+            }
+          }
+          rays.push_back(r);
+        }
+        break;
+      }
+      default: {  // coherent: a small cone of directions from one origin, like camera rays
+        const Vec3f target = Vertex(table, row(), 0);
+        const Vec3f d0 = target - o;
+        const float spread = 0.02f * Length(d0);
+        for (int j = 0; j < 8; ++j) {
+          rays.push_back({o, d0 + UniformSphereDirection(rng) * spread});
+        }
+      }
+    }
+  }
+  rays.resize(count);
+  return rays;
+}
+
+struct Expected {
+  bool hit = false, occluded = false;
+  Hit h;
+};
+
+std::vector<Expected> Oracle(const Bvh& bvh, const std::vector<Ray>& rays) {
+  std::vector<Expected> out(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    out[i].hit = Intersect1(bvh, rays[i], &out[i].h);
+    out[i].occluded = Occluded1(bvh, rays[i]);
+  }
+  return out;
+}
+
+uint32_t Bits(float f) { return std::bit_cast<uint32_t>(f); }
+
+struct Mismatches {
+  int count = 0;
+  void Report(const char* what, const Ray& r, const std::string& detail) {
+    if (++count <= 10) {
+      ADD_FAILURE() << what << " (target " << Traverse8TargetName() << "): o = (" << r.o.x << ", "
+                    << r.o.y << ", " << r.o.z << ") d = (" << r.d.x << ", " << r.d.y << ", "
+                    << r.d.z << ") t in (" << r.t_min << ", " << r.t_max << "): " << detail;
+    }
+  }
+};
+
+void CheckHit(const char* what, const Ray& r, const Expected& e, bool got, const Hit& h,
+              Mismatches* mm) {
+  if (got != e.hit) {
+    mm->Report(what, r, got ? "hit, oracle misses" : "miss, oracle hits");
+    return;
+  }
+  if (!got) return;
+  if (h.prim != e.h.prim || Bits(h.t) != Bits(e.h.t) || Bits(h.b1) != Bits(e.h.b1) ||
+      Bits(h.b2) != Bits(e.h.b2)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "prim %u vs %u, t %a vs %a, b1 %a vs %a, b2 %a vs %a", h.prim,
+                  e.h.prim, h.t, e.h.t, h.b1, e.h.b1, h.b2, e.h.b2);
+    mm->Report(what, r, buf);
+  }
+}
+
+// Packs rays [base, base + 8) into a packet with active mask `active`; inactive lanes get
+// NaN everywhere (they must not influence anything).
+RayPacket8 Pack(const std::vector<Ray>& rays, size_t base, Mask8 active) {
+  RayPacket8 p;
+  for (int j = 0; j < 8; ++j) {
+    const bool on = (active >> j) & 1;
+    const Ray& r = rays[base + j];
+    p.org_x[j] = on ? r.o.x : kNaN, p.org_y[j] = on ? r.o.y : kNaN;
+    p.org_z[j] = on ? r.o.z : kNaN, p.dir_x[j] = on ? r.d.x : kNaN;
+    p.dir_y[j] = on ? r.d.y : kNaN, p.dir_z[j] = on ? r.d.z : kNaN;
+    p.t_min[j] = on ? r.t_min : kNaN, p.t_max[j] = on ? r.t_max : kNaN;
+  }
+  return p;
+}
+
+struct Config {
+  const char* name;
+  Traverse8Options options;
+};
+
+// Runs every ray through Intersect8 / Occluded8 (with the given options) and through the
+// single-ray BVH8 kernels, and compares lane by lane with the oracle.
+void CompareAll(const Bvh8& bvh8, const std::vector<Ray>& rays,
+                const std::vector<Expected>& expected, const Config& config, bool single_ray,
+                Mismatches* mm) {
+  Pcg32 rng(99, 5);
+  for (size_t base = 0; base + 8 <= rays.size(); base += 8) {
+    // Mostly full packets; every fourth has a random subset of lanes (possibly none).
+    const Mask8 active = (rng.NextUint() % 4 == 0) ? (rng.NextUint() & 0xffu) : kAllLanes;
+    const RayPacket8 p = Pack(rays, base, active);
+    HitPacket8 hits;
+    for (int j = 0; j < 8; ++j) {
+      hits.t[j] = hits.b1[j] = hits.b2[j] = std::bit_cast<float>(kSentinel);
+      hits.prim[j] = kSentinel;
+    }
+    const Mask8 got = Intersect8(bvh8, p, active, &hits, config.options);
+    const Mask8 occ = Occluded8(bvh8, p, active, config.options);
+    if ((got & ~active) != 0 || (occ & ~active) != 0) {
+      mm->Report(config.name, rays[base], "result outside the active mask");
+    }
+    for (int j = 0; j < 8; ++j) {
+      const Ray& r = rays[base + j];
+      const Expected& e = expected[base + j];
+      const bool on = (active >> j) & 1;
+      const bool lane_hit = (got >> j) & 1;
+      if (!lane_hit) {
+        // Lanes that are inactive or miss come back bit-identical.
+        if (Bits(hits.t[j]) != kSentinel || Bits(hits.b1[j]) != kSentinel ||
+            Bits(hits.b2[j]) != kSentinel || hits.prim[j] != kSentinel) {
+          mm->Report(config.name, r, "lane without a hit was written");
+        }
+      }
+      if (!on) continue;
+      const Hit h{hits.t[j], hits.b1[j], hits.b2[j], hits.prim[j]};
+      CheckHit(config.name, r, e, lane_hit, h, mm);
+      if ((((occ >> j) & 1) != 0) != e.occluded) {
+        mm->Report(config.name, r, "Occluded8 differs from Occluded1");
+      }
+      if (single_ray) {
+        Hit h1;
+        const bool got1 = Intersect1(bvh8, r, &h1);
+        CheckHit("simd::Intersect1", r, e, got1, h1, mm);
+        if (Occluded1(bvh8, r) != e.occluded) {
+          mm->Report("simd::Occluded1", r, "differs from the oracle");
+        }
+      }
+    }
+  }
+}
+
+// Runs `body` once per compiled Highway target the CPU supports, with dispatch pinned to it.
+template <class Body>
+void ForEachTarget(Body body) {
+  bool saw_128 = false;
+  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    SCOPED_TRACE(hwy::TargetName(target));
+    if (!ForceScalar()) {
+      EXPECT_STREQ(Traverse8TargetName(), hwy::TargetName(target));
+    }
+    saw_128 |= target == HWY_SSE4 || target == HWY_EMU128 || target == HWY_SCALAR;
+    body();
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_TRUE(saw_128) << "no 128-bit target was tested";
+}
+
+struct Fixture {
+  TriangleTable table = MakeAdversarialScene();
+  Bvh bvh = BuildBvh(table);
+};
+
+const Fixture& AdversarialFixture() {
+  static const Fixture f;
+  return f;
+}
+
+TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
+  if (ForceScalar()) GTEST_SKIP() << "PTLAB_FORCE_SCALAR is set: the kernels are not used";
+  const Fixture& f = AdversarialFixture();
+  const Bvh8 bvh8 = BuildBvh8(f.bvh);
+  // 2^20 rays per target through the default (hybrid) configuration; the single-ray kernels
+  // and the other configurations see an eighth of them (the test stays within seconds).
+  const std::vector<Ray> rays = MakeRays(f.table, f.bvh, size_t{1} << 20, 1);
+  const std::vector<Expected> expected = Oracle(f.bvh, rays);
+  size_t hits = 0, occluded = 0;
+  for (const Expected& e : expected) hits += e.hit, occluded += e.occluded;
+  EXPECT_GT(hits, rays.size() / 4);
+  EXPECT_LT(hits, rays.size() * 9 / 10);
+  EXPECT_EQ(hits, occluded);
+  const size_t eighth = rays.size() / 8;
+  const std::vector<Ray> some(rays.begin(), rays.begin() + eighth);
+  const std::vector<Expected> some_expected(expected.begin(), expected.begin() + eighth);
+  ForEachTarget([&] {
+    Mismatches mm;
+    CompareAll(bvh8, rays, expected, {"hybrid", {}}, /*single_ray=*/false, &mm);
+    CompareAll(bvh8, some, some_expected, {"hybrid", {}}, /*single_ray=*/true, &mm);
+    CompareAll(bvh8, some, some_expected, {"packet, broadcast leaves", {0, true, false}}, false,
+               &mm);
+    CompareAll(bvh8, some, some_expected, {"packet, per-lane leaves", {0, false, false}}, false,
+               &mm);
+    CompareAll(bvh8, some, some_expected, {"mostly single-ray", {7, true, false}}, false, &mm);
+    EXPECT_EQ(mm.count, 0);
+  });
+}
+
+TEST(Traverse8, BinaryLeavesMatchOracle) {
+  if (ForceScalar()) GTEST_SKIP() << "PTLAB_FORCE_SCALAR is set: the kernels are not used";
+  const Fixture& f = AdversarialFixture();
+  const Bvh8 bvh8 = BuildBvh8(f.bvh, {.merge_leaf_size = 0});
+  const std::vector<Ray> rays = MakeRays(f.table, f.bvh, size_t{1} << 16, 2);
+  const std::vector<Expected> expected = Oracle(f.bvh, rays);
+  ForEachTarget([&] {
+    Mismatches mm;
+    CompareAll(bvh8, rays, expected, {"binary leaves", {}}, true, &mm);
+    CompareAll(bvh8, rays, expected, {"binary leaves, packet", {0, true, false}}, false, &mm);
+    EXPECT_EQ(mm.count, 0);
+  });
+}
+
+TEST(Traverse8, IntersectStreamMatchesOracle) {
+  if (ForceScalar()) GTEST_SKIP() << "PTLAB_FORCE_SCALAR is set: the kernels are not used";
+  const Fixture& f = AdversarialFixture();
+  const Bvh8 bvh8 = BuildBvh8(f.bvh);
+  // An odd count, so the last packet is partial.
+  const std::vector<Ray> rays = MakeRays(f.table, f.bvh, (size_t{1} << 15) + 5, 3);
+  const std::vector<Expected> expected = Oracle(f.bvh, rays);
+  const Hit sentinel{std::bit_cast<float>(kSentinel), std::bit_cast<float>(kSentinel),
+                     std::bit_cast<float>(kSentinel), kSentinel};
+  ForEachTarget([&] {
+    std::vector<Hit> hits(rays.size(), sentinel);
+    std::vector<uint8_t> mask(rays.size(), 7);
+    std::vector<uint32_t> scratch(rays.size());
+    IntersectStream(bvh8, rays.data(), rays.size(), hits.data(), mask.data(), scratch.data());
+    Mismatches mm;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      EXPECT_LE(mask[i], 1);
+      CheckHit("IntersectStream", rays[i], expected[i], mask[i] == 1, hits[i], &mm);
+      if (mask[i] == 0 && (hits[i].prim != kSentinel || Bits(hits[i].t) != kSentinel)) {
+        mm.Report("IntersectStream", rays[i], "miss was written");
+      }
+    }
+    EXPECT_EQ(mm.count, 0);
+  });
+}
+
+TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
+  const Fixture& f = AdversarialFixture();
+  for (const uint32_t merge : {0u, 4u, 8u}) {
+    const Bvh8 bvh8 = BuildBvh8(f.bvh, {.merge_leaf_size = merge});
+    ASSERT_FALSE(bvh8.empty());
+    EXPECT_EQ(bvh8.source, &f.bvh);
+    EXPECT_EQ(bvh8.num_triangles, f.bvh.leaf_triangles.size());
+    EXPECT_LE(bvh8.depth, static_cast<uint32_t>(kBvhMaxDepth));
+    std::vector<int> covered(bvh8.num_triangles, 0);
+    for (const Bvh8Node& node : bvh8.nodes) {
+      EXPECT_GE(node.num_children, 1u);
+      EXPECT_LE(node.num_children, 8u);
+      for (uint32_t c = node.num_children; c < 8; ++c) {
+        EXPECT_EQ(node.lo_x[c], kInf);
+        EXPECT_EQ(node.hi_x[c], -kInf);
+      }
+      for (uint32_t c = 0; c < node.num_children; ++c) {
+        const Bvh8Ref ref = node.child[c];
+        if (!IsLeaf(ref)) {
+          EXPECT_LT(ref, bvh8.nodes.size());
+          continue;
+        }
+        const uint32_t first = LeafFirst(ref), count = LeafCount(ref);
+        EXPECT_LE(first + count, bvh8.num_triangles);
+        for (uint32_t j = 0; j < count && first + j < bvh8.num_triangles; ++j) {
+          ++covered[first + j];
+          // The packed copy holds the leaf's positions, column by column.
+          const float* base = bvh8.tris.data() + size_t{9} * first;
+          EXPECT_EQ(base[0 * count + j], f.bvh.leaf_triangles.v0_x[first + j]);
+          EXPECT_EQ(base[5 * count + j], f.bvh.leaf_triangles.v1_z[first + j]);
+          EXPECT_EQ(base[7 * count + j], f.bvh.leaf_triangles.v2_y[first + j]);
+          EXPECT_EQ(bvh8.prim[first + j], f.bvh.prim_id[first + j]);
+          const Vec3f v = f.bvh.leaf_triangles.V1(first + j);
+          EXPECT_TRUE(node.lo_x[c] <= v.x && v.x <= node.hi_x[c] && node.lo_y[c] <= v.y &&
+                      v.y <= node.hi_y[c] && node.lo_z[c] <= v.z && v.z <= node.hi_z[c]);
+        }
+      }
+    }
+    for (size_t i = 0; i < covered.size(); ++i) ASSERT_EQ(covered[i], 1) << "triangle " << i;
+  }
+}
+
+TEST(Traverse8, EmptyAndSingleTriangleScenes) {
+  const Bvh empty = BuildBvh(TriangleTable{});
+  const Bvh8 empty8 = BuildBvh8(empty);
+  EXPECT_TRUE(empty8.empty());
+  TriangleTable one;
+  one.Append({-1, -1, 1}, {1, -1, 1}, {0, 1, 1});
+  const Bvh bvh = BuildBvh(one);
+  const Bvh8 bvh8 = BuildBvh8(bvh);
+  ASSERT_EQ(bvh8.nodes.size(), 1u);
+  RayPacket8 p;
+  for (int j = 0; j < 8; ++j) {
+    p.org_x[j] = 0.1f * static_cast<float>(j) - 0.4f, p.org_y[j] = 0, p.org_z[j] = 0;
+    p.dir_x[j] = 0, p.dir_y[j] = 0, p.dir_z[j] = (j == 7) ? -1.0f : 1.0f;
+    p.t_min[j] = 0, p.t_max[j] = kInf;
+  }
+  ForEachTarget([&] {
+    HitPacket8 h{};
+    EXPECT_EQ(Intersect8(empty8, p, kAllLanes, &h), 0u);
+    EXPECT_EQ(Occluded8(empty8, p, kAllLanes), 0u);
+    EXPECT_EQ(Intersect8(bvh8, p, 0, &h), 0u);
+    EXPECT_EQ(Intersect8(bvh8, p, kAllLanes, &h), 0x7fu);  // lane 7 looks away
+    EXPECT_EQ(Occluded8(bvh8, p, 0xf0u), 0x70u);
+    for (int j = 0; j < 7; ++j) {
+      EXPECT_EQ(h.prim[j], 0u);
+      EXPECT_EQ(h.t[j], 1.0f);
+    }
+  });
+}
+
+// ---------------------------------------------------------------------------------------------
+// The packet render path (engine/render/packet_render.h on simd::Intersect8 / Occluded8)
+// against render.cpp's scalar tile loop: bit-identical film on the Nori scenes, for every
+// integrator.
+
+struct RenderRun {
+  Image image;
+  TileSampleStats stats;
+};
+
+// Renders the whole image tile by tile (odd tile sizes, so packets straddle tile edges and
+// partial packets occur) into one film block, with the scalar loop or the packet path.
+RenderRun RenderWith(const Scene& scene, const Bvh& bvh, const TraversalBackend8* backend,
+                     uint32_t spp) {
+  const Camera camera(scene.camera);
+  const PixelFilter filter(scene.filter);
+  const RenderContext ctx{scene, bvh};
+  const int w = camera.width(), h = camera.height();
+  FilmBlock block(0, 0, w, h);
+  RenderRun run;
+  constexpr int kTileW = 13, kTileH = 7;
+  for (int y = 0; y < h; y += kTileH) {
+    for (int x = 0; x < w; x += kTileW) {
+      const int x1 = std::min(w, x + kTileW), y1 = std::min(h, y + kTileH);
+      // Two passes of samples, as the driver does.
+      for (uint32_t s0 = 0; s0 < spp; s0 += 2) {
+        const uint32_t s1 = std::min(spp, s0 + 2);
+        if (backend == nullptr) {
+          RenderTileScalar(ctx, camera, filter, x, y, x1, y1, s0, s1, 7, &block, &run.stats);
+        } else {
+          RenderTilePacket8(ctx, *backend, camera, filter, x, y, x1, y1, s0, s1, 7, &block,
+                            &run.stats);
+        }
+      }
+    }
+  }
+  run.image = block.Resolve();
+  return run;
+}
+
+int CountDifferentPixels(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) return -1;
+  int diff = 0;
+  for (size_t i = 0; i < a.rgb.size(); i += 3) {
+    diff += std::memcmp(&a.rgb[i], &b.rgb[i], 3 * sizeof(float)) != 0;
+  }
+  return diff;
+}
+
+void ExpectPacketRenderEqualsScalar(const char* rel_path, int width) {
+  const std::string path = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/" + rel_path;
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  StatusOr<Scene> loaded = LoadScene(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  Scene& scene = *loaded;
+  const double aspect = double(scene.camera.width) / double(scene.camera.height);
+  scene.camera.width = width;
+  scene.camera.height = int(std::lround(width / aspect));
+  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh8 bvh8 = BuildBvh8(bvh);
+  const TraversalBackend8 packets = PacketTraversalBackend(bvh8);
+  const TraversalBackend8 oracle = ScalarTraversalBackend(bvh);
+  using Type = IntegratorDesc::Type;
+  const Type own = scene.integrator.type;
+  for (const Type type : {own, Type::kPathMats, Type::kPathEms, Type::kDirectMis, Type::kDirectEms,
+                          Type::kDirectMats, Type::kWhitted, Type::kNormals}) {
+    scene.integrator.type = type;
+    SCOPED_TRACE(std::string(rel_path) + " integrator " + std::to_string(int(type)));
+    const uint32_t spp = type == own ? 4 : 2;
+    const RenderRun scalar = RenderWith(scene, bvh, nullptr, spp);
+    const RenderRun simd = RenderWith(scene, bvh, &packets, spp);
+    EXPECT_EQ(CountDifferentPixels(scalar.image, simd.image), 0);
+    EXPECT_EQ(scalar.stats.rays, simd.stats.rays);
+    EXPECT_EQ(scalar.stats.nonfinite, simd.stats.nonfinite);
+    EXPECT_EQ(scalar.stats.first_x, simd.stats.first_x);
+    EXPECT_EQ(scalar.stats.first_y, simd.stats.first_y);
+    if (type == own) {
+      // The staging alone (packet path, oracle traversal) is exact as well.
+      const RenderRun staged = RenderWith(scene, bvh, &oracle, spp);
+      EXPECT_EQ(CountDifferentPixels(scalar.image, staged.image), 0);
+    }
+    // The image is not trivially black.
+    double sum = 0;
+    for (const float v : scalar.image.rgb) sum += v;
+    EXPECT_GT(sum, 0.0);
+  }
+}
+
+TEST(Traverse8Render, PacketPathEqualsScalarPathOnTable) {
+  ExpectPacketRenderEqualsScalar("nori/epfl/scenes/pa5/table/table_mis.xml", 96);
+}
+
+TEST(Traverse8Render, PacketPathEqualsScalarPathOnVeach) {
+  ExpectPacketRenderEqualsScalar("nori/epfl/scenes/pa5/veach_mi/veach_mis.xml", 96);
+}
+
+}  // namespace
+}  // namespace ptlab::simd
