@@ -89,6 +89,19 @@ inline Color3f Escaped(const Scene& scene, const Vec3f& w, bool mis, float bsdf_
 /// `shadow` is occluded; otherwise it adds nothing and no ray is traced. Draws exactly the
 /// random numbers the scalar SampleEmitterDirect draws (before its shadow test), so the
 /// stream stays in step whatever the visibility.
+/// f·Le·|cos θi| / pdf_light of one emitter sample (solid-angle pdf_light, emitter choice
+/// included), weighted with MIS against BSDF sampling of wi_local when mis is set.
+inline Color3f LightSampleContribution(const Scene& scene, MaterialRef material, const Vec3f& wo,
+                                       const Vec3f& wi_local, const Color3f& f,
+                                       const Color3f& radiance, float pdf_light, bool mis) {
+  float weight = 1.0f;
+  if (mis) {
+    const float pdf_bsdf = BsdfPdf(scene.materials, material, wo, wi_local);
+    weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
+  }
+  return f * radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
+}
+
 struct EmitterSampleRequest {
   bool traced = false;
   Ray shadow;
@@ -111,13 +124,8 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
     const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
     if (IsBlack(f)) return req;
     req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
-    const float pdf_light = es.pdf / float(n);
-    float weight = 1.0f;
-    if (mis) {
-      const float pdf_bsdf = BsdfPdf(scene.materials, its.material, wo, wi_local);
-      weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
-    }
-    req.contribution = f * es.radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
+    req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
+                                               es.radiance, es.pdf / float(n), mis);
     req.traced = true;
     return req;
   }
@@ -138,13 +146,9 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
   req.shadow.d = target - req.shadow.o;
   req.shadow.t_min = 0.0f;
   req.shadow.t_max = 1.0f;
-  const float pdf_light = ls.pdf_area * dist2 / (cos_l * float(n));
-  float weight = 1.0f;
-  if (mis) {
-    const float pdf_bsdf = BsdfPdf(scene.materials, its.material, wo, wi_local);
-    weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
-  }
-  req.contribution = f * ls.radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
+  req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
+                                             ls.radiance, ls.pdf_area * dist2 / (cos_l * float(n)),
+                                             mis);
   req.traced = true;
   return req;
 }

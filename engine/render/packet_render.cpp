@@ -374,15 +374,20 @@ void ShadePacket(const RenderContext& ctx, PacketTracer& tracer, const Ray* rays
   }
 }
 
+// Lane j of a packet as a single ray.
+Ray LaneRay(const RayPacket8& rays, int j) {
+  return Ray{{rays.org_x[j], rays.org_y[j], rays.org_z[j]},
+             {rays.dir_x[j], rays.dir_y[j], rays.dir_z[j]},
+             rays.t_min[j],
+             rays.t_max[j]};
+}
+
 Mask8 ScalarIntersect8(const void* accel, const RayPacket8& rays, Mask8 active, HitPacket8* hits) {
   const Bvh& bvh = *static_cast<const Bvh*>(accel);
   Mask8 got = 0;
   for (int j = 0; j < kLanes; ++j) {
     if (!Lane(active, j)) continue;
-    const Ray r{{rays.org_x[j], rays.org_y[j], rays.org_z[j]},
-                {rays.dir_x[j], rays.dir_y[j], rays.dir_z[j]},
-                rays.t_min[j],
-                rays.t_max[j]};
+    const Ray r = LaneRay(rays, j);
     Hit h;
     if (!Intersect1(bvh, r, &h)) continue;
     hits->t[j] = h.t, hits->b1[j] = h.b1, hits->b2[j] = h.b2, hits->prim[j] = h.prim;
@@ -396,10 +401,7 @@ Mask8 ScalarOccluded8(const void* accel, const RayPacket8& rays, Mask8 active) {
   Mask8 got = 0;
   for (int j = 0; j < kLanes; ++j) {
     if (!Lane(active, j)) continue;
-    const Ray r{{rays.org_x[j], rays.org_y[j], rays.org_z[j]},
-                {rays.dir_x[j], rays.dir_y[j], rays.dir_z[j]},
-                rays.t_min[j],
-                rays.t_max[j]};
+    const Ray r = LaneRay(rays, j);
     if (Occluded1(bvh, r)) got |= 1u << j;
   }
   return got;

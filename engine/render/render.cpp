@@ -9,7 +9,6 @@
 #include <thread>
 #include <vector>
 
-#include "engine/core/rng.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/integrator.h"

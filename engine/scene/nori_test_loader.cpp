@@ -9,42 +9,12 @@
 
 #include "engine/scene/text_parsing.h"
 #include "engine/scene/xml_loader_internal.h"
+#include "engine/scene/xml_locator.h"
 
 namespace ptlab {
 namespace {
 
-// "file:line:col" of pugixml nodes (1-based; col counts bytes), as the scene loader reports.
-class Locator {
- public:
-  Locator(const std::string& text, std::string file) : file_(std::move(file)) {
-    line_starts_.push_back(0);
-    for (size_t i = 0; i < text.size(); ++i)
-      if (text[i] == '\n') line_starts_.push_back(i + 1);
-  }
-  int Line(ptrdiff_t offset) const {
-    return int(std::upper_bound(line_starts_.begin(), line_starts_.end(), size_t(offset)) -
-               line_starts_.begin());
-  }
-  std::string AtOffset(ptrdiff_t offset) const {
-    if (offset < 0) return file_;
-    const int line = Line(offset);
-    const size_t col = size_t(offset) - line_starts_[size_t(line) - 1] + 1;
-    return file_ + ":" + std::to_string(line) + ":" + std::to_string(col);
-  }
-  // pugixml gives the offset of an element's name; point at its '<'.
-  static ptrdiff_t Offset(const pugi::xml_node& node) {
-    const ptrdiff_t offset = node.offset_debug();
-    return node.type() == pugi::node_element && offset > 0 ? offset - 1 : offset;
-  }
-  int Line(const pugi::xml_node& node) const { return Line(Offset(node)); }
-  Status Error(const pugi::xml_node& node, const std::string& message) const {
-    return Status::Error(AtOffset(Offset(node)) + ": " + message);
-  }
-
- private:
-  std::string file_;
-  std::vector<size_t> line_starts_;
-};
+using Locator = internal::XmlLocator;
 
 struct PropertySpec {
   const char* name;
@@ -80,16 +50,7 @@ class TestParser {
 
   Status Parse(const pugi::xml_document& doc, NoriTestFile* out) {
     pugi::xml_node root;
-    for (const pugi::xml_node node : doc.children()) {
-      if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata)
-        return at_.Error(node, "unexpected text outside the root element");
-      if (node.type() != pugi::node_element) continue;
-      if (root)
-        return at_.Error(node, "a second root element <" + std::string(node.name()) +
-                                   ">; expected exactly one <test>");
-      root = node;
-    }
-    if (!root) return Status::Error(at_.AtOffset(0) + ": no root element; expected <test>");
+    PTLAB_RETURN_IF_ERROR(at_.FindSingleRoot(doc, "test", &root));
     if (std::string_view(root.name()) != "test")
       return at_.Error(root, "root element <" + std::string(root.name()) +
                                  ">; expected <test type=\"ttest\"> or <test type=\"chi2test\"> "

@@ -1,5 +1,6 @@
 // Nori XML scene parser: strict property lists, transforms, and one builder per object type.
 #include "engine/scene/xml_loader.h"
+#include "engine/scene/xml_locator.h"
 
 #include "engine/bsdf/conductor_presets.h"
 
@@ -29,46 +30,7 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Locations
 
-// Maps pugixml byte offsets to "file:line:col" (1-based; col counts bytes), and carries the
-// load options to the parsing functions.
-class Locator {
- public:
-  Locator(const std::string& text, std::string file, const LoadOptions& options)
-      : file_(std::move(file)), options_(options) {
-    line_starts_.push_back(0);
-    for (size_t i = 0; i < text.size(); ++i)
-      if (text[i] == '\n') line_starts_.push_back(i + 1);
-  }
-
-  std::string AtOffset(ptrdiff_t offset) const {
-    if (offset < 0) return file_;
-    const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), size_t(offset));
-    const size_t line = size_t(it - line_starts_.begin());
-    const size_t col = size_t(offset) - line_starts_[line - 1] + 1;
-    return file_ + ":" + std::to_string(line) + ":" + std::to_string(col);
-  }
-  // pugixml gives the offset of an element's name; report its '<' instead.
-  std::string At(const pugi::xml_node& node) const {
-    const ptrdiff_t offset = node.offset_debug();
-    return AtOffset(node.type() == pugi::node_element && offset > 0 ? offset - 1 : offset);
-  }
-  size_t Line(const pugi::xml_node& node) const {
-    const ptrdiff_t offset = node.offset_debug();
-    if (offset < 0) return 0;
-    return size_t(std::upper_bound(line_starts_.begin(), line_starts_.end(), size_t(offset)) -
-                  line_starts_.begin());
-  }
-  Status Error(const pugi::xml_node& node, const std::string& message) const {
-    return Status::Error(At(node) + ": " + message);
-  }
-  const std::string& file() const { return file_; }
-  const LoadOptions& options() const { return options_; }
-
- private:
-  std::string file_;
-  LoadOptions options_;
-  std::vector<size_t> line_starts_;
-};
+using Locator = internal::XmlLocator;
 
 // "<mesh type="obj">" for messages.
 std::string Describe(const pugi::xml_node& node) {
@@ -464,17 +426,7 @@ class SceneParser {
 
   Status ParseRoot(const pugi::xml_document& doc) {
     pugi::xml_node root;
-    for (const pugi::xml_node node : doc.children()) {
-      if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata)
-        return at_.Error(node, "unexpected text outside the root element");
-      if (node.type() != pugi::node_element) continue;
-      if (root)
-        return at_.Error(node, "a second root element <" + std::string(node.name()) +
-                                   ">; expected exactly one <scene>");
-      root = node;
-    }
-    if (!root)
-      return Status::Error(at_.AtOffset(0) + ": no root element; expected a <scene> element");
+    PTLAB_RETURN_IF_ERROR(at_.FindSingleRoot(doc, "scene", &root));
     const std::string_view tag = root.name();
     if (tag == "test")
       return at_.Error(root,
