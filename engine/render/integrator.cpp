@@ -77,27 +77,35 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, Pcg32& rng
   return L + bs.weight * Le * weight;
 }
 
-// Whitted: emitter sampling on non-specular surfaces, recursion through delta lobes with
-// Russian roulette (continuation 0.95, Nori's definition).
-Color3f LiWhitted(const RenderContext& ctx, const Ray& ray, int depth, Pcg32& rng,
-                  RayCounters* c) {
+// Whitted: emitter sampling on non-specular surfaces, specular chains continued through delta
+// lobes with Russian roulette (continuation 0.95, Nori's definition). Iterative: the throughput
+// of the chain carries each delta weight divided by the continuation probability.
+Color3f LiWhitted(const RenderContext& ctx, Ray ray, Pcg32& rng, RayCounters* c) {
   const Scene& scene = ctx.scene;
-  Hit hit;
-  if (!Trace(ctx, ray, &hit, c)) return Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
-  const SurfaceInteraction its = MakeInteraction(scene, hit);
-  const Vec3f wo_world = -ray.d / Length(ray.d);
-  const Color3f Le = Emitted(scene, its, wo_world);
-  const Vec3f wo = its.frame.ToLocal(wo_world);
-  if (!IsDeltaMaterial(its.material.tag())) {
-    return Le + SampleEmitterDirect(ctx, its, wo, /*mis=*/false, rng, c);
+  Color3f L, throughput{1, 1, 1};
+  for (int depth = 0;; ++depth) {
+    Hit hit;
+    if (!Trace(ctx, ray, &hit, c)) {
+      L += throughput * Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
+      break;
+    }
+    const SurfaceInteraction its = MakeInteraction(scene, hit);
+    const Vec3f wo_world = -ray.d / Length(ray.d);
+    L += throughput * Emitted(scene, its, wo_world);
+    const Vec3f wo = its.frame.ToLocal(wo_world);
+    if (!IsDeltaMaterial(its.material.tag())) {
+      L += throughput * SampleEmitterDirect(ctx, its, wo, /*mis=*/false, rng, c);
+      break;
+    }
+    if (depth >= kWhittedMaxDepth || rng.NextFloat() >= kWhittedContinuation) break;
+    BsdfSample bs;
+    const float u1 = rng.NextFloat();
+    if (!BsdfSampleDirection(scene.materials, its.material, wo, u1, Next2D(rng), &bs)) break;
+    throughput *= bs.weight * (1.0f / kWhittedContinuation);
+    const Vec3f wi = its.frame.ToWorld(bs.wi);
+    ray = Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
   }
-  if (depth >= kWhittedMaxDepth || rng.NextFloat() >= kWhittedContinuation) return Le;
-  BsdfSample bs;
-  const float u1 = rng.NextFloat();
-  if (!BsdfSampleDirection(scene.materials, its.material, wo, u1, Next2D(rng), &bs)) return Le;
-  const Vec3f wi = its.frame.ToWorld(bs.wi);
-  const Ray next{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
-  return Le + bs.weight * LiWhitted(ctx, next, depth + 1, rng, c) * (1.0f / kWhittedContinuation);
+  return L;
 }
 
 // Path tracing with BSDF sampling only (mats), next-event estimation (ems), or both combined
@@ -172,7 +180,7 @@ Color3f Li(const RenderContext& ctx, const Ray& ray, Pcg32& rng, RayCounters* co
     case Type::kDirectEms:
     case Type::kDirectMats:
     case Type::kDirectMis: return LiDirect(ctx, ray, ctx.scene.integrator.type, rng, counters);
-    case Type::kWhitted: return LiWhitted(ctx, ray, 0, rng, counters);
+    case Type::kWhitted: return LiWhitted(ctx, ray, rng, counters);
     case Type::kPathMats:
     case Type::kPathEms:
     case Type::kPathMis: return LiPath(ctx, ray, ctx.scene.integrator.type, rng, counters);

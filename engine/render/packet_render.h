@@ -1,5 +1,5 @@
-// 8-wide render path: camera rays in 4x2-pixel packets and batched shadow rays, traced through a
-// registered packet backend, with scalar shading that reproduces the scalar integrators' bits.
+// 8-wide render path: a wavefront of camera, bounce and shadow rays in compacted packet queues,
+// traced through a registered packet backend; shading reproduces the scalar integrators' bits.
 #pragma once
 
 #include <cstdint>
@@ -35,21 +35,40 @@ inline uint64_t PixelSeed(uint64_t seed, uint64_t pixel) {
   return MixBits(seed * 0x9e3779b97f4a7c15ULL + pixel);
 }
 
-/// Rays traced and non-finite samples dropped while rendering one tile.
-struct TileSampleStats {
-  uint64_t rays = 0;
-  uint64_t nonfinite = 0;
-  int first_x = -1, first_y = -1;  // first dropped sample, in splat order
+/// Thread time spent in each stage of the packet path (seconds of one thread, summed).
+struct StageSeconds {
+  double traversal = 0;  // Intersect8 / Occluded8 calls of the backend
+  double shading = 0;    // hit points, emission, MIS weights, environment, accumulation
+  double sampling = 0;   // camera rays, emitter samples, Russian roulette, BSDF sampling
+  double film = 0;       // splatting into the film block
+
+  StageSeconds& operator+=(const StageSeconds& o) {
+    traversal += o.traversal, shading += o.shading, sampling += o.sampling, film += o.film;
+    return *this;
+  }
+  double total() const { return traversal + shading + sampling + film; }
 };
 
-/// Renders samples [s_begin, s_end) of pixels [x0, x1) x [y0, y1) into `block`, like the scalar
-/// tile loop of render.cpp, but eight samples at a time: the lanes are the 4x2 pixels of a
-/// tile block at the same sample index, so camera rays, bounce rays and shadow rays go to the
-/// backend as packets. Each lane draws from its own Pcg32(PixelSeed(seed, pixel), s) in the
-/// scalar integrator's order, shading is the scalar code, and samples are splatted in the
-/// scalar order (row, then pixel, then sample), so with a backend that returns the oracle's
-/// hits (simd::Intersect8 does, bit for bit) the block is bit-identical to the scalar one.
-/// Every integrator type is supported.
+/// Rays traced and non-finite samples dropped while rendering one tile; the packet path also
+/// counts packets (rays / (8 packets) is the lane occupancy) and times its stages.
+struct TileSampleStats {
+  uint64_t rays = 0;
+  uint64_t packets = 0;
+  uint64_t nonfinite = 0;
+  int first_x = -1, first_y = -1;  // first dropped sample, in splat order
+  StageSeconds seconds;
+};
+
+/// Renders samples [s_begin, s_end) of pixels [x0, x1) x [y0, y1) into `block` as a wavefront
+/// (wavefront.cpp): the paths of a few pixel rows and all the samples are generated as camera
+/// packets of 4x2 pixels at one sample index, then bounce by bounce go through
+///   traversal (Intersect8 per packet) -> shading (emission, environment) -> sampling (emitter
+///   samples, roulette, BSDF) -> shadow traversal (Occluded8 per packet) -> accumulation,
+/// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
+/// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
+/// and samples are splatted in the scalar order (row, pixel, sample), so with a backend that
+/// returns the oracle's hits (simd::Intersect8 does, bit for bit) the block is bit-identical to
+/// RenderTileScalar's. Every integrator type is supported.
 void RenderTilePacket8(const RenderContext& ctx, const TraversalBackend8& backend,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,

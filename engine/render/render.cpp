@@ -107,6 +107,8 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     for (size_t i = 0; i < tiles.size(); ++i) {
       film.Merge(blocks[i]);
       result.rays += stats[i].rays;
+      result.packets += stats[i].packets;
+      result.stage_seconds += stats[i].seconds;
       if (stats[i].nonfinite > 0 && result.nonfinite_samples == 0)
         result.first_nonfinite_x = stats[i].first_x, result.first_nonfinite_y = stats[i].first_y;
       result.nonfinite_samples += stats[i].nonfinite;

@@ -39,6 +39,9 @@ struct RenderResult {
   uint64_t rays = 0;
   uint64_t nonfinite_samples = 0;  // dropped, never splatted
   int first_nonfinite_x = -1, first_nonfinite_y = -1;
+  /// Packet path only: packets traced and the thread time of each stage (all threads summed).
+  uint64_t packets = 0;
+  StageSeconds stage_seconds;
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of

@@ -560,6 +560,57 @@ void ExpectPacketRenderEqualsScalar(const char* rel_path, int width) {
     for (const float v : scalar.image.rgb) sum += v;
     EXPECT_GT(sum, 0.0);
   }
+  // Path tracing with several emitter samples per vertex, a depth limit, the power heuristic:
+  // the wavefront's shadow queue holds several requests per path, summed in sample order.
+  struct PathConfig {
+    Type type;
+    int max_depth, light_samples;
+    bool power;
+  };
+  for (const PathConfig c : {PathConfig{Type::kPathMis, 3, 3, true},
+                             PathConfig{Type::kPathEms, 1, 2, false},
+                             PathConfig{Type::kPathMats, 0, 1, false}}) {
+    scene.integrator.type = c.type;
+    scene.integrator.max_depth = c.max_depth;
+    scene.integrator.light_samples = c.light_samples;
+    scene.integrator.power_heuristic = c.power;
+    SCOPED_TRACE(std::string(rel_path) + " path config " + std::to_string(int(c.type)) + " depth " +
+                 std::to_string(c.max_depth) + " light samples " +
+                 std::to_string(c.light_samples));
+    const RenderRun scalar = RenderWith(scene, bvh, nullptr, 2);
+    const RenderRun simd = RenderWith(scene, bvh, &packets, 2);
+    EXPECT_EQ(CountDifferentPixels(scalar.image, simd.image), 0);
+    EXPECT_EQ(scalar.stats.rays, simd.stats.rays);
+  }
+}
+
+// The wavefront compacts its queues between bounces: every packet but the last of each queue
+// is full, so on a path-traced tile (paths dying at different depths) the lanes stay occupied.
+// Lane by lane, without compaction, the packets of deep bounces would be mostly empty.
+TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
+  const std::string path =
+      std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/epfl/scenes/pa5/table/table_mis.xml";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  StatusOr<Scene> loaded = LoadScene(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  const Scene& scene = *loaded;
+  ASSERT_EQ(scene.integrator.type, IntegratorDesc::Type::kPathMis);
+  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh8 bvh8 = BuildBvh8(bvh);
+  const TraversalBackend8 packets = PacketTraversalBackend(bvh8);
+  const Camera camera(scene.camera);
+  const PixelFilter filter(scene.filter);
+  const RenderContext ctx{scene, bvh};
+  FilmBlock block(300, 300, 40, 40);
+  TileSampleStats stats;
+  RenderTilePacket8(ctx, packets, camera, filter, 304, 304, 336, 336, 0, 16, 1, &block, &stats);
+  ASSERT_GT(stats.packets, 0u);
+  const double occupancy = double(stats.rays) / double(stats.packets);
+  EXPECT_GT(occupancy, 7.8) << stats.rays << " rays in " << stats.packets << " packets";
+  EXPECT_LE(occupancy, 8.0);
+  EXPECT_GT(stats.seconds.traversal, 0.0);
+  EXPECT_GT(stats.seconds.shading, 0.0);
+  EXPECT_GT(stats.seconds.sampling, 0.0);
 }
 
 TEST(Traverse8Render, PacketPathEqualsScalarPathOnTable) {

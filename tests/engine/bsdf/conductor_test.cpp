@@ -41,7 +41,7 @@ TEST(Conductor, FresnelWithZeroKIsTheDielectricFresnel) {
 }
 
 TEST(Conductor, PresetsExistAndLookPlausible) {
-  for (const char* name : {"Au", "Ag", "Al", "Cu", "Fe", "Na", "Na_palik", "Si", "none"}) {
+  for (const char* name : {"Au", "Ag", "Al", "Cu", "Fe", "Na", "Na_palik", "Si", "Sn", "none"}) {
     Color3f eta, k;
     ASSERT_TRUE(LookupConductorPreset(name, &eta, &k)) << name;
     for (int c = 0; c < 3; ++c) {
@@ -67,6 +67,9 @@ TEST(Conductor, PresetsExistAndLookPlausible) {
   EXPECT_GT(r0("Ag").b, 0.85f);
   EXPECT_GT(r0("Al").g, 0.85f);
   EXPECT_NEAR(r0("Au").r, 0.92f, 0.03f);  // textbook normal-incidence reflectance of gold
+  // Tin: ((n-1)^2 + k^2) / ((n+1)^2 + k^2) at n = 2.384, k = 4.727, the same in every channel.
+  EXPECT_NEAR(r0("Sn").g, 0.718f, 0.002f);
+  EXPECT_EQ(r0("Sn").r, r0("Sn").b);
 }
 
 TEST(Conductor, SampleWeightIsEvalCosOverPdf) {

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -73,6 +74,46 @@ TEST(PtlabCli, RendersExrAndPngWithHeader) {
   EXPECT_EQ(files, 2);
 }
 
+
+// --stats: the stage fractions of the packet path add up to 100 %, the packets are counted.
+TEST(PtlabCli, StatsReportsStagesAndPackets) {
+  const fs::path dir = TempDir("cli_stats");
+  const std::string render = "render " + kScenes + "/cbox.xml -o " + (dir / "c.exr").string() +
+                             " --spp 4 --width 48 --height 36 -q --stats";
+  ASSERT_EQ(RunPtlab(render, dir / "log"), 0) << ReadFile(dir / "log");
+  const std::string log = ReadFile(dir / "log");
+  double total = 0, wall = 0, traversal = -1, shading = -1, sampling = -1, film = -1;
+  int threads = 0;
+  const size_t at = log.find("stats: ");
+  ASSERT_NE(at, std::string::npos) << log;
+  ASSERT_EQ(std::sscanf(log.c_str() + at,
+                        "stats: %lf s of thread time in stages (%lf s wall x %d threads): "
+                        "traversal %lf %%, shading %lf %%, sampling %lf %%, film %lf %%",
+                        &total, &wall, &threads, &traversal, &shading, &sampling, &film),
+            7)
+      << log;
+  EXPECT_GT(total, 0.0);
+  EXPECT_GT(traversal, 0.0);
+  EXPECT_GT(shading, 0.0);
+  EXPECT_GT(sampling, 0.0);
+  EXPECT_NEAR(traversal + shading + sampling + film, 100.0, 0.25);
+  unsigned long long rays = 0, packets = 0;
+  double lanes = 0;
+  const size_t at2 = log.find("stats: ", at + 1);
+  ASSERT_NE(at2, std::string::npos) << log;
+  ASSERT_EQ(std::sscanf(log.c_str() + at2, "stats: %llu rays in %llu packets (%lf of 8", &rays,
+                        &packets, &lanes),
+            3)
+      << log;
+  EXPECT_GT(rays, 0u);
+  EXPECT_GE(rays, packets);
+  EXPECT_LE(rays, 8 * packets);
+  EXPECT_NEAR(lanes, double(rays) / double(packets), 0.01);
+  EXPECT_LE(lanes, 8.0);
+  // The scalar oracle says what it can and cannot break down.
+  ASSERT_EQ(RunPtlab(render + " --scalar", dir / "log2"), 0) << ReadFile(dir / "log2");
+  EXPECT_NE(ReadFile(dir / "log2").find("measured on the packet path"), std::string::npos);
+}
 
 TEST(PtlabCli, BadInputIsAClearErrorAndWritesNothing) {
   struct Case {

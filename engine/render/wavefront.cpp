@@ -1,0 +1,402 @@
+// The packet render path as a wavefront: SoA ray queues of 8-wide packets, compacted between
+// bounces, through traversal, shading, sampling and shadow stages for all integrators.
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "engine/render/integrator_common.h"
+#include "engine/render/interaction.h"
+#include "engine/render/packet_render.h"
+
+namespace ptlab {
+namespace {
+
+using integrator::Emitted;
+using integrator::EmitterPdf;
+using integrator::EmitterSampleRequest;
+using integrator::EmitterSampleResult;
+using integrator::Escaped;
+using integrator::kInfinity;
+using integrator::kWhittedContinuation;
+using integrator::kWhittedMaxDepth;
+using integrator::MisWeight;
+using integrator::Next2D;
+using integrator::PrepareEmitterSample;
+using integrator::SpawnOrigin;
+using Type = IntegratorDesc::Type;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kLanes = static_cast<int>(kPacketWidth);
+/// Pixel rows of a tile traced together as one wave (even: camera packets are 4x2 pixels).
+/// With 16 samples per pass and 32-pixel tiles a wave holds 2048 paths.
+constexpr int kWaveRows = 4;
+
+/// What each integrator does at a path vertex. Every integrator of integrator.cpp is one set of
+/// rules over the same vertex stages; the rules reproduce its operations in its order.
+struct VertexRules {
+  enum class Roulette { kNone, kNori, kWhitted };
+  bool normals = false;        // first hit's |n|, nothing else
+  bool nee = false;            // emitter sampling (next-event estimation) at vertices
+  bool mis = false;            // MIS between emitter and BSDF sampling
+  bool nee_on_delta = false;   // direct_*: emitters are sampled even on delta materials
+  bool nee_ends_path = false;  // whitted: a non-delta vertex ends the path after its sample
+  bool bsdf_sampling = true;   // false (direct_ems): the path ends after the first vertex
+  bool cut_black = false;      // path_*: a path whose throughput turns black ends
+  int max_depth = -1;          // last vertex that is shaded (emission only); -1: unbounded
+  int light_samples = 1;
+  Roulette roulette = Roulette::kNone;
+};
+
+VertexRules RulesFor(const IntegratorDesc& desc) {
+  VertexRules r;
+  switch (desc.type) {
+    case Type::kNormals:
+      r.normals = true;
+      break;
+    case Type::kDirectEms:
+    case Type::kDirectMats:
+    case Type::kDirectMis:
+      r.nee = desc.type != Type::kDirectMats;
+      r.mis = desc.type == Type::kDirectMis;
+      r.nee_on_delta = true;
+      r.bsdf_sampling = desc.type != Type::kDirectEms;
+      r.max_depth = 1;
+      break;
+    case Type::kWhitted:
+      r.nee = true;
+      r.nee_ends_path = true;
+      r.roulette = VertexRules::Roulette::kWhitted;
+      break;
+    case Type::kPathMats:
+    case Type::kPathEms:
+    case Type::kPathMis:
+      r.nee = desc.type != Type::kPathMats;
+      r.mis = desc.type == Type::kPathMis;
+      r.cut_black = true;
+      r.max_depth = desc.max_depth;
+      r.light_samples = std::max(1, desc.light_samples);
+      r.roulette = VertexRules::Roulette::kNori;
+      break;
+  }
+  return r;
+}
+
+/// Rays in SoA packets of eight; entry q is lane q % 8 of packet q / 8 and belongs to owner[q]
+/// (a path, or an emitter-sample request for shadow rays). Pushing in order keeps it compact.
+struct RayQueue {
+  std::vector<RayPacket8> packets;
+  std::vector<uint32_t> owner;
+
+  size_t size() const { return owner.size(); }
+  void Clear() {
+    packets.clear();
+    owner.clear();
+  }
+  void Push(const Ray& r, uint32_t who) {
+    const size_t q = owner.size();
+    if (q % kLanes == 0) packets.emplace_back();
+    RayPacket8& p = packets.back();
+    const size_t j = q % kLanes;
+    p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
+    p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
+    p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
+    owner.push_back(who);
+  }
+  Vec3f Direction(size_t q) const {
+    const RayPacket8& p = packets[q / kLanes];
+    const size_t j = q % kLanes;
+    return {p.dir_x[j], p.dir_y[j], p.dir_z[j]};
+  }
+  /// Active lanes of packet k: all eight except in the last, partial packet.
+  Mask8 Active(size_t k) const {
+    const size_t n = std::min<size_t>(kLanes, size() - k * kLanes);
+    return n == kLanes ? kAllLanes : (1u << n) - 1u;
+  }
+};
+
+double Seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+/// One tile's paths, wave by wave. Path state is SoA, indexed by path id (generation order);
+/// the per-bounce scratch (hits, interactions) is indexed by queue entry.
+class Wavefront {
+ public:
+  Wavefront(const RenderContext& ctx, const TraversalBackend8& backend, TileSampleStats* stats)
+      : scene_(ctx.scene), backend_(backend), rules_(RulesFor(ctx.scene.integrator)),
+        stats_(stats) {}
+
+  void RenderTile(const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
+                  uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block) {
+    for (int y = y0; y < y1; y += kWaveRows) {
+      const int wy1 = std::min(y1, y + kWaveRows);
+      Generate(camera, x0, y, x1, wy1, s_begin, s_end, seed);
+      for (int depth = 0; rays_.size() > 0; ++depth) Bounce(depth);
+      Splat(filter, x0, y, x1, wy1, s_end - s_begin, block);
+    }
+  }
+
+ private:
+  // Camera rays of pixels [x0, x1) x [y0, y1), samples [s_begin, s_end), in 4x2-pixel packets
+  // at one sample index each; path id = generation order, result slot = scalar splat order.
+  void Generate(const Camera& camera, int x0, int y0, int x1, int y1, uint32_t s_begin,
+                uint32_t s_end, uint64_t seed) {
+    const auto t0 = Clock::now();
+    const uint64_t width = uint64_t(camera.width());
+    const size_t samples = s_end - s_begin, tile_w = size_t(x1 - x0);
+    const size_t n = size_t(y1 - y0) * tile_w * samples;
+    rng_.resize(n), slot_.resize(n);
+    L_.assign(n, Color3f{}), throughput_.assign(n, Color3f{1, 1, 1}), nee_throughput_.resize(n);
+    eta_.assign(n, 1.0f), prev_pdf_.assign(n, 0.0f), prev_p_.resize(n);
+    specular_.assign(n, 1);  // the camera ray counts as specular: emission is always seen
+    results_.resize(n);
+    rays_.Clear();
+    uint32_t id = 0;
+    for (int y = y0; y < y1; y += 2) {
+      for (int bx = x0; bx < x1; bx += 4) {
+        for (uint32_t s = s_begin; s < s_end; ++s) {
+          for (int j = 0; j < kLanes; ++j) {
+            const int px = bx + (j & 3), py = y + (j >> 2);
+            if (px >= x1 || py >= y1) continue;
+            const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
+            Pcg32& rng = rng_[id];
+            rng = Pcg32(PixelSeed(seed, pixel), s);
+            const float jx = rng.NextFloat(), jy = rng.NextFloat();
+            const float lx = rng.NextFloat(), ly = rng.NextFloat();
+            const float sx = float(px) + jx, sy = float(py) + jy;
+            slot_[id] = uint32_t((size_t(py - y0) * tile_w + size_t(px - x0)) * samples +
+                                 (s - s_begin));
+            results_[slot_[id]] = {sx, sy};
+            rays_.Push(camera.GenerateRay(sx, sy, {lx, ly}), id);
+            ++id;
+          }
+        }
+      }
+    }
+    stats_->seconds.sampling += Seconds(t0, Clock::now());
+  }
+
+  void Bounce(int depth) {
+    const auto t0 = Clock::now();
+    Traverse();
+    const auto t1 = Clock::now();
+    Shade(depth);
+    const auto t2 = Clock::now();
+    Sample(depth);
+    const auto t3 = Clock::now();
+    TraceShadows();
+    const auto t4 = Clock::now();
+    AddEmitterSamples();
+    std::swap(rays_, next_rays_);
+    const auto t5 = Clock::now();
+    stats_->seconds.traversal += Seconds(t0, t1) + Seconds(t3, t4);
+    stats_->seconds.shading += Seconds(t1, t2) + Seconds(t4, t5);
+    stats_->seconds.sampling += Seconds(t2, t3);
+  }
+
+  // Closest hits of every queued ray, one backend call per packet.
+  void Traverse() {
+    const size_t packets = rays_.packets.size();
+    hits_.resize(packets), hit_mask_.resize(packets);
+    for (size_t k = 0; k < packets; ++k) {
+      const Mask8 active = rays_.Active(k);
+      hit_mask_[k] = backend_.intersect8(backend_.accel, rays_.packets[k], active, &hits_[k]) &
+                     active;
+      stats_->rays += uint64_t(std::popcount(active));
+    }
+    stats_->packets += packets;
+  }
+
+  // Emission at hits, environment light for escaped rays; marks the entries that go on to the
+  // sampling stage (its_ / wo_ hold their shading points).
+  void Shade(int depth) {
+    const size_t n = rays_.size();
+    its_.resize(n), wo_.resize(n), goes_on_.assign(n, 0);
+    for (size_t q = 0; q < n; ++q) {
+      const uint32_t i = rays_.owner[q];
+      const size_t k = q / kLanes, j = q % kLanes;
+      const Vec3f d = rays_.Direction(q);
+      if (((hit_mask_[k] >> j) & 1u) == 0) {
+        // Escaped: environment light, counted unless emitter sampling already did (after a
+        // non-specular bounce), MIS-weighted when mis is on.
+        if (rules_.normals) continue;
+        const Vec3f w = d / Length(d);
+        if (!rules_.nee || specular_[i]) {
+          L_[i] += throughput_[i] * Escaped(scene_, w, false, 0.0f);
+        } else if (rules_.mis) {
+          L_[i] += throughput_[i] * Escaped(scene_, w, true, prev_pdf_[i]);
+        }
+        continue;
+      }
+      const Hit hit{hits_[k].t[j], hits_[k].b1[j], hits_[k].b2[j], hits_[k].prim[j]};
+      const SurfaceInteraction its = MakeInteraction(scene_, hit);
+      if (rules_.normals) {
+        const Vec3f a = Abs(its.frame.n);
+        L_[i] = {a.x, a.y, a.z};
+        continue;
+      }
+      const Vec3f wo_world = -d / Length(d);
+      const Color3f Le = Emitted(scene_, its, wo_world);
+      if (!IsBlack(Le)) {
+        float w = 1.0f;
+        if (rules_.nee && !specular_[i]) {
+          // Emitter sampling already counted this light from the previous vertex.
+          w = rules_.mis ? MisWeight(prev_pdf_[i], EmitterPdf(scene_, its, prev_p_[i]),
+                                     scene_.integrator.power_heuristic)
+                         : 0.0f;
+        }
+        L_[i] += throughput_[i] * Le * w;
+      }
+      if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
+      its_[q] = its;
+      wo_[q] = its.frame.ToLocal(wo_world);
+      goes_on_[q] = 1;
+    }
+  }
+
+  // Emitter samples (shadow rays queued), Russian roulette and BSDF sampling, in the scalar
+  // integrators' order of random numbers; continuing paths form the next, compact ray queue.
+  void Sample(int depth) {
+    const int n_light = rules_.light_samples;
+    next_rays_.Clear(), shadows_.Clear();
+    requests_.clear(), nee_paths_.clear();
+    for (size_t q = 0; q < rays_.size(); ++q) {
+      if (!goes_on_[q]) continue;
+      const uint32_t i = rays_.owner[q];
+      const SurfaceInteraction& its = its_[q];
+      const Vec3f& wo = wo_[q];
+      Pcg32& rng = rng_[i];
+      const bool delta = IsDeltaMaterial(its.material.tag());
+      if (rules_.nee && (!delta || rules_.nee_on_delta)) {
+        for (int s = 0; s < n_light; ++s) {
+          const uint32_t r = uint32_t(requests_.size());
+          requests_.push_back(PrepareEmitterSample(scene_, its, wo, rules_.mis, rng));
+          if (requests_.back().traced) shadows_.Push(requests_.back().shadow, r);
+        }
+        nee_paths_.push_back(i);
+        nee_throughput_[i] = throughput_[i];
+        if (rules_.nee_ends_path && !delta) continue;
+      }
+      if (!rules_.bsdf_sampling) continue;
+      float roulette_scale = 1.0f;
+      if (rules_.roulette == VertexRules::Roulette::kNori && depth >= 3) {
+        const float q_continue = std::min(MaxComponent(throughput_[i]) * eta_[i] * eta_[i], 0.99f);
+        if (!(rng.NextFloat() < q_continue)) continue;
+        throughput_[i] *= 1.0f / q_continue;
+      } else if (rules_.roulette == VertexRules::Roulette::kWhitted) {
+        if (depth >= kWhittedMaxDepth || rng.NextFloat() >= kWhittedContinuation) continue;
+        roulette_scale = 1.0f / kWhittedContinuation;
+      }
+      BsdfSample bs;
+      const float u1 = rng.NextFloat();
+      if (!BsdfSampleDirection(scene_.materials, its.material, wo, u1, Next2D(rng), &bs)) continue;
+      if (rules_.roulette == VertexRules::Roulette::kWhitted) {
+        throughput_[i] *= bs.weight * roulette_scale;
+      } else {
+        throughput_[i] *= bs.weight;
+      }
+      eta_[i] *= bs.eta;
+      if (rules_.cut_black && IsBlack(throughput_[i])) continue;
+      specular_[i] = bs.delta;
+      prev_pdf_[i] = bs.pdf;
+      prev_p_[i] = its.p;
+      const Vec3f wi = its.frame.ToWorld(bs.wi);
+      next_rays_.Push(Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity}, i);
+    }
+  }
+
+  void TraceShadows() {
+    occluded_.assign(requests_.size(), 0);
+    for (size_t k = 0; k < shadows_.packets.size(); ++k) {
+      const Mask8 active = shadows_.Active(k);
+      const Mask8 occ = backend_.occluded8(backend_.accel, shadows_.packets[k], active) & active;
+      for (Mask8 m = occ; m != 0; m &= m - 1) {
+        occluded_[shadows_.owner[k * kLanes + size_t(std::countr_zero(m))]] = 1;
+      }
+      stats_->rays += uint64_t(std::popcount(active));
+    }
+    stats_->packets += shadows_.packets.size();
+  }
+
+  // Each path's emitter samples, summed in sample order, weighted by its throughput at the
+  // vertex (the scalar integrators add them before shading the next vertex; so does this).
+  void AddEmitterSamples() {
+    const int n_light = rules_.light_samples;
+    const float inv_n = 1.0f / float(n_light);
+    for (size_t p = 0; p < nee_paths_.size(); ++p) {
+      const uint32_t i = nee_paths_[p];
+      Color3f direct;
+      for (int s = 0; s < n_light; ++s) {
+        const size_t r = p * size_t(n_light) + size_t(s);
+        direct += EmitterSampleResult(requests_[r], occluded_[r] != 0);
+      }
+      L_[i] += nee_throughput_[i] * direct * inv_n;
+    }
+  }
+
+  // Splats the wave's samples in the scalar loop's order (row, pixel, sample); non-finite
+  // samples are dropped and counted.
+  void Splat(const PixelFilter& filter, int x0, int y0, int x1, int y1, size_t samples,
+             FilmBlock* block) {
+    const auto t0 = Clock::now();
+    for (size_t i = 0; i < slot_.size(); ++i) results_[slot_[i]].L = L_[i];
+    const size_t tile_w = size_t(x1 - x0);
+    for (int y = y0; y < y1; ++y) {
+      for (size_t px = 0; px < tile_w; ++px) {
+        for (size_t s = 0; s < samples; ++s) {
+          const Result& r = results_[(size_t(y - y0) * tile_w + px) * samples + s];
+          if (!IsFinite(r.L)) {
+            if (stats_->nonfinite++ == 0) stats_->first_x = x0 + int(px), stats_->first_y = y;
+            continue;
+          }
+          block->Splat(filter, r.sx, r.sy, r.L);
+        }
+      }
+    }
+    stats_->seconds.film += Seconds(t0, Clock::now());
+  }
+
+  struct Result {
+    float sx = 0, sy = 0;
+    Color3f L;
+  };
+
+  const Scene& scene_;
+  const TraversalBackend8& backend_;
+  const VertexRules rules_;
+  TileSampleStats* stats_;
+
+  // Path state (SoA, by path id).
+  std::vector<Pcg32> rng_;
+  std::vector<Color3f> L_, throughput_, nee_throughput_;
+  std::vector<float> eta_, prev_pdf_;
+  std::vector<Vec3f> prev_p_;
+  std::vector<uint8_t> specular_;
+  std::vector<uint32_t> slot_;
+  std::vector<Result> results_;
+  // Queues and per-bounce scratch.
+  RayQueue rays_, next_rays_, shadows_;
+  std::vector<HitPacket8> hits_;
+  std::vector<Mask8> hit_mask_;
+  std::vector<SurfaceInteraction> its_;
+  std::vector<Vec3f> wo_;
+  std::vector<uint8_t> goes_on_;
+  std::vector<EmitterSampleRequest> requests_;
+  std::vector<uint8_t> occluded_;
+  std::vector<uint32_t> nee_paths_;
+};
+
+}  // namespace
+
+void RenderTilePacket8(const RenderContext& ctx, const TraversalBackend8& backend,
+                       const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
+                       int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
+                       TileSampleStats* stats) {
+  if (x1 <= x0 || y1 <= y0 || s_end <= s_begin) return;
+  Wavefront wave(ctx, backend, stats);
+  wave.RenderTile(camera, filter, x0, y0, x1, y1, s_begin, s_end, seed, block);
+}
+
+}  // namespace ptlab
