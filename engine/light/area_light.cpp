@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "engine/sampling/guide_table.h"
+
 namespace ptlab {
 
 Vec3f ShadingNormalAt(const Scene& scene, uint32_t tri, float b1, float b2) {
@@ -29,8 +31,8 @@ AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, float u_tri,
   const uint32_t mesh = lights.mesh[light];
   const uint32_t count = scene.meshes.triangle_count[mesh];
   const float* cdf = lights.triangle_cdf.data() + lights.cdf_offset[light];
-  const uint32_t k =
-      std::min<uint32_t>(uint32_t(std::upper_bound(cdf, cdf + count, u_tri) - cdf), count - 1);
+  const uint32_t* guide = lights.triangle_guide.data() + lights.guide_offset[light];
+  const uint32_t k = std::min<uint32_t>(GuidedUpperBound(cdf, count, guide, u_tri), count - 1);
   const uint32_t tri = scene.meshes.first_triangle[mesh] + k;
   const Vec2f b = SampleUniformTriangle(u);
   const TriangleTable& t = scene.triangles;

@@ -20,6 +20,10 @@ struct AreaLightTable {
   std::vector<float> area;               // total surface area (world units²)
   std::vector<uint32_t> cdf_offset;
   AlignedVector<float> triangle_cdf;     // normalised, last entry of each light = 1
+  /// Guide tables of the CDFs (engine/sampling/guide_table.h), triangle_count + 1 entries per
+  /// light from guide_offset[i]: O(1) expected triangle choice, same result as the full search.
+  std::vector<uint32_t> guide_offset;
+  AlignedVector<uint32_t> triangle_guide;
 
   size_t size() const { return radiance.size(); }
 };

@@ -1,6 +1,8 @@
 // Scene-wide systems that loaders run once all shapes are in.
 #include "engine/scene/scene.h"
 
+#include "engine/sampling/guide_table.h"
+
 namespace ptlab {
 
 void FinalizeAreaLights(Scene* scene) {
@@ -8,6 +10,8 @@ void FinalizeAreaLights(Scene* scene) {
   lights.area.assign(lights.size(), 0.0f);
   lights.cdf_offset.assign(lights.size(), 0);
   lights.triangle_cdf.clear();
+  lights.guide_offset.assign(lights.size(), 0);
+  lights.triangle_guide.clear();
   for (size_t i = 0; i < lights.size(); ++i) {
     const uint32_t mesh = lights.mesh[i];
     const uint32_t first = scene->meshes.first_triangle[mesh];
@@ -25,6 +29,10 @@ void FinalizeAreaLights(Scene* scene) {
     }
     if (count > 0) lights.triangle_cdf[lights.cdf_offset[i] + count - 1] = 1.0f;
     lights.area[i] = float(total);
+    lights.guide_offset[i] = uint32_t(lights.triangle_guide.size());
+    lights.triangle_guide.resize(lights.triangle_guide.size() + count + 1);
+    BuildGuideTable(&lights.triangle_cdf[lights.cdf_offset[i]], count,
+                    &lights.triangle_guide[lights.guide_offset[i]]);
   }
 }
 

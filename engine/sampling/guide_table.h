@@ -1,0 +1,33 @@
+// Guide tables (Chen & Asau's index tables) that turn CDF inversion into an O(1) expected
+// lookup with the same result as a binary search over the whole CDF.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+namespace ptlab {
+
+/// Fills guide[0..n] for the non-decreasing cdf[0..n): guide[b] = the first index whose cdf
+/// exceeds b / n (n when none does).
+inline void BuildGuideTable(const float* cdf, uint32_t n, uint32_t* guide) {
+  for (uint32_t b = 0; b <= n; ++b) {
+    const float edge = n > 0 ? float(b) / float(n) : 1.0f;
+    guide[b] = uint32_t(std::upper_bound(cdf, cdf + n, edge) - cdf);
+  }
+}
+
+/// std::upper_bound(cdf, cdf + n, u) - cdf for u in [0, 1), searching only the guide's bucket of
+/// u. The answer is verified against its neighbours and falls back to the full binary search
+/// when the guide does not bracket it (a guide built for other CDF values, or float rounding at
+/// a bucket edge), so the result never depends on the guide's contents.
+inline uint32_t GuidedUpperBound(const float* cdf, uint32_t n, const uint32_t* guide, float u) {
+  if (n == 0) return 0;
+  const uint32_t b = std::min(n - 1, uint32_t(std::max(0.0f, u) * float(n)));
+  const uint32_t lo = std::min(guide[b], n), hi = std::min(n, guide[b + 1] + 1);
+  uint32_t k = lo < hi ? uint32_t(std::upper_bound(cdf + lo, cdf + hi, u) - cdf) : lo;
+  const bool exact = (k == 0 || !(cdf[k - 1] > u)) && (k == n || cdf[k] > u);
+  if (!exact) k = uint32_t(std::upper_bound(cdf, cdf + n, u) - cdf);
+  return k;
+}
+
+}  // namespace ptlab
