@@ -731,52 +731,67 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
   Entry stack[kStackSize];
   int sp = 0;
   uint32_t done = 0;  // any hit: lanes already occluded
-  stack[sp].ref = 0;
-  stack[sp].mask = live;
-  for (int j = 0; j < 8; ++j) stack[sp].t_entry[j] = -kInf;
-  ++sp;
-  while (sp > 0) {
-    const Entry& e = stack[--sp];
-    const Bvh8Ref ref = e.ref;
-    uint32_t m = kAnyHit ? (e.mask & ~done) : LanesBeforeClosest(d, *s, e.t_entry, e.mask);
-    if (m == 0) continue;
+  // The subtree being visited and its lanes. The nearest child hit is visited next without a
+  // round trip through the stack: its lanes were just tested against their closest hits.
+  Bvh8Ref ref = 0;
+  uint32_t m = live;
+  for (;;) {
+    bool descend = false;
     if (static_cast<uint32_t>(std::popcount(m)) <= options.single_ray_lanes) {
       // Too few rays left to fill a vector: each finishes this subtree alone.
       done |= SingleRayLanes<kAnyHit>(bvh, ref, s, m);
       if (kAnyHit && done == live) return done;
-      continue;
-    }
-    if (IsLeaf(ref)) {
+    } else if (IsLeaf(ref)) {
       done |= LeafPacket<kAnyHit>(d, bvh, ref, s, m, options);
       if (kAnyHit && done == live) return done;
-      continue;
+    } else {
+      const Bvh8Node& node = bvh.nodes[ref];
+      uint32_t candidates = (1u << node.num_children) - 1;
+      if (s->frustum) {
+        candidates =
+            FrustumChildren(d, *s, node, kAnyHit ? MaxBestT(d, *s, live) : MaxBestT(d, *s, m));
+      }
+      if (candidates != 0) {
+        uint32_t cbits[8];
+        alignas(32) float t_near[8][8];
+        float key[8];
+        PacketChildren<kAnyHit>(d, *s, node, m, candidates, cbits, t_near, key);
+        // The children hit by any lane, farthest (by the key) first.
+        int order[8], n = 0;
+        for (uint32_t todo = candidates; todo != 0; todo &= todo - 1) {
+          const int c = std::countr_zero(todo);
+          if (cbits[c] == 0) continue;
+          int k = n++;
+          for (; k > 0 && key[order[k - 1]] < key[c]; --k) order[k] = order[k - 1];
+          order[k] = c;
+        }
+        if (n > 0) {
+          PTLAB_DCHECK(sp + n - 1 <= kStackSize);
+          for (int k = 0; k < n - 1; ++k) {
+            const int c = order[k];
+            Entry& out = stack[sp++];
+            out.ref = node.child[c];
+            out.mask = cbits[c];
+            // Large scenes wait on memory: start loading the subtrees visited later.
+            PrefetchChild(bvh, out.ref);
+            for (int j = 0; j < 8; ++j) out.t_entry[j] = t_near[c][j];
+          }
+          ref = node.child[order[n - 1]];
+          m = cbits[order[n - 1]];
+          descend = true;
+        }
+      }
     }
-    const Bvh8Node& node = bvh.nodes[ref];
-    uint32_t candidates = (1u << node.num_children) - 1;
-    if (s->frustum) {
-      candidates =
-          FrustumChildren(d, *s, node, kAnyHit ? MaxBestT(d, *s, live) : MaxBestT(d, *s, m));
-      if (candidates == 0) continue;
-    }
-    uint32_t cbits[8];
-    alignas(32) float t_near[8][8];
-    float key[8];
-    PacketChildren<kAnyHit>(d, *s, node, m, candidates, cbits, t_near, key);
-    // Push the children hit by any lane, farthest (by the key) first.
-    int order[8], n = 0;
-    for (uint32_t c = 0; c < node.num_children; ++c) {
-      if (cbits[c] == 0) continue;
-      int k = n++;
-      for (; k > 0 && key[order[k - 1]] < key[c]; --k) order[k] = order[k - 1];
-      order[k] = static_cast<int>(c);
-    }
-    PTLAB_DCHECK(sp + n <= kStackSize);
-    for (int k = 0; k < n; ++k) {
-      const int c = order[k];
-      Entry& out = stack[sp++];
-      out.ref = node.child[c];
-      out.mask = cbits[c];
-      for (int j = 0; j < 8; ++j) out.t_entry[j] = t_near[c][j];
+    if (descend) continue;
+    // Pop the next subtree that still has lanes whose closest hit may lie inside it.
+    for (;;) {
+      if (sp == 0) return done;
+      const Entry& e = stack[--sp];
+      m = kAnyHit ? (e.mask & ~done) : LanesBeforeClosest(d, *s, e.t_entry, e.mask);
+      if (m != 0) {
+        ref = e.ref;
+        break;
+      }
     }
   }
   return done;

@@ -49,6 +49,25 @@ int CheckStructure(const Bvh& bvh, const TriangleTable& table) {
     max_depth = std::max(max_depth, it.depth);
     const BvhNode& node = bvh.nodes[it.node];
     EXPECT_LE(node.bounds_min.x, node.bounds_max.x);
+    // Bounds are tight: exactly the union of the leaf's vertices or of the children's boxes
+    // (the build takes children's boxes from its bins, so this checks that bookkeeping).
+    Vec3f lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+    if (node.IsLeaf()) {
+      for (uint32_t i = node.offset; i < node.offset + node.count && i < n; ++i) {
+        for (const Vec3f& v :
+             {bvh.leaf_triangles.V0(i), bvh.leaf_triangles.V1(i), bvh.leaf_triangles.V2(i)}) {
+          lo = Min(lo, v);
+          hi = Max(hi, v);
+        }
+      }
+    } else if (node.offset > it.node + 1 && node.offset < bvh.nodes.size()) {
+      for (uint32_t c : {it.node + 1, node.offset}) {
+        lo = Min(lo, bvh.nodes[c].bounds_min);
+        hi = Max(hi, bvh.nodes[c].bounds_max);
+      }
+    }
+    EXPECT_EQ(node.bounds_min, lo) << "node " << it.node;
+    EXPECT_EQ(node.bounds_max, hi) << "node " << it.node;
     if (node.IsLeaf()) {
       EXPECT_LE(node.count, kBvhMaxLeafSize);
       EXPECT_LE(node.offset + node.count, n);
