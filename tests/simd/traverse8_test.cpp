@@ -606,7 +606,9 @@ TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
   RenderTilePacket8(ctx, packets, camera, filter, 304, 304, 336, 336, 0, 16, 1, &block, &stats);
   ASSERT_GT(stats.packets, 0u);
   const double occupancy = double(stats.rays) / double(stats.packets);
-  EXPECT_GT(occupancy, 7.8) << stats.rays << " rays in " << stats.packets << " packets";
+  // Deterministic (fixed seed, hits identical on every target): 7.84 measured on this tile.
+  EXPECT_GT(occupancy, 7.8) << "occupancy " << occupancy << ": " << stats.rays << " rays in "
+                            << stats.packets << " packets";
   EXPECT_LE(occupancy, 8.0);
   EXPECT_GT(stats.seconds.traversal, 0.0);
   EXPECT_GT(stats.seconds.shading, 0.0);
