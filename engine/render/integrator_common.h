@@ -129,6 +129,27 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
     req.traced = true;
     return req;
   }
+  if (emitter.tag() == EmitterTag::kPoint) {
+    // A delta light: chosen with probability 1/n, no MIS (BSDF sampling never reaches it).
+    const Vec3f p = scene.point_lights.position[emitter.index()];
+    const Vec3f d = p - its.p;
+    const float dist2 = Dot(d, d);
+    if (!(dist2 > 0)) return req;
+    const Vec3f wi = d / std::sqrt(dist2);
+    const Vec3f wi_local = its.frame.ToLocal(wi);
+    const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+    if (IsBlack(f)) return req;
+    req.shadow.o = SpawnOrigin(its, wi);
+    req.shadow.d = p - req.shadow.o;  // t over [0, 1): up to the light itself
+    req.shadow.t_min = 0.0f;
+    req.shadow.t_max = 1.0f;
+    const Color3f intensity = scene.point_lights.power[emitter.index()] * (0.25f * kInvPi);
+    req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
+                                               intensity * (1.0f / dist2), 1.0f / float(n),
+                                               /*mis=*/false);
+    req.traced = true;
+    return req;
+  }
   if (emitter.tag() != EmitterTag::kArea) return req;
   const AreaLightSample ls = SampleAreaLight(scene, emitter.index(), u_tri, u);
   const Vec3f d = ls.p - its.p;

@@ -168,7 +168,7 @@ class Wavefront {
             const float sx = float(px) + jx, sy = float(py) + jy;
             slot_[id] = uint32_t((size_t(py - y0) * tile_w + size_t(px - x0)) * samples +
                                  (s - s_begin));
-            results_[slot_[id]] = {sx, sy};
+            results_[slot_[id]] = {sx, sy, Color3f{}};
             rays_.Push(camera.GenerateRay(sx, sy, {lx, ly}), id);
             ++id;
           }

@@ -65,4 +65,14 @@ struct DistantDiskTable {
   size_t size() const { return radiance.size(); }
 };
 
+/// Point lights (Nori's `point`): a position and the power emitted in all directions (W per
+/// channel); radiant intensity power / 4π, so the irradiance at distance r is power / (4π r²).
+/// Delta lights: reached by emitter sampling only.
+struct PointLightTable {
+  std::vector<Vec3f> position;
+  std::vector<Color3f> power;
+
+  size_t size() const { return position.size(); }
+};
+
 }  // namespace ptlab

@@ -20,6 +20,7 @@ enum class EmitterTag : uint8_t {
   kArea = 0,
   kEnvironment = 1,
   kDistantDisk = 2,
+  kPoint = 3,
 };
 
 /// tag:4 | index:28, as in MaterialRef and EmitterRef.

@@ -61,6 +61,7 @@ struct Scene {
   AreaLightTable area_lights;
   EnvironmentMapTable environment_maps;
   DistantDiskTable distant_disks;
+  PointLightTable point_lights;
   std::vector<EmitterRef> emitters;  // all emitters, for uniform selection
 
   CameraDesc camera;

@@ -710,9 +710,13 @@ class SceneParser {
                                "roughconductor");
   }
 
-  static bool IsUnsupportedEmitter(const std::string& type) { return type == "point"; }
-  static bool IsInfiniteEmitter(const std::string& type) {
-    return type == "envmap" || type == "distantdisk";
+  // Mitsuba emitter types we recognise but do not render yet (a clear "not supported yet").
+  static bool IsUnsupportedEmitter(const std::string& type) {
+    return type == "spot" || type == "directional" || type == "constant";
+  }
+  // Emitters that stand on their own, directly inside <scene>.
+  static bool IsSceneEmitter(const std::string& type) {
+    return type == "envmap" || type == "distantdisk" || type == "point";
   }
 
   Status ParseAreaEmitter(const pugi::xml_node& node, Color3f* radiance) {
@@ -721,7 +725,7 @@ class SceneParser {
     const std::string type = node.attribute("type").value();
     if (IsUnsupportedEmitter(type))
       return at_.Error(node, "emitter type '" + type + "' is not supported yet");
-    if (IsInfiniteEmitter(type))
+    if (IsSceneEmitter(type))
       return at_.Error(node, "an emitter of type '" + type +
                                  "' cannot be attached to a shape; expected it directly inside "
                                  "<scene>");
@@ -742,9 +746,29 @@ class SceneParser {
       return at_.Error(node, "an area emitter must be inside a <mesh> or <shape>");
     if (type == "envmap") return ParseEnvironmentEmitter(node);
     if (type == "distantdisk") return ParseDistantDiskEmitter(node);
+    if (type == "point") return ParsePointEmitter(node);
     return at_.Error(node, "unknown emitter type '" + type +
-                               "'; expected envmap or distantdisk (area goes inside a shape; "
-                               "point is not supported yet)");
+                               "'; expected envmap, distantdisk or point (area goes inside a "
+                               "shape)");
+  }
+
+  // Nori's `point`: point position and color power (W), both required; power >= 0.
+  Status ParsePointEmitter(const pugi::xml_node& node) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    PTLAB_RETURN_IF_ERROR(props.Expect({"position", "power"}));
+    PTLAB_RETURN_IF_ERROR(props.Require("position", "point"));
+    PTLAB_RETURN_IF_ERROR(props.Require("power", "color"));
+    Vec3f position;
+    Color3f power;
+    PTLAB_RETURN_IF_ERROR(props.Point("position", &position));
+    PTLAB_RETURN_IF_ERROR(props.Color("power", &power));
+    PTLAB_RETURN_IF_ERROR(CheckColor(props, "power", power, Range::kNonNegative));
+    PointLightTable& lights = scene_.point_lights;
+    scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kPoint, uint32_t(lights.size())));
+    lights.position.push_back(position);
+    lights.power.push_back(power);
+    return Status::Ok();
   }
 
   // The rotation of an infinite emitter's toWorld: its upper 3x3 must be orthonormal

@@ -73,8 +73,9 @@ struct LoadOptions {
 /// a second camera/sampler/integrator/rfilter, a missing camera or integrator, unreadable or
 /// faceless OBJ files (the message then also carries the OBJ file:line), unreadable or invalid
 /// environment maps, a toWorld of an infinite emitter that is not a rotation, and the features
-/// not supported yet: `<test>` roots, `<bsdf>` outside a shape, point emitters. Area lights get
-/// their CDFs from FinalizeAreaLights before the scene is returned.
+/// not supported yet: `<test>` roots, `<bsdf>` outside a shape, Mitsuba's spot, directional and
+/// constant emitters. Area lights get their CDFs from FinalizeAreaLights before the scene is
+/// returned.
 StatusOr<Scene> LoadScene(const std::string& path, const LoadOptions& options = {});
 
 /// As LoadScene, from XML text in memory: relative file names resolve against `base_dir`

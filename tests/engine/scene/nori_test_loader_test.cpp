@@ -179,8 +179,8 @@ TEST(NoriTestLoader, ErrorsInsideScenesAndBsdfsNameTheirLine) {
   ExpectError(
       "<test type=\"ttest\"><string name=\"references\" value=\"1\"/>\n<scene>"
       "<integrator type=\"normals\"/><camera type=\"perspective\"/>\n"
-      "<emitter type=\"point\"/></scene></test>",
-      3, {"emitter type 'point' is not supported yet"});
+      "<emitter type=\"spot\"/></scene></test>",
+      3, {"emitter type 'spot' is not supported yet"});
 }
 
 }  // namespace

@@ -147,6 +147,20 @@ TEST(SceneLoaderInfiniteLights, DistantDiskWithoutToWorldPointsUp) {
   EXPECT_FLOAT_EQ(DistantDiskRadiance(scene->distant_disks, 0, {0, 0, -1}).b, 3.0f);
 }
 
+TEST(SceneLoaderInfiniteLights, PointLightsJoinTheEmitterList) {
+  const StatusOr<Scene> scene = Parse(
+      "<emitter type=\"point\"><point name=\"position\" value=\"-5,-5,5\"/>"
+      "<color name=\"power\" value=\"500,250,250\"/></emitter>\n"
+      "<emitter type=\"point\"><color name=\"power\" value=\"1,2,3\"/>"
+      "<point name=\"position\" value=\"0,1,0\"/></emitter>\n");
+  ASSERT_TRUE(scene.ok()) << scene.status().message();
+  ASSERT_EQ(scene->point_lights.size(), 2u);
+  ASSERT_EQ(scene->emitters.size(), 2u);
+  EXPECT_EQ(scene->emitters[1], EmitterRef::Make(EmitterTag::kPoint, 1));
+  EXPECT_EQ(scene->point_lights.position[0], (Vec3f{-5, -5, 5}));
+  EXPECT_EQ(scene->point_lights.power[1].b, 3.0f);
+}
+
 TEST(SceneLoaderInfiniteLights, EnvmapErrors) {
   ExpectParseError("\n<emitter type=\"envmap\"/>\n", 5,
                    {"missing the required property <string name=\"filename\">"});
@@ -216,10 +230,20 @@ TEST(SceneLoaderInfiniteLights, DistantDiskErrors) {
       5, {"not a rotation"});
   ExpectParseError("<shape type=\"cube\">\n<emitter type=\"distantdisk\"/></shape>\n", 5,
                    {"cannot be attached to a shape"});
-  ExpectParseError("\n<emitter type=\"point\"/>\n", 5,
-                   {"emitter type 'point' is not supported yet"});
   ExpectParseError("\n<emitter type=\"spot\"/>\n", 5,
-                   {"unknown emitter type 'spot'", "envmap or distantdisk"});
+                   {"emitter type 'spot' is not supported yet"});
+  ExpectParseError("\n<emitter type=\"laser\"/>\n", 5,
+                   {"unknown emitter type 'laser'", "envmap, distantdisk or point"});
+  // Point lights: position and power are required, power is non-negative.
+  ExpectParseError("\n<emitter type=\"point\"><color name=\"power\" value=\"1,1,1\"/></emitter>\n",
+                   5, {"position"});
+  ExpectParseError("<emitter type=\"point\"><point name=\"position\" value=\"0,0,0\"/>\n"
+                   "<color name=\"power\" value=\"1,-1,1\"/></emitter>\n",
+                   5, {"power"});
+  ExpectParseError("<emitter type=\"point\"><point name=\"position\" value=\"0,0,0\"/>\n"
+                   "<color name=\"power\" value=\"1,1,1\"/><float name=\"radius\" value=\"1\"/>"
+                   "</emitter>\n",
+                   5, {"radius"});
 }
 
 }  // namespace

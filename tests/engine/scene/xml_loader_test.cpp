@@ -579,18 +579,20 @@ TEST(SceneLoader, UnknownObjectType) {
   ExpectParseError("\n<sampler type=\"stratified\"/>\n", 5,
                    {"unknown sampler type", "independent"});
   ExpectParseError("\n<rfilter type=\"mitchell\"/>\n", 5, {"unknown rfilter type", "gaussian"});
-  ExpectParseError("\n<emitter type=\"spot\"/>\n", 5, {"unknown emitter type 'spot'"});
+  ExpectParseError("\n<emitter type=\"laser\"/>\n", 5, {"unknown emitter type 'laser'"});
   ExpectError(Parse("<camera type=\"perspective\"/>\n"), "bad.xml", 1, {"root element <camera>"});
 }
 
 TEST(SceneLoader, UnsupportedFeatures) {
-  for (const char* type : {"point"}) {
+  for (const char* type : {"spot", "directional", "constant"}) {
     SCOPED_TRACE(type);
     ExpectParseError("\n<emitter type=\"" + std::string(type) + "\"/>\n", 5,
                      {"emitter type '" + std::string(type) + "' is not supported yet"});
   }
+  ExpectParseError("<shape type=\"cube\">\n<emitter type=\"spot\"/></shape>\n", 5,
+                   {"emitter type 'spot' is not supported yet"});
   ExpectParseError("<shape type=\"cube\">\n<emitter type=\"point\"/></shape>\n", 5,
-                   {"emitter type 'point' is not supported yet"});
+                   {"cannot be attached to a shape"});
   ExpectError(Parse("<test type=\"ttest\">\n<scene/></test>\n"), "bad.xml", 1,
               {"<test>", "not supported yet"});
   ExpectParseError(

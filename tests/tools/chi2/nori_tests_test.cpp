@@ -294,7 +294,7 @@ TEST(NoriTestRunner, CommandExitStatus) {
       WriteTemp("skip.xml",
                 "<test type=\"ttest\"><string name=\"references\" value=\"1\"/><scene>"
                 "<integrator type=\"direct_ems\"/><camera type=\"perspective\"/>"
-                "<emitter type=\"point\"/></scene></test>");
+                "<emitter type=\"spot\"/></scene></test>");
   const std::string bad = WriteTemp(
       "bad.xml", "<test type=\"ttest\"><string name=\"reference\" value=\"0.5\"/></test>");
   EXPECT_EQ(RunNoriTestCommand(pass, false), 0);
