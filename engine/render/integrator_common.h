@@ -15,10 +15,8 @@
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 
-// These mirror the helpers of engine/render/integrator.cpp operation for operation (the packet
-// path must produce the scalar path's bits); integrator.cpp can include this header and drop
-// its private copies. tests/simd/traverse8_test.cpp (Traverse8Render*) checks the two paths
-// bit for bit.
+// Both callers run these same functions, so the wavefront produces the scalar path's bits;
+// tests/simd/traverse8_test.cpp (Traverse8Render*) checks the two paths bit for bit.
 namespace ptlab::integrator {
 
 /// Nori's Whitted integrator continues specular chains with probability 0.95.
@@ -84,13 +82,9 @@ inline Color3f Escaped(const Scene& scene, const Vec3f& w, bool mis, float bsdf_
   return L;
 }
 
-/// One emitter sample for the direct light at its (wo: local direction to the viewer), with
-/// the shadow test left to the caller: when `traced`, the sample adds `contribution` unless
-/// `shadow` is occluded; otherwise it adds nothing and no ray is traced. Draws exactly the
-/// random numbers the scalar SampleEmitterDirect draws (before its shadow test), so the
-/// stream stays in step whatever the visibility.
 /// f·Le·|cos θi| / pdf_light of one emitter sample (solid-angle pdf_light, emitter choice
-/// included), weighted with MIS against BSDF sampling of wi_local when mis is set.
+/// included; for a delta light, the probability of choosing it), weighted with MIS against
+/// BSDF sampling of wi_local when mis is set.
 inline Color3f LightSampleContribution(const Scene& scene, MaterialRef material, const Vec3f& wo,
                                        const Vec3f& wi_local, const Color3f& f,
                                        const Color3f& radiance, float pdf_light, bool mis) {
@@ -102,6 +96,10 @@ inline Color3f LightSampleContribution(const Scene& scene, MaterialRef material,
   return f * radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
 }
 
+/// One emitter sample for the direct light at its (wo: local direction to the viewer), with
+/// the shadow test left to the caller: when `traced`, the sample adds `contribution` unless
+/// `shadow` is occluded; otherwise it adds nothing and no ray is traced. Always draws four
+/// random numbers first, so the stream stays in step whatever the visibility.
 struct EmitterSampleRequest {
   bool traced = false;
   Ray shadow;

@@ -74,8 +74,8 @@ void RenderTilePacket8(const RenderContext& ctx, const TraversalBackend8& backen
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
                        TileSampleStats* stats);
 
-/// The scalar reference of RenderTilePacket8: render.cpp's tile loop (Li per sample). Kept
-/// here so that tests and benchmarks can compare the two paths before and after wiring.
+/// The scalar reference of RenderTilePacket8: one Li per sample, in the same splat order.
+/// render.cpp uses it when no packet backend is given; tests and benchmarks compare the two.
 void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const PixelFilter& filter,
                       int x0, int y0, int x1, int y1, uint32_t s_begin, uint32_t s_end,
                       uint64_t seed, FilmBlock* block, TileSampleStats* stats);

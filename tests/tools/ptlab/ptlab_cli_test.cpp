@@ -79,7 +79,7 @@ TEST(PtlabCli, RendersExrAndPngWithHeader) {
 TEST(PtlabCli, StatsReportsStagesAndPackets) {
   const fs::path dir = TempDir("cli_stats");
   const std::string render = "render " + kScenes + "/cbox.xml -o " + (dir / "c.exr").string() +
-                             " --spp 4 --width 48 --height 36 -q --stats";
+                             " --spp 8 --width 96 --height 72 -q --stats";
   ASSERT_EQ(RunPtlab(render, dir / "log"), 0) << ReadFile(dir / "log");
   const std::string log = ReadFile(dir / "log");
   double total = 0, wall = 0, traversal = -1, shading = -1, sampling = -1, film = -1;
