@@ -81,6 +81,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         const size_t i = take_tile();
         if (i >= tiles.size()) break;
         const Tile& t = tiles[i];
+        const auto tile_start = Clock::now();
         reset_block(i);
         if (options.packets != nullptr) {
           RenderTilePacket8(ctx, *options.packets, camera, filter, t.x0, t.y0, t.x1, t.y1, s0,
@@ -89,6 +90,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
           RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,
                            &blocks[i], &stats[i]);
         }
+        stats[i].wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
         std::lock_guard<std::mutex> lock(mutex);
         rendered[i] = 1;
         ++tiles_done;
@@ -136,6 +138,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       result.rays += stats[i].rays;
       result.packets += stats[i].packets;
       result.stage_seconds += stats[i].seconds;
+      result.tile_seconds.push_back(float(stats[i].wall_seconds));
       if (stats[i].nonfinite > 0 && result.nonfinite_samples == 0)
         result.first_nonfinite_x = stats[i].first_x, result.first_nonfinite_y = stats[i].first_y;
       result.nonfinite_samples += stats[i].nonfinite;
@@ -146,6 +149,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       options.on_progress(progress);
     }
   }
+  result.tile_count = int(tiles.size());
   result.interrupted = result.spp_done < options.spp;
   result.image = film.Resolve();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

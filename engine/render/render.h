@@ -65,6 +65,10 @@ struct RenderResult {
   /// Packet path only: packets traced and the thread time of each stage (all threads summed).
   uint64_t packets = 0;
   StageSeconds stage_seconds;
+  /// Wall time of every tile of every completed pass on the thread that rendered it (pass-major,
+  /// tiles in row order): the unit costs that load balancing has to even out.
+  std::vector<float> tile_seconds;
+  int tile_count = 0;
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of

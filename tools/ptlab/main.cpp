@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <thread>
@@ -92,7 +93,25 @@ struct RenderArgs {
   std::string lookat = "nori";
   bool scalar = false;
   bool stats = false;
+  std::string tile_times;
 };
+
+// --tile-times: pass, tile and wall seconds of every tile (input of benchmarks/mpi_model).
+Status WriteTileTimes(const std::string& path, const RenderResult& r) {
+  const std::string tmp = path + ".tmp-" + std::to_string(getpid());
+  {
+    std::ofstream out(tmp);
+    out << "pass,tile,seconds\n";
+    for (size_t k = 0; k < r.tile_seconds.size(); ++k)
+      out << k / size_t(r.tile_count) << "," << k % size_t(r.tile_count) << ","
+          << r.tile_seconds[k] << "\n";
+    if (!out) return Status::Error(path + ": cannot write the tile times");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) return Status::Error(path + ": cannot write the tile times: " + ec.message());
+  return Status::Ok();
+}
 
 // --stats: where the thread time of the packet path went, and how full its packets were.
 void PrintStats(const RenderResult& r, int threads, bool packets) {
@@ -224,6 +243,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   Status st = WriteExr(out, result.image, header);
   if (st.ok()) st = WritePng(std::filesystem::path(out).replace_extension(".png").string(),
                              result.image);
+  if (st.ok() && !args.tile_times.empty()) st = WriteTileTimes(args.tile_times, result);
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
     return 1;
@@ -267,6 +287,9 @@ int main(int argc, char** argv) {
   cmd->add_flag("--stats", render.stats,
                 "Print the fraction of time in traversal, shading and sampling, and packet "
                 "occupancy");
+  cmd->add_option("--tile-times", render.tile_times,
+                  "Write the wall time of every tile of every pass to this CSV "
+                  "(pass,tile,seconds)");
 
   std::string test_file;
   bool test_verbose = false;
