@@ -25,6 +25,7 @@
 #include "tools/chi2/nori_tests.h"
 #include "tools/mpi/mpi_render.h"
 #include "tools/mpi/mpi_session.h"
+#include "tools/ptlab/test_over_ranks.h"
 
 namespace ptlab {
 namespace {
@@ -318,7 +319,9 @@ int main(int argc, char** argv) {
   }
   CLI11_PARSE(app, argc, argv);
   if (cmd->parsed()) return ptlab::RunRender(render, mpi);
-  if (test_cmd->parsed()) return ptlab::RunNoriTestCommand(test_file, test_verbose);
+  if (test_cmd->parsed())
+    return mpi.active() ? ptlab::RunNoriTestOverRanks(test_file, test_verbose, mpi)
+                        : ptlab::RunNoriTestCommand(test_file, test_verbose);
   if (envmap_cmd->parsed()) {
     const ptlab::Status st = ptlab::WriteEnvironmentPdfImage(envmap_in, envmap_out);
     if (!st.ok()) {

@@ -193,6 +193,26 @@ TEST(MpiChi2, SameVerdictsAndPValuesAsOneProcess) {
   EXPECT_EQ(one.substr(one.find('\n')), two.substr(two.find('\n')));
 }
 
+TEST(MpiNoriTest, SameLinesAsOneProcess) {
+  // Scene t-tests, BSDF t-tests and BSDF chi2 tests, their cases shared among 2 ranks.
+  const fs::path dir = TempDir("nori_test");
+  const std::string tests = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/epfl/scenes/pa5/tests/";
+  for (const std::string name : {"test-direct", "ttest-microfacet", "chi2test-microfacet"}) {
+    const std::string file = tests + name + ".xml";
+    ASSERT_EQ(RunShell(kBin + "ptlab test " + file, dir / (name + ".one")), 0)
+        << ReadFile(dir / (name + ".one"));
+    ASSERT_EQ(RunShell(kMpirun + " -np 2 " + kBin + "ptlab test " + file, dir / (name + ".two")), 0)
+        << ReadFile(dir / (name + ".two"));
+    // Equal but for the run time in the summary line.
+    auto without_time = [](std::string s) {
+      const size_t at = s.rfind(" (");
+      return at == std::string::npos ? s : s.substr(0, at);
+    };
+    EXPECT_EQ(without_time(ReadFile(dir / (name + ".one"))),
+              without_time(ReadFile(dir / (name + ".two"))));
+  }
+}
+
 #else
 
 TEST(MpiRender, NeedsMpi) {
