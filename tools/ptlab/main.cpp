@@ -1,4 +1,5 @@
 // ptlab command line: `ptlab render scene.xml` (and, later, test and envmap tools).
+#include <sched.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -41,6 +42,14 @@ void OnSigint(int) {
 void OnSigterm(int) {
   g_interrupted.store(true);
   std::signal(SIGTERM, SIG_DFL);
+}
+
+// Cores this process may run on (its affinity mask: mpirun binds each rank to its cores).
+int UsableCores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1, int(std::thread::hardware_concurrency()));
 }
 
 std::string FormatDuration(double s) {
@@ -178,8 +187,12 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
 
   RenderOptions options;
   options.spp = args.spp > 0 ? uint32_t(args.spp) : scene.sampler.sample_count;
-  options.threads = args.threads > 0 ? args.threads
-                                     : std::max(1, int(std::thread::hardware_concurrency()));
+  options.threads = args.threads > 0 ? args.threads : UsableCores();
+  if (mpi.root() && mpi.active() && options.threads > UsableCores())
+    std::fprintf(stderr,
+                 "warning: %d threads per rank, but mpirun bound rank 0 to %d core(s); start it "
+                 "with --bind-to none or --map-by slot:PE=%d\n",
+                 options.threads, UsableCores(), options.threads);
   options.seed = args.seed;
   options.cancel = &g_interrupted;
   ProgressReporter reporter;
