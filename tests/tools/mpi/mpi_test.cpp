@@ -1,18 +1,14 @@
 // ptlab and chi2 under mpirun (Open MPI): bit-identical images for any ranks x threads, the same
 // chi² verdicts, and clear ends for bad input, a dead rank and an interrupt.
-#include <sys/wait.h>
-
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "engine/image/image_io.h"
+#include "tests/tools/command_test_util.h"
 
 namespace ptlab {
 namespace {
@@ -27,26 +23,10 @@ const std::string kCbox = std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml";
 const std::string kTable =
     std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/epfl/scenes/pa5/table/table_mis.xml";
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::path(PTLAB_BINARY_DIR) / "test-output" / "mpi" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test_util::ReadFile;
+using test_util::RunShell;
 
-std::string ReadFile(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Exit status of a bash command line (stdout and stderr to `log`).
-int RunShell(const std::string& command, const fs::path& log) {
-  const std::string line = "bash -c '" + command + "' > " + log.string() + " 2>&1";
-  const int rc = std::system(line.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
+fs::path TempDir(const std::string& name) { return test_util::TempDir("mpi/" + name); }
 
 // Pixel data equal bit for bit (headers differ: seconds, ranks, threads).
 void ExpectSameBits(const fs::path& a, const fs::path& b) {
@@ -108,6 +88,12 @@ void WriteSceneIn(const fs::path& dir, const std::string& sample_count) {
   std::ofstream(dir / "scene.xml") << xml;
 }
 
+// mpirun starting `command` once in dir/a (rank 0) and once in dir/b (rank 1).
+std::string TwoFolders(const fs::path& dir, const std::string& command) {
+  return kMpirun + " -np 1 -wdir " + (dir / "a").string() + " " + command + " : -np 1 -wdir " +
+         (dir / "b").string() + " " + command;
+}
+
 TEST(MpiRender, RankReadingOtherBytesStopsTheJobNamingTheFile) {
   const fs::path dir = TempDir("other_bytes");
   WriteSceneIn(dir / "a", "64");
@@ -115,9 +101,7 @@ TEST(MpiRender, RankReadingOtherBytesStopsTheJobNamingTheFile) {
   const fs::path out = dir / "out.exr";
   const std::string render = kBin + "ptlab render scene.xml --spp 4 --width 32 --height 32 -q -o " +
                              out.string();
-  const int rc = RunShell(kMpirun + " -np 1 -wdir " + (dir / "a").string() + " " + render + " : -np 1 -wdir " +
-                         (dir / "b").string() + " " + render,
-                     dir / "log");
+  const int rc = RunShell(TwoFolders(dir, render), dir / "log");
   const std::string log = ReadFile(dir / "log");
   EXPECT_NE(rc, 0) << log;
   EXPECT_NE(log.find("rank 1: scene.xml: its bytes differ from rank 0"), std::string::npos) << log;
@@ -131,9 +115,7 @@ TEST(MpiRender, RankThatCannotLoadStopsTheJobNamingRankAndReason) {
   std::ofstream(dir / "b" / "scene.xml") << "<scene><integrator type=\"nope\"/></scene>\n";
   const fs::path out = dir / "out.exr";
   const std::string render = kBin + "ptlab render scene.xml --spp 4 -q -o " + out.string();
-  const int rc = RunShell(kMpirun + " -np 1 -wdir " + (dir / "a").string() + " " + render + " : -np 1 -wdir " +
-                         (dir / "b").string() + " " + render,
-                     dir / "log");
+  const int rc = RunShell(TwoFolders(dir, render), dir / "log");
   const std::string log = ReadFile(dir / "log");
   EXPECT_NE(rc, 0) << log;
   EXPECT_NE(log.find("rank 1: scene.xml:1:"), std::string::npos) << log;
