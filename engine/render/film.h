@@ -35,6 +35,9 @@ class FilmBlock {
   int y0() const { return y0_; }
   int width() const { return width_; }
   int height() const { return height_; }
+  /// The accumulators, r, g, b, w per pixel in rows: what a block sends to another process.
+  const std::vector<float>& sums() const { return sum_; }
+  std::vector<float>& sums() { return sum_; }
 
  private:
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;

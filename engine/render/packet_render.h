@@ -57,6 +57,7 @@ struct TileSampleStats {
   uint64_t nonfinite = 0;
   int first_x = -1, first_y = -1;  // first dropped sample, in splat order
   StageSeconds seconds;
+  double wall_seconds = 0;  // the tile's wall time on its thread, set by the render driver
 };
 
 /// Renders samples [s_begin, s_end) of pixels [x0, x1) x [y0, y1) into `block` as a wavefront

@@ -54,21 +54,35 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   const uint32_t per_pass = std::max<uint32_t>(1, SamplesPerPass(options.spp));
   auto cancelled = [&] { return options.cancel && options.cancel->load(); };
 
-  for (uint32_t s0 = 0; s0 < options.spp && !cancelled(); s0 += per_pass) {
+  const RenderDistribution* dist = options.distribution;
+  auto reset_block = [&](size_t i) {
+    const Tile& t = tiles[i];
+    blocks[i].Reset(t.x0 - border, t.y0 - border, t.x1 - t.x0 + 2 * border,
+                    t.y1 - t.y0 + 2 * border);
+    stats[i] = TileStats{};
+  };
+  // With a distribution every process enters every pass, so that all agree in finish_pass
+  // whether it completed; a cancelled process takes no tiles.
+  for (uint32_t s0 = 0; s0 < options.spp && (dist != nullptr || !cancelled()); s0 += per_pass) {
     const uint32_t s1 = std::min(options.spp, s0 + per_pass);
+    const uint32_t pass = s0 / per_pass;
     std::atomic<size_t> next_tile{0};
+    std::atomic<int> workers_running{threads};
+    std::vector<uint8_t> rendered(tiles.size(), 0);
     std::mutex mutex;
     std::condition_variable tile_done;
     size_t tiles_done = 0;
+    auto take_tile = [&] {
+      return dist != nullptr ? dist->next_tile(pass, tiles.size()) : next_tile.fetch_add(1);
+    };
     auto worker = [&] {
       for (;;) {
-        if (cancelled()) return;
-        const size_t i = next_tile.fetch_add(1);
-        if (i >= tiles.size()) return;
+        if (cancelled()) break;
+        const size_t i = take_tile();
+        if (i >= tiles.size()) break;
         const Tile& t = tiles[i];
-        blocks[i].Reset(t.x0 - border, t.y0 - border, t.x1 - t.x0 + 2 * border,
-                        t.y1 - t.y0 + 2 * border);
-        stats[i] = TileStats{};
+        const auto tile_start = Clock::now();
+        reset_block(i);
         if (options.packets != nullptr) {
           RenderTilePacket8(ctx, *options.packets, camera, filter, t.x0, t.y0, t.x1, t.y1, s0,
                             s1, options.seed, &blocks[i], &stats[i]);
@@ -76,12 +90,17 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
           RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,
                            &blocks[i], &stats[i]);
         }
+        stats[i].wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
         std::lock_guard<std::mutex> lock(mutex);
+        rendered[i] = 1;
         ++tiles_done;
         progress.samples_done += uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0) * (s1 - s0);
         progress.rays += stats[i].rays;
         tile_done.notify_one();
       }
+      std::lock_guard<std::mutex> lock(mutex);
+      --workers_running;
+      tile_done.notify_one();
     };
     std::vector<std::thread> pool;
     for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
@@ -89,7 +108,8 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       // The coordinating thread reports progress while the workers run.
       std::unique_lock<std::mutex> lock(mutex);
       size_t reported = 0;
-      while (tiles_done < tiles.size()) {
+      // With a distribution this process renders only some tiles: wait for its workers.
+      while (dist != nullptr ? workers_running > 0 : tiles_done < tiles.size()) {
         tile_done.wait_for(lock, std::chrono::milliseconds(200));
         if (cancelled()) break;
         if (tiles_done != reported && options.on_progress) {
@@ -103,12 +123,22 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       }
     }
     for (auto& t : pool) t.join();
+    if (dist != nullptr) {
+      // Interrupted anywhere: the pass is incomplete everywhere, drop it.
+      if (dist->keeps_film)
+        for (size_t i = 0; i < tiles.size(); ++i)
+          if (!rendered[i]) reset_block(i);  // filled by finish_pass from another process
+      if (!dist->finish_pass(pass, !cancelled(), rendered, &blocks, &stats)) break;
+      tiles_done = tiles.size();
+      progress.samples_done = uint64_t(width) * uint64_t(height) * s1;
+    }
     if (tiles_done < tiles.size()) break;  // interrupted: this pass is incomplete, drop it
-    for (size_t i = 0; i < tiles.size(); ++i) {
+    for (size_t i = 0; i < tiles.size() && (dist == nullptr || dist->keeps_film); ++i) {
       film.Merge(blocks[i]);
       result.rays += stats[i].rays;
       result.packets += stats[i].packets;
       result.stage_seconds += stats[i].seconds;
+      result.tile_seconds.push_back(float(stats[i].wall_seconds));
       if (stats[i].nonfinite > 0 && result.nonfinite_samples == 0)
         result.first_nonfinite_x = stats[i].first_x, result.first_nonfinite_y = stats[i].first_y;
       result.nonfinite_samples += stats[i].nonfinite;
@@ -119,6 +149,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       options.on_progress(progress);
     }
   }
+  result.tile_count = int(tiles.size());
   result.interrupted = result.spp_done < options.spp;
   result.image = film.Resolve();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

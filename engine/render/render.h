@@ -4,9 +4,11 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image.h"
+#include "engine/render/film.h"
 #include "engine/render/packet_render.h"
 #include "engine/scene/scene.h"
 
@@ -18,6 +20,25 @@ struct RenderProgress {
   double seconds = 0;
 };
 
+/// Shares the tiles of every pass among several processes (MPI ranks, tools/mpi/). The driver
+/// stays the same: each process renders the tiles this hands it, and after the pass the blocks of
+/// all tiles are brought to the process that keeps the film, which merges them in tile order as
+/// one process would, so the image does not depend on how the work was shared.
+struct RenderDistribution {
+  /// The next tile of pass `pass` this process renders (called by worker threads); a value
+  /// >= tile_count means the pass has no tiles left.
+  std::function<size_t(uint32_t pass, size_t tile_count)> next_tile;
+  /// Called by the coordinating thread after this process's workers stopped. `complete` says
+  /// whether every tile this process took was rendered (false when cancelled); `rendered[i]` is
+  /// set for the tiles it rendered into blocks[i] / stats[i]. Returns whether the pass completed
+  /// in every process; when it did, blocks and stats hold every tile on the film's process.
+  std::function<bool(uint32_t pass, bool complete, const std::vector<uint8_t>& rendered,
+                     std::vector<FilmBlock>* blocks, std::vector<TileSampleStats>* stats)>
+      finish_pass;
+  /// Whether this process merges and keeps the film (one process does).
+  bool keeps_film = true;
+};
+
 struct RenderOptions {
   uint32_t spp = 1;
   int threads = 1;
@@ -27,6 +48,8 @@ struct RenderOptions {
   /// When set, tiles run through the 8-wide packet path on this traversal backend (bit-identical
   /// to the scalar path); it must outlive the render. Null: one ray at a time, the oracle.
   const TraversalBackend8* packets = nullptr;
+  /// When set, the tiles of each pass are shared with other processes through it.
+  const RenderDistribution* distribution = nullptr;
   /// Called from the coordinating thread after each tile completes.
   std::function<void(const RenderProgress&)> on_progress;
 };
@@ -42,6 +65,10 @@ struct RenderResult {
   /// Packet path only: packets traced and the thread time of each stage (all threads summed).
   uint64_t packets = 0;
   StageSeconds stage_seconds;
+  /// Wall time of every tile of every completed pass on the thread that rendered it (pass-major,
+  /// tiles in row order): the unit costs that load balancing has to even out.
+  std::vector<float> tile_seconds;
+  int tile_count = 0;
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of

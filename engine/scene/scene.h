@@ -69,6 +69,9 @@ struct Scene {
   SamplerDesc sampler;
   IntegratorDesc integrator;
   std::string source_path;  // the scene file, for headers and messages
+  /// Every file the loader read (scene, meshes, images), so that processes rendering one scene
+  /// can check they all read the same bytes.
+  std::vector<std::string> input_files;
 };
 
 /// Fills area_lights' areas and triangle CDFs from the meshes that carry an area emitter.

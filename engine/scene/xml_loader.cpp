@@ -592,6 +592,7 @@ class SceneParser {
           return at_.Error(node, "cannot load the OBJ file of " + Describe(node) + ": " +
                                      loaded.status().message());
         it = obj_cache_.emplace(path, std::move(*loaded)).first;
+        scene_.input_files.push_back(path);
       }
       mesh = &it->second;
       name = filename;
@@ -817,6 +818,7 @@ class SceneParser {
     if (!image.ok())
       return at_.Error(
           node, "cannot load the image of " + Describe(node) + ": " + image.status().message());
+    scene_.input_files.push_back(path);
     StatusOr<uint32_t> row = AddEnvironmentMap(*image, desc, path, &scene_.environment_maps);
     if (!row.ok()) return at_.Error(node, row.status().message());
     scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kEnvironment, *row));
@@ -1019,8 +1021,10 @@ StatusOr<Scene> LoadSceneFromString(const std::string& xml, const std::string& b
 StatusOr<Scene> LoadScene(const std::string& path, const LoadOptions& options) {
   std::string xml;
   PTLAB_RETURN_IF_ERROR(ReadTextFile(path, "scene file", &xml));
-  return LoadSceneFromString(xml, std::filesystem::path(path).parent_path().string(), path,
-                             options);
+  StatusOr<Scene> scene = LoadSceneFromString(
+      xml, std::filesystem::path(path).parent_path().string(), path, options);
+  if (scene.ok()) scene->input_files.insert(scene->input_files.begin(), path);
+  return scene;
 }
 
 namespace internal {

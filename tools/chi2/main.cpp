@@ -10,6 +10,7 @@
 #include "tools/chi2/chi2.h"
 #include "tools/chi2/report.h"
 #include "tools/chi2/subjects.h"
+#include "tools/mpi/mpi_session.h"
 
 namespace {
 
@@ -29,9 +30,59 @@ subjects, which exist to prove the test can fail.
 Exit codes: 0 every subject as expected (real ones pass, broken ones fail), 1 otherwise,
   3 bad usage, unknown subject or unwritable image directory.)";
 
+// One subject's verdict line (and notes): what a rank sends to rank 0.
+std::string RunOne(const ptlab::Chi2Subject& s, const ptlab::Chi2Options& options,
+                   const std::string& images_dir, bool verbose, bool* as_expected) {
+  const ptlab::Chi2Result result = ptlab::RunChi2Test(s, options);
+  std::string text = ptlab::FormatChi2Result(s, result) + "\n";
+  if (verbose) {
+    for (const std::string& note : result.notes) text += "       . " + note + "\n";
+    text += "       . " + std::to_string(result.pdf_evals) + " pdf evaluations\n";
+  }
+  *as_expected = ptlab::Chi2AsExpected(s, result);
+  if (!images_dir.empty()) {
+    const ptlab::Status status = ptlab::WriteChi2Report(images_dir, result);
+    if (!status.ok()) text += "error: " + status.message() + "\n";
+  }
+  return text;
+}
+
+// The subjects of the run shared among MPI ranks (i % ranks == rank); rank 0 prints every line
+// in subject order, so the output equals a one-process run's.
+int RunOverRanks(const ptlab::mpi::Session& mpi,
+                 const std::vector<const ptlab::Chi2Subject*>& selected,
+                 const ptlab::Chi2Options& options, const std::string& images_dir, bool verbose) {
+  if (mpi.root())
+    std::printf(
+        "chi2: %d tests, %lld samples, res %d, seed %llu, alpha %g (alpha' = %.3g per test), "
+        "%d ranks\n",
+        options.test_count, static_cast<long long>(options.samples), options.res,
+        static_cast<unsigned long long>(options.seed), options.alpha,
+        ptlab::SidakAlpha(options.alpha, options.test_count), mpi.size());
+  // The verdict travels as the text's first character.
+  const std::vector<std::string> texts = mpi.MapInOrder(selected.size(), [&](size_t i) {
+    bool ok = false;
+    const std::string text = RunOne(*selected[i], options, images_dir, verbose, &ok);
+    return (ok ? "+" : "-") + text;
+  });
+  if (!mpi.root()) return kExitPass;  // rank 0 gives the run's exit status
+  int as_expected = 0, unexpected = 0, image_errors = 0;
+  for (const std::string& t : texts) {
+    std::fputs(t.c_str() + 1, stdout);
+    (t[0] == '+' ? as_expected : unexpected)++;
+    image_errors += t.find("\nerror: ") != std::string::npos;
+  }
+  std::printf("chi2: %d as expected, %d not: %s\n", as_expected, unexpected,
+              unexpected == 0 ? "PASS" : "FAIL");
+  if (image_errors > 0) return kExitUsage;
+  return unexpected == 0 ? kExitPass : kExitFail;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Under mpirun the subjects are shared among the ranks; rank 0 prints them in order.
+  const ptlab::mpi::Session mpi(&argc, &argv);
   CLI::App app{"chi2: chi-square goodness-of-fit tests of sampling routines against their pdfs"};
   app.footer(kFooter);
   std::vector<std::string> names;
@@ -99,6 +150,7 @@ int main(int argc, char** argv) {
     }
   }
   options.test_count = int(selected.size());
+  if (mpi.active()) return RunOverRanks(mpi, selected, options, images_dir, verbose);
   std::printf(
       "chi2: %d tests, %lld samples, res %d, seed %llu, alpha %g (alpha' = %.3g per test)\n",
       options.test_count, static_cast<long long>(options.samples), options.res,

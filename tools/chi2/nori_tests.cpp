@@ -77,10 +77,6 @@ std::string Printf(const char* fmt, double a, double b = 0, double c = 0) {
   return buf;
 }
 
-bool IsUnsupportedFeatureMessage(const std::string& message) {
-  return message.find("not supported yet") != std::string::npos;
-}
-
 std::string BsdfName(const NoriTestFile& file, size_t b) {
   const size_t line_index = file.scenes.size() + b;
   const int line = line_index < file.child_lines.size() ? file.child_lines[line_index] : 0;
@@ -106,9 +102,15 @@ void FinishTTest(const RunningMoments& m, double reference, double alpha, int te
   c->verdict = t.pass && c->details.empty() ? NoriVerdict::kPass : NoriVerdict::kFail;
 }
 
+// Whether the next case of the file (*case_index, then advanced) is run (NoriTestOptions::runs_case).
+bool RunsNextCase(const NoriTestOptions& options, size_t* case_index) {
+  const size_t i = (*case_index)++;
+  return !options.runs_case || options.runs_case(i);
+}
+
 // Nori's BSDF t-test: the mean luminance of sample weights is the directional albedo.
 void RunBsdfTTests(const NoriTestFile& file, const NoriTestOptions& options, int64_t samples,
-                   NoriTestReport* report) {
+                   size_t* case_index, NoriTestReport* report) {
   MaterialTables materials = file.materials;
   if (options.dielectric_scale_radiance) {
     DielectricTable& d = materials.dielectric;
@@ -120,6 +122,7 @@ void RunBsdfTTests(const NoriTestFile& file, const NoriTestOptions& options, int
   for (size_t b = 0; b < file.bsdfs.size(); ++b) {
     const MaterialRef ref = file.bsdfs[b];
     for (size_t i = 0; i < p.angles.size(); ++i, ++index) {
+      if (!RunsNextCase(options, case_index)) continue;
       NoriTestCase c;
       c.name = BsdfName(file, b) + " at " + Printf("%g", p.angles[i]) + " deg";
       if (!IsSupportedMaterial(ref.tag())) {
@@ -149,8 +152,9 @@ void RunBsdfTTests(const NoriTestFile& file, const NoriTestOptions& options, int
 
 // Nori's scene t-test: the mean luminance of Li over uniformly jittered camera rays.
 void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, int64_t samples,
-                    NoriTestReport* report) {
+                    size_t* case_index, NoriTestReport* report) {
   for (size_t s = 0; s < file.scenes.size(); ++s) {
+    if (!RunsNextCase(options, case_index)) continue;
     const Scene& scene = file.scenes[s];
     NoriTestCase c;
     c.name = "scene " + std::to_string(s + 1) + " " + IntegratorName(scene.integrator.type) +
@@ -217,7 +221,7 @@ void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, in
 
 // Nori's chi2test, run through our χ² library (RunChi2Test) with Nori's parameters.
 void RunChi2Tests(const NoriTestFile& file, const NoriTestOptions& options, int64_t samples,
-                  NoriTestReport* report) {
+                  size_t* case_index, NoriTestReport* report) {
   const NoriTestProperties& p = file.properties;
   Pcg32 directions(MixBits(options.seed ^ kChi2DirectionSalt), 0);
   const std::string stem = std::filesystem::path(file.path).filename().string();
@@ -229,6 +233,7 @@ void RunChi2Tests(const NoriTestFile& file, const NoriTestOptions& options, int6
       const float phi = 2.0f * kPi * directions.NextFloat();
       const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
       const Vec3f wo{sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+      if (!RunsNextCase(options, case_index)) continue;  // after the draws: wo stays the same
       NoriTestCase c;
       c.name = BsdfName(file, b) + " test " + std::to_string(l + 1) +
                Printf(" wo=(%.3f, %.3f, %.3f)", wo.x, wo.y, wo.z);
@@ -328,13 +333,14 @@ NoriTestReport RunNoriTestFile(const NoriTestFile& file, const NoriTestOptions& 
   const int64_t samples = options.sample_count_override > 0 ? options.sample_count_override
                                                             : file.properties.sample_count;
   report.properties.sample_count = int(samples);
+  size_t case_index = 0;
   if (file.type == NoriTestType::kChi2Test) {
     report.test_count = file.properties.test_count * int(file.bsdfs.size());
-    RunChi2Tests(file, options, samples, &report);
+    RunChi2Tests(file, options, samples, &case_index, &report);
   } else {
     report.test_count = int(file.properties.references.size());
-    if (!file.bsdfs.empty()) RunBsdfTTests(file, options, samples, &report);
-    RunSceneTTests(file, options, samples, &report);
+    if (!file.bsdfs.empty()) RunBsdfTTests(file, options, samples, &case_index, &report);
+    RunSceneTTests(file, options, samples, &case_index, &report);
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
@@ -372,6 +378,45 @@ std::string FormatNoriTestCase(const NoriTestCase& c, bool details) {
   return s;
 }
 
+bool IsUnsupportedFeatureMessage(const std::string& message) {
+  return message.find("not supported yet") != std::string::npos;
+}
+
+std::string FormatNoriTestHeader(const NoriTestFile& file) {
+  const NoriTestProperties& p = file.properties;
+  const bool ttest = file.type == NoriTestType::kTTest;
+  const int tests = ttest ? int(p.references.size()) : p.test_count * int(file.bsdfs.size());
+  char buf[1024];
+  std::snprintf(buf, sizeof buf,
+                "%s: %s, %d tests, %d samples each, significance %g (Sidak: alpha' = %.4g per "
+                "test)",
+                file.path.c_str(), ttest ? "ttest" : "chi2test", tests, p.sample_count,
+                double(p.significance_level), SidakAlpha(p.significance_level, tests));
+  return buf;
+}
+
+std::string FormatNoriTestSummary(const NoriTestReport& report) {
+  const int passed = report.Count(NoriVerdict::kPass), failed = report.Count(NoriVerdict::kFail),
+            skipped = report.Count(NoriVerdict::kSkip);
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, "%s: %s: passed %d/%d, failed %d, skipped %d (%.1f s)",
+                report.path.c_str(), NoriVerdictName(report.Verdict()), passed,
+                int(report.cases.size()), failed, skipped, report.seconds);
+  return buf;
+}
+
+int NoriTestExitCode(const NoriTestReport& report) {
+  switch (report.Verdict()) {
+    case NoriVerdict::kPass:
+      return 0;
+    case NoriVerdict::kFail:
+      return 1;
+    case NoriVerdict::kSkip:
+      return 2;
+  }
+  return 1;
+}
+
 int RunNoriTestCommand(const std::string& path, bool verbose) {
   StatusOr<NoriTestFile> file = LoadNoriTestFile(path);
   if (!file.ok()) {
@@ -383,14 +428,7 @@ int RunNoriTestCommand(const std::string& path, bool verbose) {
     std::fprintf(stderr, "error: %s\n", file.status().message().c_str());
     return 3;
   }
-  const NoriTestProperties& p = file->properties;
-  const bool ttest = file->type == NoriTestType::kTTest;
-  const int tests = ttest ? int(p.references.size()) : p.test_count * int(file->bsdfs.size());
-  std::printf(
-      "%s: %s, %d tests, %d samples each, significance %g (Sidak: alpha' = %.4g per "
-      "test)\n",
-      path.c_str(), ttest ? "ttest" : "chi2test", tests, p.sample_count,
-      double(p.significance_level), SidakAlpha(p.significance_level, tests));
+  std::printf("%s\n", FormatNoriTestHeader(*file).c_str());
   std::fflush(stdout);
   NoriTestOptions options;
   options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -399,20 +437,8 @@ int RunNoriTestCommand(const std::string& path, bool verbose) {
     std::fflush(stdout);
   };
   const NoriTestReport report = RunNoriTestFile(*file, options);
-  const int passed = report.Count(NoriVerdict::kPass), failed = report.Count(NoriVerdict::kFail),
-            skipped = report.Count(NoriVerdict::kSkip);
-  std::printf("%s: %s: passed %d/%d, failed %d, skipped %d (%.1f s)\n", path.c_str(),
-              NoriVerdictName(report.Verdict()), passed, int(report.cases.size()), failed, skipped,
-              report.seconds);
-  switch (report.Verdict()) {
-    case NoriVerdict::kPass:
-      return 0;
-    case NoriVerdict::kFail:
-      return 1;
-    case NoriVerdict::kSkip:
-      return 2;
-  }
-  return 1;
+  std::printf("%s\n", FormatNoriTestSummary(report).c_str());
+  return NoriTestExitCode(report);
 }
 
 }  // namespace ptlab

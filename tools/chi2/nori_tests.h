@@ -66,6 +66,10 @@ struct NoriTestOptions {
   bool dielectric_scale_radiance = true;
   /// Non-empty: a failing χ² test writes its heat maps and table here (WriteChi2Report).
   std::string chi2_report_dir;
+  /// When set, only the cases (counted in file order from 0) for which it returns true are run
+  /// and reported, e.g. one MPI rank's share; every case keeps its own random streams, so a
+  /// case's result does not depend on which others run.
+  std::function<bool(size_t case_index)> runs_case;
   /// Called after each case completes (e.g. to print it at once).
   std::function<void(const NoriTestCase&)> on_case;
 };
@@ -96,6 +100,15 @@ StatusOr<NoriTestReport> RunNoriTest(const std::string& path, const NoriTestOpti
 /// One line: verdict, name, estimate vs reference (t-tests), statistic, dof, p, α'; then one
 /// indented line per detail when `details` is set or the case did not pass.
 std::string FormatNoriTestCase(const NoriTestCase& c, bool details = false);
+
+/// Whether a load error says the file needs a feature that is "not supported yet" (a skip).
+bool IsUnsupportedFeatureMessage(const std::string& message);
+/// The first line `ptlab test` prints for a loaded file: type, tests, samples, significance.
+std::string FormatNoriTestHeader(const NoriTestFile& file);
+/// The last line `ptlab test` prints: the file's verdict and counts.
+std::string FormatNoriTestSummary(const NoriTestReport& report);
+/// Exit status of `ptlab test` for a report: 0 pass, 1 fail, 2 skipped.
+int NoriTestExitCode(const NoriTestReport& report);
 
 /// `ptlab test FILE.xml`: runs the file on all cores, prints one verdict line per test as it
 /// completes and a summary. Returns the exit status: 0 every test passed, 1 a test failed,

@@ -1,10 +1,13 @@
 // ptlab command line: `ptlab render scene.xml` (and, later, test and envmap tools).
+#include <sched.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -21,6 +24,9 @@
 #include "simd/traverse8.h"
 #include "simd/traverse8_backend.h"
 #include "tools/chi2/nori_tests.h"
+#include "tools/mpi/mpi_render.h"
+#include "tools/mpi/mpi_session.h"
+#include "tools/ptlab/test_over_ranks.h"
 
 namespace ptlab {
 namespace {
@@ -30,6 +36,20 @@ std::atomic<bool> g_interrupted{false};
 void OnSigint(int) {
   g_interrupted.store(true);
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+// mpirun passes Ctrl-C on to the ranks as SIGTERM.
+void OnSigterm(int) {
+  g_interrupted.store(true);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+// Cores this process may run on (its affinity mask: mpirun binds each rank to its cores).
+int UsableCores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1, int(std::thread::hardware_concurrency()));
 }
 
 std::string FormatDuration(double s) {
@@ -83,7 +103,25 @@ struct RenderArgs {
   std::string lookat = "nori";
   bool scalar = false;
   bool stats = false;
+  std::string tile_times;
 };
+
+// --tile-times: pass, tile and wall seconds of every tile (input of benchmarks/mpi_model).
+Status WriteTileTimes(const std::string& path, const RenderResult& r) {
+  const std::string tmp = path + ".tmp-" + std::to_string(getpid());
+  {
+    std::ofstream out(tmp);
+    out << "pass,tile,seconds\n";
+    for (size_t k = 0; k < r.tile_seconds.size(); ++k)
+      out << k / size_t(r.tile_count) << "," << k % size_t(r.tile_count) << ","
+          << r.tile_seconds[k] << "\n";
+    if (!out) return Status::Error(path + ": cannot write the tile times");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) return Status::Error(path + ": cannot write the tile times: " + ec.message());
+  return Status::Ok();
+}
 
 // --stats: where the thread time of the packet path went, and how full its packets were.
 void PrintStats(const RenderResult& r, int threads, bool packets) {
@@ -107,12 +145,15 @@ void PrintStats(const RenderResult& r, int threads, bool packets) {
                t.traversal > 0 ? double(r.rays) / t.traversal * 1e-6 : 0.0);
 }
 
-int RunRender(const RenderArgs& args) {
+int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   LoadOptions load_options;
   if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
   StatusOr<Scene> loaded = LoadScene(args.scene, load_options);
-  if (!loaded.ok()) {
-    std::fprintf(stderr, "error: %s\n", loaded.status().message().c_str());
+  // Under mpirun every rank loads the scene; all stop if one cannot, or reads other bytes.
+  Status agreed = mpi.Agree(loaded.status());
+  if (agreed.ok()) agreed = mpi.CheckSameInputs(loaded->input_files);
+  if (!agreed.ok()) {
+    if (mpi.root()) std::fprintf(stderr, "error: %s\n", agreed.message().c_str());
     return 1;
   }
   Scene& scene = *loaded;
@@ -129,29 +170,47 @@ int RunRender(const RenderArgs& args) {
   std::string out = args.output;
   if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".exr";
   const std::filesystem::path out_path(out);
-  if (out_path.extension() != ".exr") {
-    std::fprintf(stderr, "error: output '%s' must end in .exr (a .png is written beside it)\n",
-                 out.c_str());
-    return 1;
+  Status output_ok;  // checked where the image is written: by rank 0 under mpirun
+  if (!mpi.root()) {
+  } else if (out_path.extension() != ".exr") {
+    output_ok = Status::Error("output '" + out + "' must end in .exr (a .png is written beside it)");
+  } else if (out_path.has_parent_path() &&
+             !std::filesystem::is_directory(out_path.parent_path())) {
+    output_ok = Status::Error("output directory '" + out_path.parent_path().string() +
+                              "' does not exist");
   }
-  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
-    std::fprintf(stderr, "error: output directory '%s' does not exist\n",
-                 out_path.parent_path().string().c_str());
+  output_ok = mpi.Agree(output_ok);
+  if (!output_ok.ok()) {
+    if (mpi.root()) std::fprintf(stderr, "error: %s\n", output_ok.message().c_str());
     return 1;
   }
 
   RenderOptions options;
   options.spp = args.spp > 0 ? uint32_t(args.spp) : scene.sampler.sample_count;
-  options.threads = args.threads > 0 ? args.threads
-                                     : std::max(1, int(std::thread::hardware_concurrency()));
+  options.threads = args.threads > 0 ? args.threads : UsableCores();
+  if (mpi.root() && mpi.active() && options.threads > UsableCores())
+    std::fprintf(stderr,
+                 "warning: %d threads per rank, but mpirun bound rank 0 to %d core(s); start it "
+                 "with --bind-to none or --map-by slot:PE=%d\n",
+                 options.threads, UsableCores(), options.threads);
   options.seed = args.seed;
   options.cancel = &g_interrupted;
   ProgressReporter reporter;
-  if (!args.quiet) options.on_progress = [&](const RenderProgress& p) { reporter.Update(p); };
+  const bool quiet = args.quiet || !mpi.root();
+  std::unique_ptr<mpi::RenderShare> share;
+  if (mpi.active()) {
+    share = std::make_unique<mpi::RenderShare>(
+        mpi, (options.spp + SamplesPerPass(options.spp) - 1) / SamplesPerPass(options.spp));
+    options.distribution = &share->distribution();
+  }
+  if (!quiet) options.on_progress = [&](const RenderProgress& p) { reporter.Update(p); };
 
-  std::fprintf(stderr, "ptlab: %s  %dx%d  %u spp  %d threads  %zu triangles\n",
-               args.scene.c_str(), scene.camera.width, scene.camera.height, options.spp,
-               options.threads, scene.triangles.size());
+  if (mpi.root())
+    std::fprintf(stderr, "ptlab: %s  %dx%d  %u spp  %d threads%s  %zu triangles\n",
+                 args.scene.c_str(), scene.camera.width, scene.camera.height, options.spp,
+                 options.threads,
+                 mpi.active() ? (" x " + std::to_string(mpi.size()) + " ranks").c_str() : "",
+                 scene.triangles.size());
   const Bvh bvh = BuildBvh(scene.triangles);
   const bool packets = !args.scalar && !simd::ForceScalar();
   simd::Bvh8 bvh8;
@@ -163,15 +222,17 @@ int RunRender(const RenderArgs& args) {
   }
   const std::string traversal = packets ? std::string("packet8 ") + simd::Traverse8TargetName()
                                         : std::string("scalar");
-  std::fprintf(stderr, "ptlab: traversal: %s\n",
+  if (mpi.root()) std::fprintf(stderr, "ptlab: traversal: %s\n",
                packets ? ("8-wide packets, Highway target " +
                           std::string(simd::Traverse8TargetName())).c_str()
                        : "scalar oracle (one ray at a time)");
   std::signal(SIGINT, OnSigint);
+  if (mpi.active()) std::signal(SIGTERM, OnSigterm);
   const RenderResult result = Render(scene, bvh, options);
   std::signal(SIGINT, SIG_DFL);
-  if (!args.quiet) reporter.Finish();
-  if (args.stats) PrintStats(result, options.threads, packets);
+  if (!quiet) reporter.Finish();
+  if (!mpi.root()) return result.interrupted ? 130 : 0;  // rank 0 keeps the film and writes it
+  if (args.stats) PrintStats(result, options.threads * mpi.size(), packets);
 
   if (result.nonfinite_samples > 0)
     std::fprintf(stderr, "warning: dropped %llu NaN/Inf samples (first at pixel %d,%d)\n",
@@ -186,6 +247,8 @@ int RunRender(const RenderArgs& args) {
       {"ptlab:interrupted", result.interrupted ? "true" : "false"},
       {"ptlab:nonfinite_samples", std::to_string(result.nonfinite_samples)},
       {"ptlab:traversal", traversal},
+      {"ptlab:threads", std::to_string(options.threads)},
+      {"ptlab:ranks", std::to_string(mpi.size())},
   };
   if (result.spp_done == 0) {
     std::fprintf(stderr, "interrupted before the first pass completed: nothing written\n");
@@ -194,6 +257,7 @@ int RunRender(const RenderArgs& args) {
   Status st = WriteExr(out, result.image, header);
   if (st.ok()) st = WritePng(std::filesystem::path(out).replace_extension(".png").string(),
                              result.image);
+  if (st.ok() && !args.tile_times.empty()) st = WriteTileTimes(args.tile_times, result);
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
     return 1;
@@ -209,6 +273,7 @@ int RunRender(const RenderArgs& args) {
 }  // namespace ptlab
 
 int main(int argc, char** argv) {
+  const ptlab::mpi::Session mpi(&argc, &argv);
   CLI::App app{"ptlab: a CPU path tracer and rendering test lab"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("ptlab 0.1 (traversal: Highway ") +
@@ -236,6 +301,9 @@ int main(int argc, char** argv) {
   cmd->add_flag("--stats", render.stats,
                 "Print the fraction of time in traversal, shading and sampling, and packet "
                 "occupancy");
+  cmd->add_option("--tile-times", render.tile_times,
+                  "Write the wall time of every tile of every pass to this CSV "
+                  "(pass,tile,seconds)");
 
   std::string test_file;
   bool test_verbose = false;
@@ -263,8 +331,10 @@ int main(int argc, char** argv) {
     return 3;
   }
   CLI11_PARSE(app, argc, argv);
-  if (cmd->parsed()) return ptlab::RunRender(render);
-  if (test_cmd->parsed()) return ptlab::RunNoriTestCommand(test_file, test_verbose);
+  if (cmd->parsed()) return ptlab::RunRender(render, mpi);
+  if (test_cmd->parsed())
+    return mpi.active() ? ptlab::RunNoriTestOverRanks(test_file, test_verbose, mpi)
+                        : ptlab::RunNoriTestCommand(test_file, test_verbose);
   if (envmap_cmd->parsed()) {
     const ptlab::Status st = ptlab::WriteEnvironmentPdfImage(envmap_in, envmap_out);
     if (!st.ok()) {
