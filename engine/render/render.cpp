@@ -55,6 +55,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   auto cancelled = [&] { return options.cancel && options.cancel->load(); };
 
   const RenderDistribution* dist = options.distribution;
+  double on_pass_seconds = 0;  // time spent in options.on_pass, left out of RenderPass::seconds
   auto reset_block = [&](size_t i) {
     const Tile& t = tiles[i];
     blocks[i].Reset(t.x0 - border, t.y0 - border, t.x1 - t.x0 + 2 * border,
@@ -63,7 +64,15 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   };
   // With a distribution every process enters every pass, so that all agree in finish_pass
   // whether it completed; a cancelled process takes no tiles.
-  for (uint32_t s0 = 0; s0 < options.spp && (dist != nullptr || !cancelled()); s0 += per_pass) {
+  bool budget_spent = false;
+  auto over_budget = [&] {
+    budget_spent = dist == nullptr && options.time_budget > 0 &&
+                   std::chrono::duration<double>(Clock::now() - start).count() - on_pass_seconds >=
+                       options.time_budget;
+    return budget_spent;
+  };
+  for (uint32_t s0 = 0; s0 < options.spp && (dist != nullptr || !cancelled()) && !over_budget();
+       s0 += per_pass) {
     const uint32_t s1 = std::min(options.spp, s0 + per_pass);
     const uint32_t pass = s0 / per_pass;
     std::atomic<size_t> next_tile{0};
@@ -144,13 +153,25 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       result.nonfinite_samples += stats[i].nonfinite;
     }
     result.spp_done = s1;
+    if (options.on_pass && (dist == nullptr || dist->keeps_film)) {
+      const auto pass_start = Clock::now();
+      RenderPass info;
+      info.index = pass;
+      info.spp_done = s1;
+      info.seconds =
+          std::chrono::duration<double>(pass_start - start).count() - on_pass_seconds;
+      info.film = &film;
+      info.blocks = &blocks;
+      options.on_pass(info);
+      on_pass_seconds += std::chrono::duration<double>(Clock::now() - pass_start).count();
+    }
     if (options.on_progress) {
       progress.seconds = std::chrono::duration<double>(Clock::now() - start).count();
       options.on_progress(progress);
     }
   }
   result.tile_count = int(tiles.size());
-  result.interrupted = result.spp_done < options.spp;
+  result.interrupted = result.spp_done < options.spp && !budget_spent;
   result.image = film.Resolve();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

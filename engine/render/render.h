@@ -39,6 +39,17 @@ struct RenderDistribution {
   bool keeps_film = true;
 };
 
+/// One completed pass, handed to RenderOptions::on_pass on the process that keeps the film.
+struct RenderPass {
+  uint32_t index = 0;     // 0, 1, ...
+  uint32_t spp_done = 0;  // samples per pixel in the film, this pass included
+  /// Render time since the start, without the time spent in on_pass itself (so that a caller
+  /// measuring error after each pass does not slow the clock it reports).
+  double seconds = 0;
+  const FilmBlock* film = nullptr;                 // every completed pass, merged
+  const std::vector<FilmBlock>* blocks = nullptr;  // this pass's tile blocks, in merge order
+};
+
 struct RenderOptions {
   uint32_t spp = 1;
   int threads = 1;
@@ -48,10 +59,16 @@ struct RenderOptions {
   /// When set, tiles run through the 8-wide packet path on this traversal backend (bit-identical
   /// to the scalar path); it must outlive the render. Null: one ray at a time, the oracle.
   const TraversalBackend8* packets = nullptr;
+  /// > 0: no pass starts once this many seconds of rendering have passed (the image keeps
+  /// the passes done; spp is then an upper bound). Not with a distribution.
+  double time_budget = 0;
   /// When set, the tiles of each pass are shared with other processes through it.
   const RenderDistribution* distribution = nullptr;
   /// Called from the coordinating thread after each tile completes.
   std::function<void(const RenderProgress&)> on_progress;
+  /// Called from the coordinating thread after each completed pass (e.g. to measure the error
+  /// of the image so far, or to accumulate passes into several films).
+  std::function<void(const RenderPass&)> on_pass;
 };
 
 struct RenderResult {

@@ -26,6 +26,7 @@
 #include "tools/chi2/nori_tests.h"
 #include "tools/mpi/mpi_render.h"
 #include "tools/mpi/mpi_session.h"
+#include "tools/ptlab/converge_command.h"
 #include "tools/ptlab/test_over_ranks.h"
 
 namespace ptlab {
@@ -322,16 +323,23 @@ int main(int argc, char** argv) {
   envmap_cmd->add_option("-o,--output", envmap_out, "Output image (.png, .exr or .pfm)")
       ->required();
 
+  ptlab::ConvergeArgs converge;
+  CLI::App* converge_cmd = ptlab::AddConvergeCommand(&app, &converge);
+
   bool known = false;
   for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
     known = known || (argc > 1 && sub->get_name() == argv[1]);
   if (argc > 1 && argv[1][0] != '-' && !known) {
-    std::fprintf(stderr, "error: unknown command '%s'; expected one of: render, test, envmap-pdf (see --help)\n",
+    std::fprintf(stderr, "error: unknown command '%s'; expected one of: render, converge, test, envmap-pdf (see --help)\n",
                  argv[1]);
     return 3;
   }
   CLI11_PARSE(app, argc, argv);
   if (cmd->parsed()) return ptlab::RunRender(render, mpi);
+  if (converge_cmd->parsed()) {
+    std::signal(SIGINT, ptlab::OnSigint);
+    return ptlab::RunConverge(converge, &ptlab::g_interrupted);
+  }
   if (test_cmd->parsed())
     return mpi.active() ? ptlab::RunNoriTestOverRanks(test_file, test_verbose, mpi)
                         : ptlab::RunNoriTestCommand(test_file, test_verbose);
