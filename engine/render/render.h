@@ -39,6 +39,18 @@ struct RenderDistribution {
   bool keeps_film = true;
 };
 
+/// CS184's adaptive sampling (pathtracer -a batch tolerance): every `batch` samples, a pixel
+/// whose luminance has a 95 % confidence interval within tolerance of its mean stops taking
+/// samples (PixelConverged). batch = 0: off, every pixel takes spp samples.
+struct AdaptiveSampling {
+  uint32_t batch = 0;
+  float tolerance = 0.05f;
+};
+
+/// The stopping rule: n >= 2 finite samples with mean μ and sample variance σ² of their
+/// luminance, and 1.96 σ / sqrt(n) <= tolerance · μ (CS184's I <= maxTolerance · μ).
+bool PixelConverged(const PixelMoments& m, float tolerance);
+
 /// One completed pass, handed to RenderOptions::on_pass on the process that keeps the film.
 struct RenderPass {
   uint32_t index = 0;     // 0, 1, ...
@@ -48,6 +60,8 @@ struct RenderPass {
   double seconds = 0;
   const FilmBlock* film = nullptr;                 // every completed pass, merged
   const std::vector<FilmBlock>* blocks = nullptr;  // this pass's tile blocks, in merge order
+  /// Adaptive sampling: every pixel's moments after this pass (row-major); else null.
+  const std::vector<PixelMoments>* pixels = nullptr;
 };
 
 struct RenderOptions {
@@ -62,6 +76,8 @@ struct RenderOptions {
   /// > 0: no pass starts once this many seconds of rendering have passed (the image keeps
   /// the passes done; spp is then an upper bound). Not with a distribution.
   double time_budget = 0;
+  /// Adaptive sampling (passes are then `batch` samples). Not with a distribution.
+  AdaptiveSampling adaptive;
   /// When set, the tiles of each pass are shared with other processes through it.
   const RenderDistribution* distribution = nullptr;
   /// Called from the coordinating thread after each tile completes.
@@ -86,6 +102,9 @@ struct RenderResult {
   /// tiles in row order): the unit costs that load balancing has to even out.
   std::vector<float> tile_seconds;
   int tile_count = 0;
+  /// Adaptive sampling: the samples each pixel took (row-major), summing to samples_taken.
+  std::vector<uint32_t> pixel_samples;
+  uint64_t samples_taken = 0;  // every pixel sample of the completed passes
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of

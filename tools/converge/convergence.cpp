@@ -162,7 +162,7 @@ std::vector<VariantSummary> Summarize(const std::vector<ConvergencePoint>& point
     for (size_t k = 0; k < passes; ++k) {
       std::vector<double> spp, sec, rel, est;
       for (const auto& [seed, run] : by_seed) {
-        spp.push_back(run[k].spp), sec.push_back(run[k].seconds);
+        spp.push_back(run[k].mean_spp), sec.push_back(run[k].seconds);
         rel.push_back(run[k].rel_mse), est.push_back(run[k].estimated_rel_mse);
       }
       s.spp.push_back(Mean(spp)), s.seconds.push_back(Mean(sec));
@@ -199,12 +199,12 @@ std::vector<VariantSummary> Summarize(const std::vector<ConvergencePoint>& point
 
 Status WriteConvergeCsv(const std::string& path, const std::vector<ConvergencePoint>& points) {
   std::ostringstream o;
-  o << "scene,variant,seed,pass,spp,seconds,rel_mse,rmse,mae,bias_r,bias_g,bias_b,parity_share,"
+  o << "scene,variant,seed,pass,spp,mean_spp,seconds,rel_mse,rmse,mae,bias_r,bias_g,bias_b,parity_share,"
        "estimated_rel_mse\n";
   for (const ConvergencePoint& p : points) {
     // Variant specs hold commas: quote them (RFC 4180).
     o << JsonString(p.scene) << "," << JsonString(p.variant) << "," << p.seed << "," << p.pass
-      << "," << p.spp << "," << Num(p.seconds) << "," << Num(p.rel_mse) << "," << Num(p.rmse)
+      << "," << p.spp << "," << Num(p.mean_spp) << "," << Num(p.seconds) << "," << Num(p.rel_mse) << "," << Num(p.rmse)
       << "," << Num(p.mae) << "," << Num(p.bias[0]) << "," << Num(p.bias[1]) << ","
       << Num(p.bias[2]) << "," << Num(p.parity_share) << "," << Num(p.estimated_rel_mse)
       << "\n";
@@ -224,7 +224,7 @@ Status WriteConvergeJson(const std::string& path, const std::vector<std::string>
     const ConvergencePoint& p = points[i];
     o << "    {\"scene\": " << JsonString(p.scene) << ", \"variant\": " << JsonString(p.variant)
       << ", \"seed\": " << p.seed << ", \"pass\": " << p.pass << ", \"spp\": " << p.spp
-      << ", \"seconds\": " << JsonNum(p.seconds) << ", \"rel_mse\": " << JsonNum(p.rel_mse)
+      << ", \"mean_spp\": " << JsonNum(p.mean_spp) << ", \"seconds\": " << JsonNum(p.seconds) << ", \"rel_mse\": " << JsonNum(p.rel_mse)
       << ", \"rmse\": " << JsonNum(p.rmse) << ", \"mae\": " << JsonNum(p.mae)
       << ", \"bias\": [" << JsonNum(p.bias[0]) << ", " << JsonNum(p.bias[1]) << ", "
       << JsonNum(p.bias[2]) << "], \"parity_share\": " << JsonNum(p.parity_share)

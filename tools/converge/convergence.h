@@ -15,7 +15,8 @@ namespace ptlab {
 struct ConvergencePoint {
   std::string scene, variant;
   uint64_t seed = 0;
-  uint32_t pass = 0, spp = 0;
+  uint32_t pass = 0, spp = 0;  // spp: samples per pixel so far (the most any pixel took)
+  double mean_spp = 0;          // samples taken / pixels (below spp with adaptive sampling)
   double seconds = 0;  // render time so far (measurement time excluded)
   double rel_mse = 0, rmse = 0, mae = 0;  // over the three channels (imgdiff's definitions)
   std::array<double, 3> bias{};           // (mean render - mean reference) / mean reference
@@ -46,7 +47,8 @@ double TimeToQuality(const std::vector<ConvergencePoint>& run, double target);
 /// One line per variant of a scene: the mean over seeds of each pass, and the run's figures.
 struct VariantSummary {
   std::string scene, variant;
-  std::vector<double> spp, seconds, rel_mse, estimated_rel_mse;  // per pass, mean over seeds
+  // Per pass, mean over seeds; spp is samples taken per pixel (mean_spp of the points).
+  std::vector<double> spp, seconds, rel_mse, estimated_rel_mse;
   int seeds = 0;
   double final_rel_mse = 0, final_rel_mse_sd = 0;  // last pass: mean and spread over seeds
   double final_seconds = 0;

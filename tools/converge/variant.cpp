@@ -2,6 +2,7 @@
 #include "tools/converge/variant.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstring>
 
 namespace ptlab {
@@ -73,6 +74,25 @@ constexpr VariantKey kKeys[] = {
                "load the scene with importance sampling and use sampling=uniform instead");
          }
        }
+       return Status::Ok();
+     }},
+    {"adaptive", "BATCH:TOLERANCE (an integer >= 2 and a number > 0) or off",
+     [](const std::string& v, VariantTarget* t) {
+       AdaptiveSampling a;
+       if (v != "off") {
+         const size_t colon = v.find(':');
+         int batch = 0;
+         if (colon == std::string::npos || !ParseInt(v.substr(0, colon), 2, &batch))
+           return Status::Error("");
+         const std::string tol = v.substr(colon + 1);
+         float tolerance = 0;
+         const auto [ptr, ec] = std::from_chars(tol.data(), tol.data() + tol.size(), tolerance);
+         if (ec != std::errc() || ptr != tol.data() + tol.size() || !(tolerance > 0) ||
+             !std::isfinite(tolerance))
+           return Status::Error("");
+         a.batch = uint32_t(batch), a.tolerance = tolerance;
+       }
+       if (t) t->adaptive = a;
        return Status::Ok();
      }},
     {"path", "packet or scalar",

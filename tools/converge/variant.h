@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/core/status.h"
+#include "engine/render/render.h"
 #include "engine/scene/scene.h"
 
 namespace ptlab {
@@ -18,8 +19,10 @@ struct Variant {
 
 /// What a variant changes: the scene's descriptions, and the execution path.
 struct VariantTarget {
-  Scene* scene = nullptr;
+  explicit VariantTarget(Scene* s) : scene(s) {}
+  Scene* scene;
   bool scalar = false;  // trace with the scalar oracle instead of 8-wide packets
+  AdaptiveSampling adaptive;  // off unless the variant sets it
 };
 
 /// Parses "key=value[,key=value...]" (an empty spec is the scene as loaded). Keys:
@@ -29,6 +32,7 @@ struct VariantTarget {
 ///   maxDepth     integer >= -1 (-1: unbounded)
 ///   sampling     uniform|importance (every environment map)
 ///   path         packet|scalar
+///   adaptive     BATCH:TOLERANCE (CS184's -a: integer batch >= 2, tolerance > 0), or off
 /// An unknown key or a malformed value is an error naming the key and what was expected.
 StatusOr<Variant> ParseVariant(const std::string& spec);
 

@@ -2,6 +2,7 @@
 // each pass against a reference, and writes CSV, JSON, a Markdown summary and gnuplot plots.
 #include "tools/ptlab/converge_command.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -60,7 +61,7 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
             uint64_t seed, const std::atomic<bool>* interrupted,
             std::vector<ConvergencePoint>* points, std::string* error) {
   Scene scene = ls.scene;  // the variant edits a copy
-  VariantTarget target{&scene, false};
+  VariantTarget target(&scene);
   if (const Status st = ApplyVariant(variant, &target); !st.ok()) {
     *error = ls.path + ": " + st.message();
     return false;
@@ -72,6 +73,7 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
   options.seed = seed;
   options.cancel = interrupted;
   options.packets = target.scalar ? nullptr : &ls.backend;
+  options.adaptive = target.adaptive;
   const int w = scene.camera.width, h = scene.camera.height;
   FilmBlock halves[2] = {FilmBlock(0, 0, w, h), FilmBlock(0, 0, w, h)};
   ImageDiffOptions diff_options;
@@ -86,6 +88,12 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
     p.seed = seed;
     p.pass = pass.index;
     p.spp = pass.spp_done;
+    p.mean_spp = pass.spp_done;
+    if (pass.pixels != nullptr) {
+      double taken = 0;
+      for (const PixelMoments& m : *pass.pixels) taken += m.taken;
+      p.mean_spp = taken / double(pass.pixels->size());
+    }
     p.seconds = pass.seconds;
     p.rel_mse = d.rel_mse_all, p.rmse = d.rmse_all, p.mae = d.mae_all;
     p.bias = d.mean_rel_diff;
@@ -96,6 +104,28 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
     points->push_back(p);
   };
   const RenderResult r = Render(scene, ls.bvh, options);
+  if (!r.pixel_samples.empty()) {
+    // The sample-rate image: samples per pixel as EXR (exact counts) and PNG (count / spp).
+    std::string name = ls.stem + "_" + variant.name + "_seed" + std::to_string(seed) + "_samples";
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+    Image counts(w, h), rate(w, h);
+    for (size_t i = 0; i < r.pixel_samples.size(); ++i) {
+      const float n = float(r.pixel_samples[i]);
+      const float f = r.spp_done > 0 ? n / float(r.spp_done) : 0.0f;
+      counts.rgb[3 * i] = counts.rgb[3 * i + 1] = counts.rgb[3 * i + 2] = n;
+      // Blue (few samples) to red (all of them), as CS184's rate image.
+      rate.rgb[3 * i] = f, rate.rgb[3 * i + 1] = 0.0f, rate.rgb[3 * i + 2] = 1.0f - f;
+    }
+    const std::string base = (std::filesystem::path(args.out_dir) / name).string();
+    Status st = WriteExr(base + ".exr", counts,
+                         {{"ptlab:samples_taken", std::to_string(r.samples_taken)}});
+    if (st.ok()) st = WritePng(base + ".png", rate);
+    if (!st.ok()) {
+      *error = st.message();
+      return false;
+    }
+  }
   return !r.interrupted;
 }
 
@@ -173,7 +203,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     // Every variant must apply before anything renders.
     for (const Variant& v : variants) {
       Scene copy = ls->scene;
-      VariantTarget t{&copy, false};
+      VariantTarget t(&copy);
       if (const Status st = ApplyVariant(v, &t); !st.ok()) {
         std::fprintf(stderr, "error: %s: %s\n", ls->path.c_str(), st.message().c_str());
         return kExitUsage;
@@ -200,7 +230,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     if (!auto_ref) continue;
     // The reference: the first variant with kAutoReferenceFactor times the budget.
     Scene scene = ls->scene;
-    VariantTarget t{&scene, false};
+    VariantTarget t(&scene);
     (void)ApplyVariant(variants[0], &t);
     RenderOptions o;
     const uint32_t spp = uint32_t(args.spp > 0 ? args.spp : scene.sampler.sample_count);
@@ -237,9 +267,9 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
         std::fprintf(stderr, "converge: %s  %s  seed %llu\n", ls->stem.c_str(), v.name.c_str(),
                      static_cast<unsigned long long>(args.seed + uint64_t(k)));
         if (!RunOne(*ls, v, run_args, args.seed + uint64_t(k), interrupted, &points, &error)) {
-          if (!error.empty()) {
+          if (!error.empty()) {  // variants were checked before: an output failed
             std::fprintf(stderr, "error: %s\n", error.c_str());
-            return kExitUsage;
+            return kExitRender;
           }
           stopped = true;
           break;

@@ -101,6 +101,33 @@ TEST(ConvergeCli, WritesCsvJsonSummaryAndPlots) {
             std::string::npos);
 }
 
+TEST(ConvergeCli, AdaptiveVariantWritesTheSampleRateImage) {
+  const fs::path dir = test_util::TempDir("converge/adaptive");
+  const fs::path scene = SmallCbox(dir, 32, "direct_mis");
+  const int rc = RunShell(kPtlab + " converge " + scene.string() +
+                              " --ref auto --spp 64 --threads 2 --no-plots"
+                              " --variant adaptive=8:0.05 --variant adaptive=off -o " +
+                              (dir / "out").string(),
+                          dir / "log");
+  ASSERT_EQ(rc, 0) << ReadFile(dir / "log");
+  StatusOr<Image> counts =
+      ReadImage((dir / "out" / "cbox_small_adaptive_8_0_05_seed1_samples.exr").string());
+  ASSERT_TRUE(counts.ok()) << counts.status().message();
+  EXPECT_TRUE(fs::exists(dir / "out" / "cbox_small_adaptive_8_0_05_seed1_samples.png"));
+  double sum = 0;
+  for (size_t i = 0; i < counts->rgb.size(); i += 3) sum += counts->rgb[i];
+  // The last pass of the adaptive run: its mean spp times the pixels is the image's sum.
+  const auto rows = ReadCsv(dir / "out" / "converge.csv");
+  double mean_spp = -1;
+  for (const auto& r : rows)
+    if (r.at("variant") == "adaptive=8:0.05") mean_spp = std::stod(r.at("mean_spp"));
+  EXPECT_NEAR(sum, mean_spp * 32 * 32, 1e-3 * sum);
+  EXPECT_LT(mean_spp, 64.0);
+  // Without adaptive sampling every pixel takes every sample.
+  EXPECT_EQ(rows.back().at("variant"), "adaptive=off");
+  EXPECT_EQ(rows.back().at("mean_spp"), "64");
+}
+
 TEST(ConvergeCli, BadArgumentsAreClearErrorsWithExitTwo) {
   const fs::path dir = test_util::TempDir("converge/bad");
   const fs::path scene = SmallCbox(dir, 16, "direct_mis");
@@ -115,6 +142,7 @@ TEST(ConvergeCli, BadArgumentsAreClearErrorsWithExitTwo) {
   for (const Case& c :
        {Case{"--ref auto --variant integrater=path_mis", "unknown key 'integrater'"},
         Case{"--ref auto --variant maxDepth=deep", "'deep' is not an integer >= -1"},
+        Case{"--ref auto --variant adaptive=1:0.05", "'1:0.05' is not BATCH:TOLERANCE"},
         Case{"--ref " + (dir / "other.exr").string(), "is 17x16 but the scene renders 16x16"},
         Case{"--ref " + (dir / "nan.exr").string(), "NaN/Inf value at pixel 5,2"},
         Case{"--ref auto --ref auto", "give one reference per scene"},

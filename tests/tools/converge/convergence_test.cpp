@@ -67,6 +67,7 @@ TEST(Convergence, SummaryAveragesSeedsAndFitsTheSlope) {
     for (uint32_t k = 0; k < 4; ++k) {
       ConvergencePoint p;
       p.scene = "s", p.variant = "v", p.seed = seed, p.pass = k, p.spp = 16 * (k + 1);
+      p.mean_spp = p.spp;
       p.seconds = 0.5 * (k + 1);
       p.rel_mse = (seed == 1 ? 0.9 : 1.1) / p.spp;
       p.estimated_rel_mse = k % 2 ? 1.2 / p.spp : std::nan("");

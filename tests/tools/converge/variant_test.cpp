@@ -47,7 +47,7 @@ TEST(ConvergeVariant, AppliesToTheSceneAndTheExecutionPath) {
   StatusOr<Variant> v =
       ParseVariant("integrator=path_ems,maxDepth=3,lightSamples=2,heuristic=power,path=scalar");
   ASSERT_TRUE(v.ok());
-  VariantTarget target{&scene, false};
+  VariantTarget target(&scene);
   ASSERT_TRUE(ApplyVariant(*v, &target).ok());
   EXPECT_EQ(scene.integrator.type, IntegratorDesc::Type::kPathEms);
   EXPECT_EQ(scene.integrator.max_depth, 3);
@@ -61,7 +61,7 @@ TEST(ConvergeVariant, ImportanceSamplingNeedsTheMapsDistribution) {
   scene.environment_maps.sampling = {EnvironmentSampling::kImportance,
                                      EnvironmentSampling::kUniform};
   scene.environment_maps.width = {1, 1};
-  VariantTarget target{&scene, false};
+  VariantTarget target(&scene);
   StatusOr<Variant> importance = ParseVariant("sampling=importance");
   const Status st = ApplyVariant(*importance, &target);
   ASSERT_FALSE(st.ok());
