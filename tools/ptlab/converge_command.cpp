@@ -155,6 +155,8 @@ CLI::App* AddConvergeCommand(CLI::App* app, ConvergeArgs* a) {
   cmd->add_option("--seed", a->seed, "First seed");
   cmd->add_option("-o,--output", a->out_dir, "Output folder")->required();
   cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot plots");
+  cmd->add_option("--lookat", a->lookat, "lookat convention, as for render: nori or nori2015")
+      ->check(CLI::IsMember({"nori", "nori2015"}));
   return cmd;
 }
 
@@ -194,7 +196,9 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     auto ls = std::make_unique<LoadedScene>();
     ls->path = args.scenes[i];
     ls->stem = fs::path(ls->path).stem().string();
-    StatusOr<Scene> loaded = LoadScene(ls->path);
+    LoadOptions load_options;
+    if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
+    StatusOr<Scene> loaded = LoadScene(ls->path, load_options);
     if (!loaded.ok()) {
       std::fprintf(stderr, "error: %s\n", loaded.status().message().c_str());
       return kExitUsage;

@@ -19,6 +19,7 @@ struct ConvergeArgs {
   int seeds = 1;
   uint64_t seed = 1;  // first seed; runs use seed, seed + 1, ...
   std::string out_dir;
+  std::string lookat = "nori";  // or nori2015 (the eth2015 references' camera frame)
   bool no_plots = false;
 };
 

@@ -6,7 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <thread>
@@ -109,19 +109,12 @@ struct RenderArgs {
 
 // --tile-times: pass, tile and wall seconds of every tile (input of benchmarks/mpi_model).
 Status WriteTileTimes(const std::string& path, const RenderResult& r) {
-  const std::string tmp = path + ".tmp-" + std::to_string(getpid());
-  {
-    std::ofstream out(tmp);
-    out << "pass,tile,seconds\n";
-    for (size_t k = 0; k < r.tile_seconds.size(); ++k)
-      out << k / size_t(r.tile_count) << "," << k % size_t(r.tile_count) << ","
-          << r.tile_seconds[k] << "\n";
-    if (!out) return Status::Error(path + ": cannot write the tile times");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) return Status::Error(path + ": cannot write the tile times: " + ec.message());
-  return Status::Ok();
+  std::ostringstream out;
+  out << "pass,tile,seconds\n";
+  for (size_t k = 0; k < r.tile_seconds.size(); ++k)
+    out << k / size_t(r.tile_count) << "," << k % size_t(r.tile_count) << "," << r.tile_seconds[k]
+        << "\n";
+  return WriteFileAtomically(path, out.str());
 }
 
 // --stats: where the thread time of the packet path went, and how full its packets were.
