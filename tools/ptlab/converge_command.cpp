@@ -98,7 +98,8 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
     p.rel_mse = d.rel_mse_all, p.rmse = d.rmse_all, p.mae = d.mae_all;
     p.bias = d.mean_rel_diff;
     p.parity_share = d.blocks.share;
-    p.estimated_rel_mse = pass.index % 2 == 1
+    // With adaptive sampling the two halves hold different pixels' samples: no estimate.
+    p.estimated_rel_mse = pass.index % 2 == 1 && pass.pixels == nullptr
                               ? EstimateRelMseFromHalves(halves[0].Resolve(), halves[1].Resolve())
                               : std::nan("");
     points->push_back(p);
