@@ -57,12 +57,15 @@ TraversalBackend8 ScalarTraversalBackend(const Bvh& bvh) {
 
 void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const PixelFilter& filter,
                       int x0, int y0, int x1, int y1, uint32_t s_begin, uint32_t s_end,
-                      uint64_t seed, FilmBlock* block, TileSampleStats* stats) {
+                      uint64_t seed, FilmBlock* block, TileSampleStats* stats,
+                      const PixelSampling* pixels) {
   RayCounters counters;
   const uint64_t width = uint64_t(camera.width());
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
       const uint64_t pixel = uint64_t(y) * width + uint64_t(x);
+      if (pixels && pixels->active && !pixels->active[pixel]) continue;
+      PixelMoments* moments = pixels && pixels->moments ? &pixels->moments[pixel] : nullptr;
       for (uint32_t s = s_begin; s < s_end; ++s) {
         Pcg32 rng(PixelSeed(seed, pixel), s);
         const float jx = rng.NextFloat(), jy = rng.NextFloat();
@@ -70,6 +73,7 @@ void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const Pixe
         const float sx = float(x) + jx, sy = float(y) + jy;
         const Ray ray = camera.GenerateRay(sx, sy, {lx, ly});
         const Color3f L = Li(ctx, ray, rng, &counters);
+        if (moments) AddPixelSample(L, moments);
         if (!IsFinite(L)) {
           if (stats->nonfinite++ == 0) stats->first_x = x, stats->first_y = y;
           continue;

@@ -51,6 +51,30 @@ struct StageSeconds {
 
 /// Rays traced and non-finite samples dropped while rendering one tile; the packet path also
 /// counts packets (rays / (8 packets) is the lane occupancy) and times its stages.
+/// Luminance moments of one pixel's samples (adaptive sampling): `taken` counts every sample,
+/// n, sum and sum2 the finite ones.
+struct PixelMoments {
+  uint32_t taken = 0, n = 0;
+  double sum = 0, sum2 = 0;
+};
+
+/// Per-pixel sampling state of a render (image-sized, row-major, `width` pixels a row): which
+/// pixels still take samples (null: all) and where their moments go (null: not recorded).
+/// A tile reads and writes only its own pixels, so tiles on several threads share it.
+struct PixelSampling {
+  uint64_t width = 0;
+  const uint8_t* active = nullptr;
+  PixelMoments* moments = nullptr;
+};
+
+/// Records one sample of a pixel (its luminance when finite).
+inline void AddPixelSample(const Color3f& L, PixelMoments* m) {
+  ++m->taken;
+  if (!IsFinite(L)) return;
+  const double y = double(Luminance(L));
+  ++m->n, m->sum += y, m->sum2 += y * y;
+}
+
 struct TileSampleStats {
   uint64_t rays = 0;
   uint64_t packets = 0;
@@ -73,12 +97,13 @@ struct TileSampleStats {
 void RenderTilePacket8(const RenderContext& ctx, const TraversalBackend8& backend,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
-                       TileSampleStats* stats);
+                       TileSampleStats* stats, const PixelSampling* pixels = nullptr);
 
 /// The scalar reference of RenderTilePacket8: one Li per sample, in the same splat order.
 /// render.cpp uses it when no packet backend is given; tests and benchmarks compare the two.
 void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const PixelFilter& filter,
                       int x0, int y0, int x1, int y1, uint32_t s_begin, uint32_t s_end,
-                      uint64_t seed, FilmBlock* block, TileSampleStats* stats);
+                      uint64_t seed, FilmBlock* block, TileSampleStats* stats,
+                      const PixelSampling* pixels = nullptr);
 
 }  // namespace ptlab

@@ -29,6 +29,13 @@ using TileStats = TileSampleStats;
 
 uint32_t SamplesPerPass(uint32_t spp) { return std::min<uint32_t>(spp, 16); }
 
+bool PixelConverged(const PixelMoments& m, float tolerance) {
+  if (m.n < 2) return false;
+  const double n = double(m.n), mean = m.sum / n;
+  const double variance = std::max(0.0, (m.sum2 - n * mean * mean) / (n - 1));
+  return 1.96 * std::sqrt(variance / n) <= double(tolerance) * mean;
+}
+
 RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
@@ -51,10 +58,25 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   progress.samples_total = uint64_t(width) * uint64_t(height) * options.spp;
 
   const int threads = std::max(1, options.threads);
-  const uint32_t per_pass = std::max<uint32_t>(1, SamplesPerPass(options.spp));
+  const bool adaptive = options.adaptive.batch > 0 && options.distribution == nullptr;
+  const uint32_t per_pass = adaptive ? std::min(options.adaptive.batch, options.spp)
+                                     : std::max<uint32_t>(1, SamplesPerPass(options.spp));
+  // Adaptive sampling: which pixels go on, and their moments (those of the completed passes
+  // in `moments_done`: an interrupted pass leaves them as they were).
+  std::vector<uint8_t> active;
+  std::vector<PixelMoments> moments, moments_done;
+  PixelSampling pixel_sampling;
+  if (adaptive) {
+    active.assign(size_t(width) * size_t(height), 1);
+    moments.assign(active.size(), PixelMoments{});
+    moments_done = moments;
+    pixel_sampling = {uint64_t(width), active.data(), moments.data()};
+  }
+  const PixelSampling* pixels = adaptive ? &pixel_sampling : nullptr;
   auto cancelled = [&] { return options.cancel && options.cancel->load(); };
 
   const RenderDistribution* dist = options.distribution;
+  double on_pass_seconds = 0;  // time spent in options.on_pass, left out of RenderPass::seconds
   auto reset_block = [&](size_t i) {
     const Tile& t = tiles[i];
     blocks[i].Reset(t.x0 - border, t.y0 - border, t.x1 - t.x0 + 2 * border,
@@ -63,7 +85,16 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   };
   // With a distribution every process enters every pass, so that all agree in finish_pass
   // whether it completed; a cancelled process takes no tiles.
-  for (uint32_t s0 = 0; s0 < options.spp && (dist != nullptr || !cancelled()); s0 += per_pass) {
+  bool budget_spent = false;
+  bool all_converged = false;  // adaptive sampling stopped every pixel
+  auto over_budget = [&] {
+    budget_spent = dist == nullptr && options.time_budget > 0 &&
+                   std::chrono::duration<double>(Clock::now() - start).count() - on_pass_seconds >=
+                       options.time_budget;
+    return budget_spent;
+  };
+  for (uint32_t s0 = 0; s0 < options.spp && (dist != nullptr || !cancelled()) && !over_budget();
+       s0 += per_pass) {
     const uint32_t s1 = std::min(options.spp, s0 + per_pass);
     const uint32_t pass = s0 / per_pass;
     std::atomic<size_t> next_tile{0};
@@ -85,10 +116,10 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         reset_block(i);
         if (options.packets != nullptr) {
           RenderTilePacket8(ctx, *options.packets, camera, filter, t.x0, t.y0, t.x1, t.y1, s0,
-                            s1, options.seed, &blocks[i], &stats[i]);
+                            s1, options.seed, &blocks[i], &stats[i], pixels);
         } else {
           RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,
-                           &blocks[i], &stats[i]);
+                           &blocks[i], &stats[i], pixels);
         }
         stats[i].wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
         std::lock_guard<std::mutex> lock(mutex);
@@ -144,13 +175,44 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       result.nonfinite_samples += stats[i].nonfinite;
     }
     result.spp_done = s1;
+    if (adaptive) {
+      moments_done = moments;
+      all_converged = true;
+      for (size_t p = 0; p < active.size(); ++p) {
+        if (active[p] && PixelConverged(moments[p], options.adaptive.tolerance)) active[p] = 0;
+        all_converged &= active[p] == 0;
+      }
+    } else {
+      result.samples_taken = uint64_t(width) * uint64_t(height) * s1;
+    }
+    if (options.on_pass && (dist == nullptr || dist->keeps_film)) {
+      const auto pass_start = Clock::now();
+      RenderPass info;
+      info.index = pass;
+      info.spp_done = s1;
+      info.seconds =
+          std::chrono::duration<double>(pass_start - start).count() - on_pass_seconds;
+      info.film = &film;
+      info.blocks = &blocks;
+      info.pixels = adaptive ? &moments_done : nullptr;
+      options.on_pass(info);
+      on_pass_seconds += std::chrono::duration<double>(Clock::now() - pass_start).count();
+    }
     if (options.on_progress) {
       progress.seconds = std::chrono::duration<double>(Clock::now() - start).count();
       options.on_progress(progress);
     }
+    if (all_converged) break;  // adaptive sampling: no pixel takes more samples
+  }
+  if (adaptive) {
+    result.pixel_samples.resize(moments_done.size());
+    for (size_t p = 0; p < moments_done.size(); ++p) {
+      result.pixel_samples[p] = moments_done[p].taken;
+      result.samples_taken += moments_done[p].taken;
+    }
   }
   result.tile_count = int(tiles.size());
-  result.interrupted = result.spp_done < options.spp;
+  result.interrupted = result.spp_done < options.spp && !budget_spent && !all_converged;
   result.image = film.Resolve();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

@@ -39,6 +39,31 @@ struct RenderDistribution {
   bool keeps_film = true;
 };
 
+/// CS184's adaptive sampling (pathtracer -a batch tolerance): every `batch` samples, a pixel
+/// whose luminance has a 95 % confidence interval within tolerance of its mean stops taking
+/// samples (PixelConverged). batch = 0: off, every pixel takes spp samples.
+struct AdaptiveSampling {
+  uint32_t batch = 0;
+  float tolerance = 0.05f;
+};
+
+/// The stopping rule: n >= 2 finite samples with mean μ and sample variance σ² of their
+/// luminance, and 1.96 σ / sqrt(n) <= tolerance · μ (CS184's I <= maxTolerance · μ).
+bool PixelConverged(const PixelMoments& m, float tolerance);
+
+/// One completed pass, handed to RenderOptions::on_pass on the process that keeps the film.
+struct RenderPass {
+  uint32_t index = 0;     // 0, 1, ...
+  uint32_t spp_done = 0;  // samples per pixel in the film, this pass included
+  /// Render time since the start, without the time spent in on_pass itself (so that a caller
+  /// measuring error after each pass does not slow the clock it reports).
+  double seconds = 0;
+  const FilmBlock* film = nullptr;                 // every completed pass, merged
+  const std::vector<FilmBlock>* blocks = nullptr;  // this pass's tile blocks, in merge order
+  /// Adaptive sampling: every pixel's moments after this pass (row-major); else null.
+  const std::vector<PixelMoments>* pixels = nullptr;
+};
+
 struct RenderOptions {
   uint32_t spp = 1;
   int threads = 1;
@@ -48,10 +73,18 @@ struct RenderOptions {
   /// When set, tiles run through the 8-wide packet path on this traversal backend (bit-identical
   /// to the scalar path); it must outlive the render. Null: one ray at a time, the oracle.
   const TraversalBackend8* packets = nullptr;
+  /// > 0: no pass starts once this many seconds of rendering have passed (the image keeps
+  /// the passes done; spp is then an upper bound). Not with a distribution.
+  double time_budget = 0;
+  /// Adaptive sampling (passes are then `batch` samples). Not with a distribution.
+  AdaptiveSampling adaptive;
   /// When set, the tiles of each pass are shared with other processes through it.
   const RenderDistribution* distribution = nullptr;
   /// Called from the coordinating thread after each tile completes.
   std::function<void(const RenderProgress&)> on_progress;
+  /// Called from the coordinating thread after each completed pass (e.g. to measure the error
+  /// of the image so far, or to accumulate passes into several films).
+  std::function<void(const RenderPass&)> on_pass;
 };
 
 struct RenderResult {
@@ -69,6 +102,9 @@ struct RenderResult {
   /// tiles in row order): the unit costs that load balancing has to even out.
   std::vector<float> tile_seconds;
   int tile_count = 0;
+  /// Adaptive sampling: the samples each pixel took (row-major), summing to samples_taken.
+  std::vector<uint32_t> pixel_samples;
+  uint64_t samples_taken = 0;  // every pixel sample of the completed passes
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of

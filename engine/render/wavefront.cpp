@@ -129,20 +129,22 @@ class Wavefront {
         stats_(stats) {}
 
   void RenderTile(const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
-                  uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block) {
+                  uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
+                  const PixelSampling* pixels) {
     for (int y = y0; y < y1; y += kWaveRows) {
       const int wy1 = std::min(y1, y + kWaveRows);
-      Generate(camera, x0, y, x1, wy1, s_begin, s_end, seed);
+      Generate(camera, x0, y, x1, wy1, s_begin, s_end, seed, pixels);
       for (int depth = 0; rays_.size() > 0; ++depth) Bounce(depth);
-      Splat(filter, x0, y, x1, wy1, s_end - s_begin, block);
+      Splat(filter, x0, y, x1, wy1, s_end - s_begin, block, pixels);
     }
   }
 
  private:
   // Camera rays of pixels [x0, x1) x [y0, y1), samples [s_begin, s_end), in 4x2-pixel packets
   // at one sample index each; path id = generation order, result slot = scalar splat order.
+  // Pixels that `pixels` marks inactive get no paths (their slots stay unused).
   void Generate(const Camera& camera, int x0, int y0, int x1, int y1, uint32_t s_begin,
-                uint32_t s_end, uint64_t seed) {
+                uint32_t s_end, uint64_t seed, const PixelSampling* pixels) {
     const auto t0 = Clock::now();
     const uint64_t width = uint64_t(camera.width());
     const size_t samples = s_end - s_begin, tile_w = size_t(x1 - x0);
@@ -151,7 +153,7 @@ class Wavefront {
     L_.assign(n, Color3f{}), throughput_.assign(n, Color3f{1, 1, 1}), nee_throughput_.resize(n);
     eta_.assign(n, 1.0f), prev_pdf_.assign(n, 0.0f), prev_p_.resize(n);
     specular_.assign(n, 1);  // the camera ray counts as specular: emission is always seen
-    results_.resize(n);
+    results_.assign(n, Result{});
     rays_.Clear();
     uint32_t id = 0;
     for (int y = y0; y < y1; y += 2) {
@@ -161,6 +163,7 @@ class Wavefront {
             const int px = bx + (j & 3), py = y + (j >> 2);
             if (px >= x1 || py >= y1) continue;
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
+            if (pixels && pixels->active && !pixels->active[pixel]) continue;
             Pcg32& rng = rng_[id];
             rng = Pcg32(PixelSeed(seed, pixel), s);
             const float jx = rng.NextFloat(), jy = rng.NextFloat();
@@ -168,13 +171,15 @@ class Wavefront {
             const float sx = float(px) + jx, sy = float(py) + jy;
             slot_[id] = uint32_t((size_t(py - y0) * tile_w + size_t(px - x0)) * samples +
                                  (s - s_begin));
-            results_[slot_[id]] = {sx, sy, Color3f{}};
+            results_[slot_[id]] = {sx, sy, Color3f{}, true};
             rays_.Push(camera.GenerateRay(sx, sy, {lx, ly}), id);
             ++id;
           }
         }
       }
     }
+    // Fewer paths than slots when pixels are inactive: Splat reads only the paths made here.
+    slot_.resize(id), rng_.resize(id);
     stats_->seconds.sampling += Seconds(t0, Clock::now());
   }
 
@@ -339,14 +344,20 @@ class Wavefront {
   // Splats the wave's samples in the scalar loop's order (row, pixel, sample); non-finite
   // samples are dropped and counted.
   void Splat(const PixelFilter& filter, int x0, int y0, int x1, int y1, size_t samples,
-             FilmBlock* block) {
+             FilmBlock* block, const PixelSampling* pixels) {
     const auto t0 = Clock::now();
     for (size_t i = 0; i < slot_.size(); ++i) results_[slot_[i]].L = L_[i];
     const size_t tile_w = size_t(x1 - x0);
     for (int y = y0; y < y1; ++y) {
       for (size_t px = 0; px < tile_w; ++px) {
+        PixelMoments* moments =
+            pixels && pixels->moments
+                ? &pixels->moments[uint64_t(y) * pixels->width + uint64_t(x0) + px]
+                : nullptr;
         for (size_t s = 0; s < samples; ++s) {
           const Result& r = results_[(size_t(y - y0) * tile_w + px) * samples + s];
+          if (!r.used) continue;  // an inactive pixel (adaptive sampling)
+          if (moments) AddPixelSample(r.L, moments);
           if (!IsFinite(r.L)) {
             if (stats_->nonfinite++ == 0) stats_->first_x = x0 + int(px), stats_->first_y = y;
             continue;
@@ -361,6 +372,7 @@ class Wavefront {
   struct Result {
     float sx = 0, sy = 0;
     Color3f L;
+    bool used = false;
   };
 
   const Scene& scene_;
@@ -393,10 +405,10 @@ class Wavefront {
 void RenderTilePacket8(const RenderContext& ctx, const TraversalBackend8& backend,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
-                       TileSampleStats* stats) {
+                       TileSampleStats* stats, const PixelSampling* pixels) {
   if (x1 <= x0 || y1 <= y0 || s_end <= s_begin) return;
   Wavefront wave(ctx, backend, stats);
-  wave.RenderTile(camera, filter, x0, y0, x1, y1, s_begin, s_end, seed, block);
+  wave.RenderTile(camera, filter, x0, y0, x1, y1, s_begin, s_end, seed, block, pixels);
 }
 
 }  // namespace ptlab

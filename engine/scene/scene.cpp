@@ -5,6 +5,39 @@
 
 namespace ptlab {
 
+const char* IntegratorTypeName(IntegratorDesc::Type type) {
+  using T = IntegratorDesc::Type;
+  switch (type) {
+    case T::kNormals:
+      return "normals";
+    case T::kDirectEms:
+      return "direct_ems";
+    case T::kDirectMats:
+      return "direct_mats";
+    case T::kDirectMis:
+      return "direct_mis";
+    case T::kWhitted:
+      return "whitted";
+    case T::kPathMats:
+      return "path_mats";
+    case T::kPathEms:
+      return "path_ems";
+    case T::kPathMis:
+      return "path_mis";
+  }
+  return "?";
+}
+
+bool IntegratorTypeFromName(std::string_view name, IntegratorDesc::Type* type) {
+  for (int i = 0; i <= int(IntegratorDesc::Type::kPathMis); ++i) {
+    if (name == IntegratorTypeName(IntegratorDesc::Type(i))) {
+      *type = IntegratorDesc::Type(i);
+      return true;
+    }
+  }
+  return false;
+}
+
 void FinalizeAreaLights(Scene* scene) {
   AreaLightTable& lights = scene->area_lights;
   lights.area.assign(lights.size(), 0.0f);

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/core/transform.h"
@@ -73,6 +74,11 @@ struct Scene {
   /// can check they all read the same bytes.
   std::vector<std::string> input_files;
 };
+
+/// The XML name of an integrator type ("path_mis", ...).
+const char* IntegratorTypeName(IntegratorDesc::Type type);
+/// The integrator type of an XML name; false for an unknown name.
+bool IntegratorTypeFromName(std::string_view name, IntegratorDesc::Type* type);
 
 /// Fills area_lights' areas and triangle CDFs from the meshes that carry an area emitter.
 /// Called by loaders after all shapes are in; idempotent.

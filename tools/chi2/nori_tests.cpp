@@ -48,29 +48,6 @@ const char* MaterialName(MaterialTag tag) {
   return "?";
 }
 
-const char* IntegratorName(IntegratorDesc::Type type) {
-  using T = IntegratorDesc::Type;
-  switch (type) {
-    case T::kNormals:
-      return "normals";
-    case T::kDirectEms:
-      return "direct_ems";
-    case T::kDirectMats:
-      return "direct_mats";
-    case T::kDirectMis:
-      return "direct_mis";
-    case T::kWhitted:
-      return "whitted";
-    case T::kPathMats:
-      return "path_mats";
-    case T::kPathEms:
-      return "path_ems";
-    case T::kPathMis:
-      return "path_mis";
-  }
-  return "?";
-}
-
 std::string Printf(const char* fmt, double a, double b = 0, double c = 0) {
   char buf[256];
   std::snprintf(buf, sizeof(buf), fmt, a, b, c);
@@ -157,7 +134,7 @@ void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, in
     if (!RunsNextCase(options, case_index)) continue;
     const Scene& scene = file.scenes[s];
     NoriTestCase c;
-    c.name = "scene " + std::to_string(s + 1) + " " + IntegratorName(scene.integrator.type) +
+    c.name = "scene " + std::to_string(s + 1) + " " + IntegratorTypeName(scene.integrator.type) +
              " (line " + std::to_string(s < file.child_lines.size() ? file.child_lines[s] : 0) +
              ")";
     const std::string unsupported = UnsupportedFeature(scene);

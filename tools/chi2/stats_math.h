@@ -13,7 +13,6 @@ namespace ptlab {
 double RegularizedGammaP(double a, double x);
 
 /// Regularised upper incomplete gamma Q(a, x) = Γ(a, x) / Γ(a) = 1 - P(a, x); a > 0, x >= 0.
-/// Series for x < a + 1, Lentz continued fraction otherwise (Numerical Recipes §6.2).
 double RegularizedGammaQ(double a, double x);
 
 /// Probability that a χ² variable with `dof` degrees of freedom is >= `chi2`: Q(dof/2, chi2/2).
@@ -121,8 +120,7 @@ PearsonResult PearsonChiSquare(const std::vector<double>& observed,
                                const std::vector<double>& expected, double min_expected = 5.0);
 
 /// Regularised incomplete beta function I_x(a, b) = B(x; a, b) / B(a, b); a, b > 0,
-/// 0 <= x <= 1 (NaN otherwise). Lentz continued fraction on whichever of I_x(a, b) and
-/// 1 - I_{1-x}(b, a) converges fast (Numerical Recipes §6.4).
+/// 0 <= x <= 1 (NaN otherwise). These special functions and distributions are Boost.Math's.
 double RegularizedIncompleteBeta(double a, double b, double x);
 
 /// P[T <= t] for Student's t distribution with `dof` > 0 degrees of freedom (real dof allowed,

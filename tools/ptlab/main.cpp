@@ -6,7 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <thread>
@@ -26,6 +26,7 @@
 #include "tools/chi2/nori_tests.h"
 #include "tools/mpi/mpi_render.h"
 #include "tools/mpi/mpi_session.h"
+#include "tools/ptlab/converge_command.h"
 #include "tools/ptlab/test_over_ranks.h"
 
 namespace ptlab {
@@ -108,19 +109,12 @@ struct RenderArgs {
 
 // --tile-times: pass, tile and wall seconds of every tile (input of benchmarks/mpi_model).
 Status WriteTileTimes(const std::string& path, const RenderResult& r) {
-  const std::string tmp = path + ".tmp-" + std::to_string(getpid());
-  {
-    std::ofstream out(tmp);
-    out << "pass,tile,seconds\n";
-    for (size_t k = 0; k < r.tile_seconds.size(); ++k)
-      out << k / size_t(r.tile_count) << "," << k % size_t(r.tile_count) << ","
-          << r.tile_seconds[k] << "\n";
-    if (!out) return Status::Error(path + ": cannot write the tile times");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) return Status::Error(path + ": cannot write the tile times: " + ec.message());
-  return Status::Ok();
+  std::ostringstream out;
+  out << "pass,tile,seconds\n";
+  for (size_t k = 0; k < r.tile_seconds.size(); ++k)
+    out << k / size_t(r.tile_count) << "," << k % size_t(r.tile_count) << "," << r.tile_seconds[k]
+        << "\n";
+  return WriteFileAtomically(path, out.str());
 }
 
 // --stats: where the thread time of the packet path went, and how full its packets were.
@@ -322,16 +316,23 @@ int main(int argc, char** argv) {
   envmap_cmd->add_option("-o,--output", envmap_out, "Output image (.png, .exr or .pfm)")
       ->required();
 
+  ptlab::ConvergeArgs converge;
+  CLI::App* converge_cmd = ptlab::AddConvergeCommand(&app, &converge);
+
   bool known = false;
   for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
     known = known || (argc > 1 && sub->get_name() == argv[1]);
   if (argc > 1 && argv[1][0] != '-' && !known) {
-    std::fprintf(stderr, "error: unknown command '%s'; expected one of: render, test, envmap-pdf (see --help)\n",
+    std::fprintf(stderr, "error: unknown command '%s'; expected one of: render, converge, test, envmap-pdf (see --help)\n",
                  argv[1]);
     return 3;
   }
   CLI11_PARSE(app, argc, argv);
   if (cmd->parsed()) return ptlab::RunRender(render, mpi);
+  if (converge_cmd->parsed()) {
+    std::signal(SIGINT, ptlab::OnSigint);
+    return ptlab::RunConverge(converge, &ptlab::g_interrupted);
+  }
   if (test_cmd->parsed())
     return mpi.active() ? ptlab::RunNoriTestOverRanks(test_file, test_verbose, mpi)
                         : ptlab::RunNoriTestCommand(test_file, test_verbose);

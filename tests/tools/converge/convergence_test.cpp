@@ -1,0 +1,87 @@
+// Error-vs-time records of `ptlab converge`: fits, time to quality, the two-halves estimate.
+#include "tools/converge/convergence.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "tools/imgdiff/imgdiff.h"
+
+namespace ptlab {
+namespace {
+
+TEST(Convergence, FitLogLogRecoversAPowerLaw) {
+  std::vector<double> x, y;
+  for (double n = 16; n <= 1024; n *= 2) x.push_back(n), y.push_back(3.0 * std::pow(n, -1.0));
+  const LogLogFit fit = FitLogLog(x, y);
+  EXPECT_EQ(fit.points, 7);
+  EXPECT_NEAR(fit.slope, -1.0, 1e-12);
+  EXPECT_NEAR(std::exp(fit.intercept), 3.0, 1e-9);
+  EXPECT_NEAR(fit.slope_stderr, 0.0, 1e-9);
+  // Non-positive and non-finite points are left out.
+  x.push_back(0), y.push_back(1);
+  x.push_back(5), y.push_back(std::nan(""));
+  EXPECT_EQ(FitLogLog(x, y).points, 7);
+  EXPECT_TRUE(std::isnan(FitLogLog({1}, {1}).slope));
+}
+
+TEST(Convergence, TimeToQualityInterpolatesLogLog) {
+  std::vector<ConvergencePoint> run(3);
+  run[0].seconds = 1, run[0].rel_mse = 1e-1;
+  run[1].seconds = 10, run[1].rel_mse = 1e-3;
+  run[2].seconds = 20, run[2].rel_mse = 5e-4;
+  // Between (1 s, 1e-1) and (10 s, 1e-3): relMSE ~ t^-2, so 1e-2 at sqrt(10) s.
+  EXPECT_NEAR(TimeToQuality(run, 1e-2), std::sqrt(10.0), 1e-9);
+  EXPECT_NEAR(TimeToQuality(run, 1e-3), 10.0, 1e-9);
+  EXPECT_NEAR(TimeToQuality(run, 0.5), 1.0, 1e-12);  // reached at the first pass
+  EXPECT_TRUE(std::isnan(TimeToQuality(run, 1e-4)));
+}
+
+// Two halves of N samples each of a known noise: the estimate of the mean's relMSE is the
+// expected value, var/(2N) / (mu^2 + eps), within its sampling error.
+TEST(Convergence, TwoHalvesEstimateTheErrorOfTheirMean) {
+  const int w = 200, h = 200;
+  const double mu = 0.5, sigma = 0.1;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, sigma);
+  Image a(w, h), b(w, h), mean(w, h), truth(w, h);
+  for (size_t i = 0; i < a.rgb.size(); ++i) {
+    a.rgb[i] = float(mu + noise(rng));
+    b.rgb[i] = float(mu + noise(rng));
+    mean.rgb[i] = 0.5f * (a.rgb[i] + b.rgb[i]);
+    truth.rgb[i] = float(mu);
+  }
+  const double expected = sigma * sigma / 2 / (mu * mu + kRelMseEpsilon);
+  const double estimate = EstimateRelMseFromHalves(a, b);
+  const double actual = CompareImages(mean, truth, {}).rel_mse_all;
+  // 120,000 values: the sampling error of both is ~0.4 %; the estimate's denominator (a 3x3
+  // mean with 1/9 of the variance, 0.047 relative here) adds ~3 (0.047)^2 = +0.7 %.
+  EXPECT_NEAR(estimate / expected, 1.0, 0.03);
+  EXPECT_NEAR(actual / expected, 1.0, 0.03);
+}
+
+TEST(Convergence, SummaryAveragesSeedsAndFitsTheSlope) {
+  std::vector<ConvergencePoint> points;
+  for (uint64_t seed : {1, 2})
+    for (uint32_t k = 0; k < 4; ++k) {
+      ConvergencePoint p;
+      p.scene = "s", p.variant = "v", p.seed = seed, p.pass = k, p.spp = 16 * (k + 1);
+      p.mean_spp = p.spp;
+      p.seconds = 0.5 * (k + 1);
+      p.rel_mse = (seed == 1 ? 0.9 : 1.1) / p.spp;
+      p.estimated_rel_mse = k % 2 ? 1.2 / p.spp : std::nan("");
+      points.push_back(p);
+    }
+  const std::vector<VariantSummary> s = Summarize(points);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0].seeds, 2);
+  EXPECT_NEAR(s[0].final_rel_mse, 1.0 / 64, 1e-12);
+  EXPECT_NEAR(s[0].slope_spp.slope, -1.0, 1e-12);
+  EXPECT_NEAR(s[0].efficiency, 64.0 / 2.0, 1e-9);
+  EXPECT_NEAR(s[0].estimate_ratio, 1.2, 1e-12);
+  EXPECT_NEAR(s[0].final_rel_mse_sd, std::sqrt(2.0) * 0.1 / 64, 1e-12);
+}
+
+}  // namespace
+}  // namespace ptlab

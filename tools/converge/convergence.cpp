@@ -1,0 +1,339 @@
+// Error against time for `ptlab converge`: fits, time to quality, CSV/JSON/Markdown, gnuplot.
+#include "tools/converge/convergence.h"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "engine/image/image_io.h"
+#include "tools/imgdiff/imgdiff.h"
+
+namespace ptlab {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string Num(double v) {
+  if (!std::isfinite(v)) return "nan";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string JsonNum(double v) { return std::isfinite(v) ? Num(v) : "null"; }
+
+std::string JsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (const double x : v) s += x;
+  return v.empty() ? kNaN : s / double(v.size());
+}
+
+}  // namespace
+
+double EstimateRelMseFromHalves(const Image& a, const Image& b) {
+  // The denominator stands in for the reference: the mean of the halves over a 3x3 pixel
+  // neighbourhood, which has 1/9 of a pixel's variance. The pixel's own noisy mean there would
+  // bias the estimate up by Jensen's inequality (E[1/m^2] > 1/E[m]^2): +35 % where the noise of
+  // a half is 40 % of the mean, against +3 % with the neighbourhood (convergence_test.cpp).
+  const int w = a.width, h = a.height;
+  auto mean_at = [&](int x, int y, int c) {
+    const size_t i = (size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c);
+    return 0.5 * (double(a.rgb[i]) + double(b.rgb[i]));
+  };
+  double sum = 0;
+  int64_t n = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const size_t i = (size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c);
+        const double half_diff = 0.5 * (double(a.rgb[i]) - double(b.rgb[i]));
+        if (!std::isfinite(half_diff)) continue;
+        double local = 0;
+        int taps = 0;
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+            const double m = mean_at(xx, yy, c);
+            if (!std::isfinite(m)) continue;
+            local += m;
+            ++taps;
+          }
+        }
+        local /= double(taps);
+        sum += half_diff * half_diff / (local * local + kRelMseEpsilon);
+        ++n;
+      }
+    }
+  }
+  return n > 0 ? sum / double(n) : kNaN;
+}
+
+LogLogFit FitLogLog(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<double> lx, ly;
+  for (size_t i = 0; i < x.size() && i < y.size(); ++i) {
+    if (!(x[i] > 0) || !(y[i] > 0) || !std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
+    lx.push_back(std::log(x[i]));
+    ly.push_back(std::log(y[i]));
+  }
+  LogLogFit fit;
+  fit.points = int(lx.size());
+  if (fit.points < 2) {
+    fit.slope = fit.intercept = kNaN;
+    return fit;
+  }
+  const double mx = Mean(lx), my = Mean(ly);
+  double sxx = 0, sxy = 0;
+  for (size_t i = 0; i < lx.size(); ++i) {
+    sxx += (lx[i] - mx) * (lx[i] - mx);
+    sxy += (lx[i] - mx) * (ly[i] - my);
+  }
+  fit.slope = sxx > 0 ? sxy / sxx : kNaN;
+  fit.intercept = my - fit.slope * mx;
+  if (fit.points >= 3 && sxx > 0) {
+    double rss = 0;
+    for (size_t i = 0; i < lx.size(); ++i) {
+      const double r = ly[i] - (fit.intercept + fit.slope * lx[i]);
+      rss += r * r;
+    }
+    fit.slope_stderr = std::sqrt(rss / double(fit.points - 2) / sxx);
+  }
+  return fit;
+}
+
+double TimeToQuality(const std::vector<ConvergencePoint>& run, double target) {
+  for (size_t i = 0; i < run.size(); ++i) {
+    if (!(run[i].rel_mse <= target)) continue;
+    if (i == 0 || !(run[i - 1].rel_mse > 0) || !(run[i - 1].seconds > 0) ||
+        !(run[i].rel_mse > 0))
+      return run[i].seconds;
+    // Between the passes that straddle the target, relMSE is a power of time.
+    const double l0 = std::log(run[i - 1].rel_mse), l1 = std::log(run[i].rel_mse);
+    const double s0 = std::log(run[i - 1].seconds), s1 = std::log(run[i].seconds);
+    const double f = l1 != l0 ? (std::log(target) - l0) / (l1 - l0) : 1.0;
+    return std::exp(s0 + f * (s1 - s0));
+  }
+  return kNaN;
+}
+
+std::vector<VariantSummary> Summarize(const std::vector<ConvergencePoint>& points) {
+  // (scene, variant) -> seed -> points in pass order.
+  std::vector<std::pair<std::string, std::string>> order;
+  std::map<std::pair<std::string, std::string>, std::map<uint64_t, std::vector<ConvergencePoint>>>
+      runs;
+  for (const ConvergencePoint& p : points) {
+    const auto key = std::make_pair(p.scene, p.variant);
+    if (!runs.count(key)) order.push_back(key);
+    runs[key][p.seed].push_back(p);
+  }
+  std::vector<VariantSummary> out;
+  for (const auto& key : order) {
+    const auto& by_seed = runs[key];
+    VariantSummary s;
+    s.scene = key.first;
+    s.variant = key.second;
+    s.seeds = int(by_seed.size());
+    // Passes that every seed completed (a --time budget can end seeds at different passes).
+    size_t passes = std::numeric_limits<size_t>::max();
+    for (const auto& [seed, run] : by_seed) passes = std::min(passes, run.size());
+    std::vector<double> ttq2, ttq3, finals;
+    for (size_t k = 0; k < passes; ++k) {
+      std::vector<double> spp, sec, rel, est;
+      for (const auto& [seed, run] : by_seed) {
+        spp.push_back(run[k].mean_spp), sec.push_back(run[k].seconds);
+        rel.push_back(run[k].rel_mse), est.push_back(run[k].estimated_rel_mse);
+      }
+      s.spp.push_back(Mean(spp)), s.seconds.push_back(Mean(sec));
+      s.rel_mse.push_back(Mean(rel)), s.estimated_rel_mse.push_back(Mean(est));
+    }
+    for (const auto& [seed, run] : by_seed) {
+      ttq2.push_back(TimeToQuality(run, 1e-2));
+      ttq3.push_back(TimeToQuality(run, 1e-3));
+      if (passes > 0) finals.push_back(run[passes - 1].rel_mse);
+    }
+    // Reached by every seed, else not reached (NaN propagates through the mean).
+    s.seconds_to_1e2 = Mean(ttq2);
+    s.seconds_to_1e3 = Mean(ttq3);
+    if (passes > 0) {
+      s.final_rel_mse = s.rel_mse.back();
+      s.final_seconds = s.seconds.back();
+      double var = 0;
+      for (const double f : finals) var += (f - s.final_rel_mse) * (f - s.final_rel_mse);
+      s.final_rel_mse_sd = finals.size() > 1 ? std::sqrt(var / double(finals.size() - 1)) : 0;
+      s.efficiency = 1.0 / (s.final_rel_mse * s.final_seconds);
+      s.estimate_ratio = kNaN;
+      for (size_t k = passes; k-- > 0;) {
+        if (std::isfinite(s.estimated_rel_mse[k]) && s.rel_mse[k] > 0) {
+          s.estimate_ratio = s.estimated_rel_mse[k] / s.rel_mse[k];
+          break;
+        }
+      }
+    }
+    s.slope_spp = FitLogLog(s.spp, s.rel_mse);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+Status WriteConvergeCsv(const std::string& path, const std::vector<ConvergencePoint>& points) {
+  std::ostringstream o;
+  o << "scene,variant,seed,pass,spp,mean_spp,seconds,rel_mse,rmse,mae,bias_r,bias_g,bias_b,parity_share,"
+       "estimated_rel_mse\n";
+  for (const ConvergencePoint& p : points) {
+    // Variant specs hold commas: quote them (RFC 4180).
+    o << JsonString(p.scene) << "," << JsonString(p.variant) << "," << p.seed << "," << p.pass
+      << "," << p.spp << "," << Num(p.mean_spp) << "," << Num(p.seconds) << "," << Num(p.rel_mse) << "," << Num(p.rmse)
+      << "," << Num(p.mae) << "," << Num(p.bias[0]) << "," << Num(p.bias[1]) << ","
+      << Num(p.bias[2]) << "," << Num(p.parity_share) << "," << Num(p.estimated_rel_mse)
+      << "\n";
+  }
+  return WriteFileAtomically(path, o.str());
+}
+
+Status WriteConvergeJson(const std::string& path, const std::vector<std::string>& references,
+                         const std::vector<ConvergencePoint>& points,
+                         const std::vector<VariantSummary>& summary) {
+  std::ostringstream o;
+  o << "{\n  \"references\": [";
+  for (size_t i = 0; i < references.size(); ++i)
+    o << (i ? ", " : "") << JsonString(references[i]);
+  o << "],\n  \"points\": [\n";
+  for (size_t i = 0; i < points.size(); ++i) {
+    const ConvergencePoint& p = points[i];
+    o << "    {\"scene\": " << JsonString(p.scene) << ", \"variant\": " << JsonString(p.variant)
+      << ", \"seed\": " << p.seed << ", \"pass\": " << p.pass << ", \"spp\": " << p.spp
+      << ", \"mean_spp\": " << JsonNum(p.mean_spp) << ", \"seconds\": " << JsonNum(p.seconds) << ", \"rel_mse\": " << JsonNum(p.rel_mse)
+      << ", \"rmse\": " << JsonNum(p.rmse) << ", \"mae\": " << JsonNum(p.mae)
+      << ", \"bias\": [" << JsonNum(p.bias[0]) << ", " << JsonNum(p.bias[1]) << ", "
+      << JsonNum(p.bias[2]) << "], \"parity_share\": " << JsonNum(p.parity_share)
+      << ", \"estimated_rel_mse\": " << JsonNum(p.estimated_rel_mse) << "}"
+      << (i + 1 < points.size() ? "," : "") << "\n";
+  }
+  o << "  ],\n  \"summary\": [\n";
+  for (size_t i = 0; i < summary.size(); ++i) {
+    const VariantSummary& s = summary[i];
+    o << "    {\"scene\": " << JsonString(s.scene) << ", \"variant\": " << JsonString(s.variant)
+      << ", \"seeds\": " << s.seeds << ", \"final_rel_mse\": " << JsonNum(s.final_rel_mse)
+      << ", \"final_rel_mse_sd\": " << JsonNum(s.final_rel_mse_sd)
+      << ", \"final_seconds\": " << JsonNum(s.final_seconds)
+      << ", \"efficiency\": " << JsonNum(s.efficiency)
+      << ", \"slope_spp\": " << JsonNum(s.slope_spp.slope)
+      << ", \"slope_spp_stderr\": " << JsonNum(s.slope_spp.slope_stderr)
+      << ", \"seconds_to_rel_mse_1e-2\": " << JsonNum(s.seconds_to_1e2)
+      << ", \"seconds_to_rel_mse_1e-3\": " << JsonNum(s.seconds_to_1e3)
+      << ", \"estimate_over_true\": " << JsonNum(s.estimate_ratio) << "}"
+      << (i + 1 < summary.size() ? "," : "") << "\n";
+  }
+  o << "  ]\n}\n";
+  return WriteFileAtomically(path, o.str());
+}
+
+std::string SummaryTable(const std::vector<VariantSummary>& summary) {
+  std::ostringstream o;
+  o << "| scene | variant | seeds | spp | seconds | relMSE (± sd) | efficiency 1/(relMSE·s) | "
+       "slope vs spp | s to 1e-2 | s to 1e-3 | estimate / true |\n"
+    << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  auto secs = [](double v) { return std::isfinite(v) ? Num(v) : std::string("not reached"); };
+  for (const VariantSummary& s : summary) {
+    char rel[96];
+    std::snprintf(rel, sizeof rel, "%.4g ± %.2g", s.final_rel_mse, s.final_rel_mse_sd);
+    char slope[64];
+    std::snprintf(slope, sizeof slope, "%.3f ± %.3f", s.slope_spp.slope,
+                  s.slope_spp.slope_stderr);
+    o << "| " << s.scene << " | " << s.variant << " | " << s.seeds << " | "
+      << (s.spp.empty() ? 0.0 : s.spp.back()) << " | " << Num(s.final_seconds) << " | " << rel
+      << " | " << Num(s.efficiency) << " | " << slope << " | " << secs(s.seconds_to_1e2)
+      << " | " << secs(s.seconds_to_1e3) << " | " << Num(s.estimate_ratio) << " |\n";
+  }
+  return o.str();
+}
+
+Status PlotConvergence(const std::string& dir, const std::string& stem,
+                       const std::vector<VariantSummary>& scene_summary) {
+  namespace fs = std::filesystem;
+  const std::string base = (fs::path(dir) / stem).string();
+  // Data: one gnuplot index block per variant (spp, seconds, relMSE, efficiency).
+  std::ostringstream data;
+  for (const VariantSummary& s : scene_summary) {
+    data << "# " << s.variant << "\n";
+    for (size_t k = 0; k < s.spp.size(); ++k)
+      data << Num(s.spp[k]) << " " << Num(s.seconds[k]) << " " << Num(s.rel_mse[k]) << " "
+           << Num(1.0 / (s.rel_mse[k] * s.seconds[k])) << "\n";
+    data << "\n\n";
+  }
+  PTLAB_RETURN_IF_ERROR(WriteFileAtomically(base + ".dat", data.str()));
+  std::ostringstream gp;
+  gp << "# gnuplot script written by ptlab converge\n"
+     << "set logscale xy\nset grid\nset key below\nset datafile missing 'nan'\n";
+  struct Plot {
+    const char* suffix;
+    const char* xlabel;
+    const char* ylabel;
+    int x, y;
+    bool targets;
+  };
+  const Plot plots[] = {
+      {"_seconds", "render time (s)", "relMSE", 2, 3, true},
+      {"_spp", "samples per pixel", "relMSE", 1, 3, true},
+      {"_efficiency", "render time (s)", "efficiency 1/(relMSE s)", 2, 4, false},
+  };
+  for (const char* term : {"svg size 900,560 dynamic font 'sans,12'",
+                           "pngcairo size 900,560 font 'sans,11'"}) {
+    const std::string ext = std::string(term).rfind("svg", 0) == 0 ? ".svg" : ".png";
+    for (const Plot& p : plots) {
+      gp << "set terminal " << term << "\nset output '" << base << p.suffix << ext << "'\n"
+         << "set title '" << stem << "'\nset xlabel '" << p.xlabel << "'\nset ylabel '"
+         << p.ylabel << "'\nplot ";
+      for (size_t i = 0; i < scene_summary.size(); ++i) {
+        const VariantSummary& s = scene_summary[i];
+        std::string title = s.variant;
+        for (char& c : title)
+          if (c == '\'' || c == '_') c = c == '_' ? ' ' : '"';
+        if (p.targets && std::string(p.suffix) == "_spp") {
+          char buf[48];
+          std::snprintf(buf, sizeof buf, " (slope %.2f)", s.slope_spp.slope);
+          title += buf;
+        }
+        gp << (i ? ", " : "") << "'" << base << ".dat' index " << i << " using " << p.x << ":"
+           << p.y << " with linespoints title '" << title << "'";
+      }
+      if (p.targets)
+        gp << ", 1e-2 with lines dashtype 2 lc 'gray' title 'relMSE 1e-2', 1e-3 with lines "
+              "dashtype 3 lc 'gray' title 'relMSE 1e-3'";
+      gp << "\nunset output\n";
+    }
+  }
+  PTLAB_RETURN_IF_ERROR(WriteFileAtomically(base + ".gp", gp.str()));
+  const std::string command = "gnuplot '" + base + ".gp' 2> '" + base + ".gnuplot.log'";
+  const int rc = std::system(command.c_str());
+  if (rc != 0 || !WIFEXITED(rc) || WEXITSTATUS(rc) != 0)
+    return Status::Error("gnuplot failed on " + base + ".gp (is gnuplot installed? ./lab "
+                         "installs gnuplot-nox); see " + base + ".gnuplot.log");
+  std::error_code ec;
+  fs::remove(base + ".gnuplot.log", ec);
+  return Status::Ok();
+}
+
+}  // namespace ptlab

@@ -1,0 +1,317 @@
+// `ptlab converge`: renders every variant of every scene progressively, measures the error of
+// each pass against a reference, and writes CSV, JSON, a Markdown summary and gnuplot plots.
+#include "tools/ptlab/converge_command.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "engine/bvh/bvh.h"
+#include "engine/image/image_io.h"
+#include "engine/render/render.h"
+#include "engine/scene/xml_loader.h"
+#include "simd/bvh8.h"
+#include "simd/traverse8_backend.h"
+#include "tools/converge/convergence.h"
+#include "tools/converge/variant.h"
+#include "tools/imgdiff/imgdiff.h"
+
+namespace ptlab {
+namespace {
+
+constexpr int kExitRender = 1, kExitUsage = 2, kExitInterrupted = 130;
+/// --ref auto: the reference gets this many times a run's samples (or time).
+constexpr int kAutoReferenceFactor = 16;
+constexpr uint64_t kAutoReferenceSeed = 0x5eed0fef;
+
+// A scene with what every run of it shares: BVHs and the packet backend.
+struct LoadedScene {
+  std::string path, stem;
+  Scene scene;
+  Bvh bvh;
+  simd::Bvh8 bvh8;
+  TraversalBackend8 backend;
+  Image reference;
+  std::string reference_note;
+};
+
+Status CheckReference(const Image& ref, const Scene& scene, const std::string& what) {
+  if (ref.width != scene.camera.width || ref.height != scene.camera.height)
+    return Status::Error(what + " is " + std::to_string(ref.width) + "x" +
+                         std::to_string(ref.height) + " but the scene renders " +
+                         std::to_string(scene.camera.width) + "x" +
+                         std::to_string(scene.camera.height));
+  for (size_t i = 0; i < ref.rgb.size(); ++i) {
+    if (!std::isfinite(ref.rgb[i])) {
+      const size_t px = i / 3;
+      return Status::Error(what + " has a NaN/Inf value at pixel " +
+                           std::to_string(px % size_t(ref.width)) + "," +
+                           std::to_string(px / size_t(ref.width)) +
+                           "; a reference must be finite");
+    }
+  }
+  return Status::Ok();
+}
+
+// One progressive run; appends a point per completed pass.
+bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& args,
+            uint64_t seed, const std::atomic<bool>* interrupted,
+            std::vector<ConvergencePoint>* points, std::string* error) {
+  Scene scene = ls.scene;  // the variant edits a copy
+  VariantTarget target(&scene);
+  if (const Status st = ApplyVariant(variant, &target); !st.ok()) {
+    *error = ls.path + ": " + st.message();
+    return false;
+  }
+  RenderOptions options;
+  options.spp = args.time > 0 ? (1u << 20) : uint32_t(args.spp > 0 ? args.spp : scene.sampler.sample_count);
+  options.time_budget = args.time;
+  options.threads = args.threads;
+  options.seed = seed;
+  options.cancel = interrupted;
+  options.packets = target.scalar ? nullptr : &ls.backend;
+  options.adaptive = target.adaptive;
+  const int w = scene.camera.width, h = scene.camera.height;
+  FilmBlock halves[2] = {FilmBlock(0, 0, w, h), FilmBlock(0, 0, w, h)};
+  ImageDiffOptions diff_options;
+  options.on_pass = [&](const RenderPass& pass) {
+    // Even passes into one half, odd into the other: two independent estimates.
+    for (const FilmBlock& b : *pass.blocks) halves[pass.index % 2].Merge(b);
+    const Image image = pass.film->Resolve();
+    const ImageDiff d = CompareImages(image, ls.reference, diff_options);
+    ConvergencePoint p;
+    p.scene = ls.stem;
+    p.variant = variant.name;
+    p.seed = seed;
+    p.pass = pass.index;
+    p.spp = pass.spp_done;
+    p.mean_spp = pass.spp_done;
+    if (pass.pixels != nullptr) {
+      double taken = 0;
+      for (const PixelMoments& m : *pass.pixels) taken += m.taken;
+      p.mean_spp = taken / double(pass.pixels->size());
+    }
+    p.seconds = pass.seconds;
+    p.rel_mse = d.rel_mse_all, p.rmse = d.rmse_all, p.mae = d.mae_all;
+    p.bias = d.mean_rel_diff;
+    p.parity_share = d.blocks.share;
+    // With adaptive sampling the two halves hold different pixels' samples: no estimate.
+    p.estimated_rel_mse = pass.index % 2 == 1 && pass.pixels == nullptr
+                              ? EstimateRelMseFromHalves(halves[0].Resolve(), halves[1].Resolve())
+                              : std::nan("");
+    points->push_back(p);
+  };
+  const RenderResult r = Render(scene, ls.bvh, options);
+  if (!r.pixel_samples.empty()) {
+    // The sample-rate image: samples per pixel as EXR (exact counts) and PNG (count / spp).
+    std::string name = ls.stem + "_" + variant.name + "_seed" + std::to_string(seed) + "_samples";
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+    Image counts(w, h), rate(w, h);
+    for (size_t i = 0; i < r.pixel_samples.size(); ++i) {
+      const float n = float(r.pixel_samples[i]);
+      const float f = r.spp_done > 0 ? n / float(r.spp_done) : 0.0f;
+      counts.rgb[3 * i] = counts.rgb[3 * i + 1] = counts.rgb[3 * i + 2] = n;
+      // Blue (few samples) to red (all of them), as CS184's rate image.
+      rate.rgb[3 * i] = f, rate.rgb[3 * i + 1] = 0.0f, rate.rgb[3 * i + 2] = 1.0f - f;
+    }
+    const std::string base = (std::filesystem::path(args.out_dir) / name).string();
+    Status st = WriteExr(base + ".exr", counts,
+                         {{"ptlab:samples_taken", std::to_string(r.samples_taken)}});
+    if (st.ok()) st = WritePng(base + ".png", rate);
+    if (!st.ok()) {
+      *error = st.message();
+      return false;
+    }
+  }
+  return !r.interrupted;
+}
+
+}  // namespace
+
+CLI::App* AddConvergeCommand(CLI::App* app, ConvergeArgs* a) {
+  CLI::App* cmd = app->add_subcommand(
+      "converge",
+      "Error against time: render variants of scenes progressively, measure relMSE (and "
+      "more) after every pass against a reference; CSV, JSON, summary and plots");
+  cmd->add_option("scenes", a->scenes, "Scene files (.xml)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--ref", a->refs,
+                  "Reference EXR per scene (in order), or 'auto': rendered by ptlab with the "
+                  "first variant at 16x the budget")
+      ->required();
+  cmd->add_option("--variant", a->variants,
+                  "Overrides key=value[,key=value] (keys: " + VariantKeys() +
+                      "); repeat for each variant; none: the scene as it is");
+  cmd->add_option("--spp", a->spp, "Samples per pixel of each run (default: the scene's)")
+      ->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--time", a->time, "Seconds of rendering per run (instead of --spp)")
+      ->check(CLI::Range(1e-3, 1e6));
+  cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--seeds", a->seeds, "Runs per variant, with seeds seed, seed+1, ...")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--seed", a->seed, "First seed");
+  cmd->add_option("-o,--output", a->out_dir, "Output folder")->required();
+  cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot plots");
+  cmd->add_option("--lookat", a->lookat, "lookat convention, as for render: nori or nori2015")
+      ->check(CLI::IsMember({"nori", "nori2015"}));
+  return cmd;
+}
+
+int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) {
+  namespace fs = std::filesystem;
+  if (args.time > 0 && args.spp > 0) {
+    std::fprintf(stderr, "error: give --spp or --time, not both\n");
+    return kExitUsage;
+  }
+  const bool auto_ref = args.refs.size() == 1 && args.refs[0] == "auto";
+  if (!auto_ref && args.refs.size() != args.scenes.size()) {
+    std::fprintf(stderr, "error: %zu scenes but %zu --ref; give one reference per scene, or "
+                 "--ref auto\n", args.scenes.size(), args.refs.size());
+    return kExitUsage;
+  }
+  std::vector<Variant> variants;
+  for (const std::string& spec : args.variants.empty() ? std::vector<std::string>{""}
+                                                       : args.variants) {
+    StatusOr<Variant> v = ParseVariant(spec);
+    if (!v.ok()) {
+      std::fprintf(stderr, "error: %s\n", v.status().message().c_str());
+      return kExitUsage;
+    }
+    variants.push_back(*v);
+  }
+  std::error_code ec;
+  fs::create_directories(args.out_dir, ec);
+  if (ec || !fs::is_directory(args.out_dir)) {
+    std::fprintf(stderr, "error: cannot create the output folder '%s'\n", args.out_dir.c_str());
+    return kExitUsage;
+  }
+  ConvergeArgs run_args = args;
+  if (run_args.threads <= 0) run_args.threads = std::max(1, int(std::thread::hardware_concurrency()));
+
+  std::vector<std::unique_ptr<LoadedScene>> scenes;
+  for (size_t i = 0; i < args.scenes.size(); ++i) {
+    auto ls = std::make_unique<LoadedScene>();
+    ls->path = args.scenes[i];
+    ls->stem = fs::path(ls->path).stem().string();
+    LoadOptions load_options;
+    if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
+    StatusOr<Scene> loaded = LoadScene(ls->path, load_options);
+    if (!loaded.ok()) {
+      std::fprintf(stderr, "error: %s\n", loaded.status().message().c_str());
+      return kExitUsage;
+    }
+    ls->scene = std::move(*loaded);
+    // Every variant must apply before anything renders.
+    for (const Variant& v : variants) {
+      Scene copy = ls->scene;
+      VariantTarget t(&copy);
+      if (const Status st = ApplyVariant(v, &t); !st.ok()) {
+        std::fprintf(stderr, "error: %s: %s\n", ls->path.c_str(), st.message().c_str());
+        return kExitUsage;
+      }
+    }
+    ls->bvh = BuildBvh(ls->scene.triangles);
+    ls->bvh8 = simd::BuildBvh8(ls->bvh);
+    ls->backend = simd::PacketTraversalBackend(ls->bvh8);
+    if (!auto_ref) {
+      StatusOr<Image> ref = ReadImage(args.refs[i]);
+      Status st = ref.ok() ? CheckReference(*ref, ls->scene, "reference " + args.refs[i])
+                           : ref.status();
+      if (!st.ok()) {
+        std::fprintf(stderr, "error: %s\n", st.message().c_str());
+        return kExitUsage;
+      }
+      ls->reference = std::move(*ref);
+      ls->reference_note = args.refs[i];
+    }
+    scenes.push_back(std::move(ls));
+  }
+
+  for (auto& ls : scenes) {
+    if (!auto_ref) continue;
+    // The reference: the first variant with kAutoReferenceFactor times the budget.
+    Scene scene = ls->scene;
+    VariantTarget t(&scene);
+    (void)ApplyVariant(variants[0], &t);
+    RenderOptions o;
+    const uint32_t spp = uint32_t(args.spp > 0 ? args.spp : scene.sampler.sample_count);
+    o.spp = args.time > 0 ? (1u << 20) : spp * kAutoReferenceFactor;
+    o.time_budget = args.time * kAutoReferenceFactor;
+    o.threads = run_args.threads;
+    o.seed = kAutoReferenceSeed;
+    o.cancel = interrupted;
+    o.packets = t.scalar ? nullptr : &ls->backend;
+    std::fprintf(stderr, "converge: %s: rendering the reference (variant %s, %dx the budget)\n",
+                 ls->stem.c_str(), variants[0].name.c_str(), kAutoReferenceFactor);
+    RenderResult r = Render(scene, ls->bvh, o);
+    if (r.interrupted) return kExitInterrupted;
+    ls->reference = std::move(r.image);
+    ls->reference_note = "auto: rendered by ptlab with variant " + variants[0].name + " at " +
+                         std::to_string(r.spp_done) + " spp (seed " +
+                         std::to_string(kAutoReferenceSeed) + ")";
+    const std::string ref_path = (fs::path(args.out_dir) / (ls->stem + "_reference.exr")).string();
+    if (const Status st = WriteExr(ref_path, ls->reference, {{"ptlab:note", ls->reference_note}});
+        !st.ok()) {
+      std::fprintf(stderr, "error: %s\n", st.message().c_str());
+      return kExitRender;
+    }
+  }
+
+  // Runs interleaved: seed by seed, every scene and variant, so that machine noise over time
+  // falls on all variants alike.
+  std::vector<ConvergencePoint> points;
+  bool stopped = false;
+  for (int k = 0; k < args.seeds && !stopped; ++k) {
+    for (auto& ls : scenes) {
+      for (const Variant& v : variants) {
+        std::string error;
+        std::fprintf(stderr, "converge: %s  %s  seed %llu\n", ls->stem.c_str(), v.name.c_str(),
+                     static_cast<unsigned long long>(args.seed + uint64_t(k)));
+        if (!RunOne(*ls, v, run_args, args.seed + uint64_t(k), interrupted, &points, &error)) {
+          if (!error.empty()) {  // variants were checked before: an output failed
+            std::fprintf(stderr, "error: %s\n", error.c_str());
+            return kExitRender;
+          }
+          stopped = true;
+          break;
+        }
+      }
+      if (stopped) break;
+    }
+  }
+
+  const std::vector<VariantSummary> summary = Summarize(points);
+  std::vector<std::string> notes;
+  for (const auto& ls : scenes) notes.push_back(ls->stem + ": " + ls->reference_note);
+  const std::string dir = args.out_dir;
+  Status st = WriteConvergeCsv((fs::path(dir) / "converge.csv").string(), points);
+  if (st.ok()) st = WriteConvergeJson((fs::path(dir) / "converge.json").string(), notes, points, summary);
+  std::string table = SummaryTable(summary);
+  std::string md = "References:\n\n";
+  for (const std::string& n : notes) md += "- " + n + "\n";
+  md += "\n" + table;
+  if (st.ok()) st = WriteFileAtomically((fs::path(dir) / "summary.md").string(), md);
+  if (st.ok() && !args.no_plots) {
+    for (const auto& ls : scenes) {
+      std::vector<VariantSummary> mine;
+      for (const VariantSummary& s : summary)
+        if (s.scene == ls->stem) mine.push_back(s);
+      st = PlotConvergence(dir, ls->stem, mine);
+      if (!st.ok()) break;
+    }
+  }
+  std::printf("%s", md.c_str());
+  if (!st.ok()) {
+    std::fprintf(stderr, "error: %s\n", st.message().c_str());
+    return kExitRender;
+  }
+  std::printf("wrote %s/converge.csv, converge.json, summary.md%s\n", dir.c_str(),
+              args.no_plots ? "" : " and plots");
+  return stopped ? kExitInterrupted : 0;
+}
+
+}  // namespace ptlab
