@@ -26,6 +26,7 @@
 #include <limits>
 #include <set>
 
+#include "engine/core/input_file.h"
 #include "engine/image/srgb.h"
 
 namespace ptlab {
@@ -41,14 +42,9 @@ Status ReadError(const std::string& path, const std::string& what) {
 }
 
 StatusOr<std::string> ReadFileBytes(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) return ReadError(path, "file does not exist");
-  if (fs::is_directory(st)) return ReadError(path, "is a directory, not an image file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ReadError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return ReadError(path, "I/O error while reading");
+  std::string bytes;
+  const Status read = ReadInputFile(path, "image file", &bytes);
+  if (!read.ok()) return Status::Error("ReadImage: " + read.message());
   if (bytes.empty()) return ReadError(path, "file is empty");
   return bytes;
 }

@@ -1,7 +1,10 @@
 // ptlab command line: `ptlab render scene.xml` (and, later, test and envmap tools).
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <cstdint>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +18,7 @@
 #include "engine/light/environment_map.h"
 #include "engine/render/integrator.h"
 #include "engine/render/render.h"
+#include "engine/scene/scene_limits.h"
 #include "engine/scene/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/targets.h"
@@ -123,8 +127,16 @@ int RunRender(const RenderArgs& args) {
   }
   if (args.width > 0 || args.height > 0) {
     const double aspect = double(scene.camera.width) / double(scene.camera.height);
-    scene.camera.width = args.width > 0 ? args.width : int(std::lround(args.height * aspect));
-    scene.camera.height = args.height > 0 ? args.height : int(std::lround(args.width / aspect));
+    const double width = args.width > 0 ? args.width : std::round(args.height * aspect);
+    const double height = args.height > 0 ? args.height : std::round(args.width / aspect);
+    const std::string size = FilmSizeError(int64_t(std::min(width, 1e15)),
+                                           int64_t(std::min(height, 1e15)));
+    if (!size.empty()) {
+      std::fprintf(stderr, "error: --width/--height: %s\n", size.c_str());
+      return 2;
+    }
+    scene.camera.width = int(width);
+    scene.camera.height = int(height);
   }
   std::string out = args.output;
   if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".exr";

@@ -2,6 +2,7 @@
 #include "engine/image/image_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <stb/stb_image_write.h>
 #include <unistd.h>
 
@@ -232,7 +233,7 @@ void ExpectReadError(const std::string& path, const std::string& what) {
 }
 
 TEST_F(ImageIo, UnreadableFilesGiveErrorsNamingTheFile) {
-  ExpectReadError(Path("missing.exr"), "does not exist");
+  ExpectReadError(Path("missing.exr"), "No such file");
   ExpectReadError(dir_.string(), "directory");
   WriteBytes(Path("empty.png"), "");
   ExpectReadError(Path("empty.png"), "empty");
@@ -242,6 +243,15 @@ TEST_F(ImageIo, UnreadableFilesGiveErrorsNamingTheFile) {
   ExpectReadError(Path("bad_size.pfm"), "bad PFM header");
   WriteBytes(Path("bad_scale.pfm"), std::string("PF\n1 1\nzero\n") + std::string(12, '\0'));
   ExpectReadError(Path("bad_scale.pfm"), "bad PFM header");
+}
+
+// Issue 12, finding 6: a device or a FIFO is refused before it is read (/dev/zero used to be
+// read until memory ran out, a FIFO blocked forever).
+TEST_F(ImageIo, DevicesAndFifosAreRefusedBeforeReading) {
+  ExpectReadError("/dev/zero", "not a regular file");
+  const std::string fifo = Path("pipe.exr");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ExpectReadError(fifo, "not a regular file");
 }
 
 TEST_F(ImageIo, TruncatedFilesGiveErrorsNamingTheFile) {
