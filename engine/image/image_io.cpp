@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -397,6 +398,45 @@ Status WriteFileAtomically(const std::string& path, std::string_view bytes) {
     RemoveTemporary(tmp);
     return Status::Error(path + ": cannot rename " + tmp + " into place: " + ec.message());
   }
+  return Status::Ok();
+}
+
+namespace {
+// The pid of a temporary "<name>.tmp-<pid>" of `name`, or 0.
+pid_t TemporaryPid(const std::string& file, const std::string& name) {
+  const std::string prefix = name + ".tmp-";
+  if (file.rfind(prefix, 0) != 0 || file.size() == prefix.size()) return 0;
+  long pid = 0;
+  for (size_t i = prefix.size(); i < file.size(); ++i) {
+    if (!std::isdigit(uint8_t(file[i])) || pid > 1000000000L) return 0;
+    pid = pid * 10 + (file[i] - '0');
+  }
+  return pid_t(pid);
+}
+}  // namespace
+
+Status PrepareOutputFile(const std::string& path) {
+  if (path.empty()) return Status::Error("output path is empty; expected a file name");
+  const fs::path p(path);
+  if (!p.has_filename()) return Status::Error(path + ": output path names a directory; expected a file");
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    return Status::Error(path + ": output directory '" + dir.string() + "' does not exist");
+  if (fs::is_directory(p, ec)) return Status::Error(path + ": output path is a directory");
+  const std::string name = p.filename().string();
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t pid = TemporaryPid(it->path().filename().string(), name);
+    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH)
+      RemoveTemporary(it->path().string());  // a stale temporary of a dead process
+  }
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wbx");
+  if (f == nullptr)
+    return Status::Error(path + ": cannot write beside the output (" + std::strerror(errno) +
+                         "); expected a writable directory");
+  std::fclose(f);
+  RemoveTemporary(tmp);
   return Status::Ok();
 }
 

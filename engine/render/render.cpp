@@ -6,6 +6,8 @@
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
+#include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -52,7 +54,10 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
 
   const int threads = std::max(1, options.threads);
   const uint32_t per_pass = std::max<uint32_t>(1, SamplesPerPass(options.spp));
-  auto cancelled = [&] { return options.cancel && options.cancel->load(); };
+  std::atomic<bool> start_failed{false};  // a worker thread could not be started
+  auto cancelled = [&] {
+    return start_failed.load() || (options.cancel && options.cancel->load());
+  };
 
   for (uint32_t s0 = 0; s0 < options.spp && !cancelled(); s0 += per_pass) {
     const uint32_t s1 = std::min(options.spp, s0 + per_pass);
@@ -84,7 +89,15 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       }
     };
     std::vector<std::thread> pool;
-    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+    try {
+      for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+    } catch (const std::system_error& e) {
+      // Out of memory for stacks or a process limit: stop the workers that did start.
+      start_failed.store(true);
+      result.error = "cannot start worker thread " + std::to_string(pool.size() + 1) + " of " +
+                     std::to_string(threads) + " (" + e.what() + "); expected a thread count " +
+                     "the system can run (--threads)";
+    }
     {
       // The coordinating thread reports progress while the workers run.
       std::unique_lock<std::mutex> lock(mutex);

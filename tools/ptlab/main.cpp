@@ -1,4 +1,6 @@
 // ptlab command line: `ptlab render scene.xml` (and, later, test and envmap tools).
+#include <pthread.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,16 +27,39 @@
 #include "simd/traverse8.h"
 #include "simd/traverse8_backend.h"
 #include "tools/chi2/nori_tests.h"
+#include "tools/cli_checks.h"
 
 namespace ptlab {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
+std::atomic<int> g_signal{0};
 
-void OnSigint(int) {
+// SIGINT (Ctrl-C) and SIGTERM (kill, timeout, schedulers) stop the render after the pass in
+// flight; a second one ends the process at once (but not while the outputs are written).
+void OnInterrupt(int signal) {
+  g_signal.store(signal);
   g_interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
 }
+
+// Holds SIGINT and SIGTERM while it lives, so the EXR and the PNG are both written or neither
+// is; a signal that arrived meanwhile is delivered when it ends.
+class BlockInterrupts {
+ public:
+  BlockInterrupts() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~BlockInterrupts() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+
+ private:
+  sigset_t old_;
+};
 
 std::string FormatDuration(double s) {
   char buf[32];
@@ -146,12 +171,19 @@ int RunRender(const RenderArgs& args) {
                  out.c_str());
     return 1;
   }
-  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
-    std::fprintf(stderr, "error: output directory '%s' does not exist\n",
-                 out_path.parent_path().string().c_str());
-    return 1;
+  const std::string png = std::filesystem::path(out).replace_extension(".png").string();
+  for (const std::string& file : {out, png}) {
+    const Status ready = PrepareOutputFile(file);
+    if (!ready.ok()) {
+      std::fprintf(stderr, "error: %s\n", ready.message().c_str());
+      return 1;
+    }
   }
 
+  const int cores = std::max(1, int(std::thread::hardware_concurrency()));
+  if (args.threads > cores)
+    std::fprintf(stderr, "warning: --threads %d is more than the %d cores of this machine\n",
+                 args.threads, cores);
   RenderOptions options;
   options.spp = args.spp > 0 ? uint32_t(args.spp) : scene.sampler.sample_count;
   options.threads = args.threads > 0 ? args.threads
@@ -179,9 +211,17 @@ int RunRender(const RenderArgs& args) {
                packets ? ("8-wide packets, Highway target " +
                           std::string(simd::Traverse8TargetName())).c_str()
                        : "scalar oracle (one ray at a time)");
-  std::signal(SIGINT, OnSigint);
+  std::signal(SIGINT, OnInterrupt);
+  std::signal(SIGTERM, OnInterrupt);
   const RenderResult result = Render(scene, bvh, options);
+  BlockInterrupts hold_interrupts;
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  const int interrupted_code = g_signal.load() == SIGTERM ? 143 : 130;
+  if (!result.error.empty()) {
+    std::fprintf(stderr, "error: %s\n", result.error.c_str());
+    return 1;
+  }
   if (!args.quiet) reporter.Finish();
   if (args.stats) PrintStats(result, options.threads, packets);
 
@@ -201,11 +241,10 @@ int RunRender(const RenderArgs& args) {
   };
   if (result.spp_done == 0) {
     std::fprintf(stderr, "interrupted before the first pass completed: nothing written\n");
-    return 130;
+    return interrupted_code;
   }
   Status st = WriteExr(out, result.image, header);
-  if (st.ok()) st = WritePng(std::filesystem::path(out).replace_extension(".png").string(),
-                             result.image);
+  if (st.ok()) st = WritePng(png, result.image);
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
     return 1;
@@ -214,7 +253,7 @@ int RunRender(const RenderArgs& args) {
               result.interrupted ? "interrupted, wrote partial image" : "wrote", out.c_str(),
               result.spp_done, result.seconds,
               result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0);
-  return result.interrupted ? 130 : 0;
+  return result.interrupted ? interrupted_code : 0;
 }
 
 }  // namespace
@@ -229,12 +268,16 @@ int main(int argc, char** argv) {
   ptlab::RenderArgs render;
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (Nori XML) to EXR + PNG");
   cmd->add_option("scene", render.scene, "Scene file (.xml)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)");
+  cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)")
+      ->check(CLI::Validator(
+          [](std::string& path) { return path.empty() ? "the output path is empty" : ""; },
+          "PATH"));
   cmd->add_option("--spp", render.spp, "Samples per pixel (default: the scene's sampleCount)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--threads", render.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams");
+  cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams")
+      ->check(ptlab::UnsignedDecimal());
   cmd->add_option("--width", render.width, "Override the image width")->check(CLI::Range(1, 65536));
   cmd->add_option("--height", render.height, "Override the image height")
       ->check(CLI::Range(1, 65536));
@@ -274,7 +317,11 @@ int main(int argc, char** argv) {
                  argv[1]);
     return 3;
   }
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // help and version: 0; bad usage: 2
+  }
   if (cmd->parsed()) return ptlab::RunRender(render);
   if (test_cmd->parsed()) return ptlab::RunNoriTestCommand(test_file, test_verbose);
   if (envmap_cmd->parsed()) {

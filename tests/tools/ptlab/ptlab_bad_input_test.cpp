@@ -2,6 +2,7 @@
 // signal) and the expected message, or render finite pixels. Each row is a finding that
 // crashed, hung or silently misbehaved before.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -75,6 +76,74 @@ TEST(PtlabBadInput, EveryFileExitsWithACodeAndAMessage) {
       for (const float v : image->rgb) ASSERT_TRUE(std::isfinite(v));
     }
   }
+}
+
+// Findings 8, 10 and 11: flags and outputs ptlab cannot use are refused before rendering,
+// with exit code 2 for bad usage and 1 for an output or a machine that cannot take the render.
+TEST(PtlabBadInput, FlagsAndOutputsAreCheckedBeforeRendering) {
+  const fs::path dir = fs::path(PTLAB_BINARY_DIR) / "test-output" / "bad_flags";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "dir.exr");
+  const std::string scene = std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml";
+  const std::string small = " --spp 1 --width 8 --height 8 -q -o " + (dir / "x.exr").string();
+  struct Case {
+    std::string args;
+    int exit_code;
+    const char* expect;
+  };
+  const Case cases[] = {
+      {"render " + scene + " --seed -1" + small, 2, "not an unsigned integer"},
+      {"render " + scene + " --seed 1e3" + small, 2, "not an unsigned integer"},
+      {"render " + scene + " --spp 1 -o ''", 2, "output path is empty"},
+      {"render " + scene + " --spp 1 -o " + (dir / "missing" / "x.exr").string(), 1,
+       "does not exist"},
+      {"render " + scene + " --spp 1 -o " + (dir / "dir.exr").string(), 1, "is a directory"},
+      {"render " + scene + " --width 65536 --height 65536 -o " + (dir / "x.exr").string(), 2,
+       "expected at most 67108864"},
+      // 1000 thread stacks do not fit 3 GB of address space: a clear error, not an abort.
+      {"render " + scene + " --threads 1000" + small, 1, "cannot start worker thread"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    const std::string prefix =
+        c.args.find("--threads 1000") != std::string::npos ? "ulimit -v 3000000; " : "";
+    const std::string command = "sh -c \"" + prefix + "timeout 60 " + kPtlab + " " + c.args +
+                                " > " + (dir / "log").string() + " 2>&1\"";
+    const int rc = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(rc));
+    const std::string log = ReadFile(dir / "log");
+    EXPECT_EQ(WEXITSTATUS(rc), c.exit_code) << log;
+    EXPECT_NE(log.find(c.expect), std::string::npos) << "'" << c.expect << "' not in:\n" << log;
+    EXPECT_EQ(log.find("wrote:"), std::string::npos) << log;
+  }
+}
+
+// Finding 12: the temporaries a killed render left beside the output are removed by the next
+// render to the same output when their process is gone; a live process's are kept.
+TEST(PtlabBadInput, StaleTemporariesOfDeadProcessesAreRemoved) {
+  const fs::path dir = fs::path(PTLAB_BINARY_DIR) / "test-output" / "stale_tmp";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A pid that is not running: a child that has exited and been reaped.
+  const pid_t dead = fork();
+  ASSERT_GE(dead, 0);
+  if (dead == 0) _exit(0);
+  waitpid(dead, nullptr, 0);
+  const fs::path stale_exr = dir / ("x.exr.tmp-" + std::to_string(dead));
+  const fs::path stale_png = dir / ("x.png.tmp-" + std::to_string(dead));
+  const fs::path live = dir / ("x.exr.tmp-" + std::to_string(getpid()));
+  for (const fs::path& p : {stale_exr, stale_png, live}) std::ofstream(p) << "partial";
+  const std::string command = kPtlab + " render " + PTLAB_SOURCE_DIR +
+                              "/scenes/cbox.xml --spp 1 --width 8 --height 8 -q -o " +
+                              (dir / "x.exr").string() + " > " + (dir / "log").string() + " 2>&1";
+  const int rc = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(rc));
+  EXPECT_EQ(WEXITSTATUS(rc), 0) << ReadFile(dir / "log");
+  EXPECT_FALSE(fs::exists(stale_exr));
+  EXPECT_FALSE(fs::exists(stale_png));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(dir / "x.exr"));
+  EXPECT_TRUE(fs::exists(dir / "x.png"));
 }
 
 // Every scene or test file in tests/data/bad/ is a row of the table above.
