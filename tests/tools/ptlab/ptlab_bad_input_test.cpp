@@ -118,6 +118,31 @@ TEST(PtlabBadInput, FlagsAndOutputsAreCheckedBeforeRendering) {
   }
 }
 
+// Finding 11 in the other tools: NaN passed CLI11's Range and PositiveNumber checks.
+TEST(PtlabBadInput, NonFiniteFlagsOfChi2AndImgdiffAreUsageErrors) {
+  const fs::path dir = fs::path(PTLAB_BINARY_DIR) / "test-output" / "bad_tool_flags";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string bin = std::string(PTLAB_BINARY_DIR) + "/bin/";
+  const std::string image = (dir / "tiny.pfm").string();
+  Image tiny(1, 1);
+  tiny.rgb = {0.5f, 0.5f, 0.5f};
+  ASSERT_TRUE(WriteImage(image, tiny).ok());
+  for (const std::string& args :
+       {"imgdiff " + image + " " + image + " --tol nan", "imgdiff " + image + " " + image +
+        " --fail-rmse inf", std::string("chi2 --alpha nan diffuse"),
+        std::string("chi2 --seed -1 diffuse")}) {
+    SCOPED_TRACE(args);
+    const int rc = std::system((bin + args + " > " + (dir / "log").string() + " 2>&1").c_str());
+    ASSERT_TRUE(WIFEXITED(rc));
+    const std::string log = ReadFile(dir / "log");
+    EXPECT_EQ(WEXITSTATUS(rc), 3) << log;  // both tools' usage-error code
+    EXPECT_TRUE(log.find("not a finite number") != std::string::npos ||
+                log.find("not an unsigned integer") != std::string::npos)
+        << log;
+  }
+}
+
 // Finding 12: the temporaries a killed render left beside the output are removed by the next
 // render to the same output when their process is gone; a live process's are kept.
 TEST(PtlabBadInput, StaleTemporariesOfDeadProcessesAreRemoved) {
