@@ -11,6 +11,14 @@ namespace ptlab {
 /// extents and SAH costs (two extents times a triangle count) then stay finite in float.
 inline constexpr float kMaxWorldCoordinate = 1e12f;
 
+/// Largest radiance (or power) component an emitter may have. Film sums over millions of samples
+/// and environment-map sampling tables (sums of all pixels) then stay finite in float.
+inline constexpr float kMaxRadiance = 1e20f;
+
+/// Smallest solid angle of a distant disk, in steradians: its sampling pdf 1/solid angle then
+/// stays finite (thetaA >= about 3.2e-5 degrees).
+inline constexpr double kMinDistantDiskSolidAngle = 1e-12;
+
 /// Largest image side, in pixels.
 inline constexpr int64_t kMaxFilmSide = int64_t(1) << 16;
 /// Largest image, in pixels (8192 x 8192): the film's accumulators (16 bytes a pixel) and the

@@ -622,15 +622,15 @@ class SceneParser {
     return Status::Ok();
   }
 
-  // Reflectances must lie in [0, 1]; radiance, eta and k only need to be >= 0.
+  // Reflectances must lie in [0, 1]; radiance, power, eta and k in [0, kMaxRadiance].
   enum class Range { kUnit, kNonNegative };
   Status CheckColor(PropertyList& props, const char* name, const Color3f& c, Range range) {
-    const float max = range == Range::kUnit ? 1.0f : INFINITY;
+    const float max = range == Range::kUnit ? 1.0f : kMaxRadiance;
     if (c.r >= 0 && c.g >= 0 && c.b >= 0 && c.r <= max && c.g <= max && c.b <= max)
       return Status::Ok();
     return props.Error(name, std::string("'") + name + "' = (" + FormatColor(c) +
                                  ") is out of range; expected components " +
-                                 (range == Range::kUnit ? "in [0, 1]" : ">= 0"));
+                                 (range == Range::kUnit ? "in [0, 1]" : "in [0, 1e20]"));
   }
   Status CheckPositive(PropertyList& props, const char* name, float v) {
     if (v > 0) return Status::Ok();

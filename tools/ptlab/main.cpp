@@ -229,6 +229,14 @@ int RunRender(const RenderArgs& args) {
     std::fprintf(stderr, "warning: dropped %llu NaN/Inf samples (first at pixel %d,%d)\n",
                  (unsigned long long)result.nonfinite_samples, result.first_nonfinite_x,
                  result.first_nonfinite_y);
+  // Pixels that end non-finite in the film (sums that overflowed), beside the dropped samples.
+  size_t nonfinite_pixels = 0;
+  for (size_t i = 0; i < result.image.rgb.size(); i += 3)
+    nonfinite_pixels += !(std::isfinite(result.image.rgb[i]) &&
+                          std::isfinite(result.image.rgb[i + 1]) &&
+                          std::isfinite(result.image.rgb[i + 2]));
+  if (nonfinite_pixels > 0)
+    std::fprintf(stderr, "warning: %zu pixels of the image are NaN/Inf\n", nonfinite_pixels);
   const std::vector<std::pair<std::string, std::string>> header = {
       {"ptlab:scene", args.scene},
       {"ptlab:spp", std::to_string(result.spp_done)},
@@ -237,6 +245,7 @@ int RunRender(const RenderArgs& args) {
       {"ptlab:seconds", std::to_string(result.seconds)},
       {"ptlab:interrupted", result.interrupted ? "true" : "false"},
       {"ptlab:nonfinite_samples", std::to_string(result.nonfinite_samples)},
+      {"ptlab:nonfinite_pixels", std::to_string(nonfinite_pixels)},
       {"ptlab:traversal", traversal},
   };
   if (result.spp_done == 0) {

@@ -41,6 +41,7 @@ const BadInput kBadInputs[] = {
     {"filter_radius_1e30.xml", "render", 1, "filter radius in (0, 8]"},
     {"chi2_resolution_1000.xml", "test", 3, "expected 1..256"},  // 5
     {"chi2_resolution_65536.xml", "test", 3, "expected 1..256"},
+    {"radiance_near_float_max.xml", "render", 1, "expected components in [0, 1e20]"},  // 9
 };
 
 std::string ReadFile(const fs::path& p) {
