@@ -62,6 +62,23 @@ std::string HexPrefix(const std::string& bytes) {
 
 bool SizeOk(int64_t w, int64_t h) { return w > 0 && h > 0 && w * h <= kMaxPixels; }
 
+// The most pixels one byte of a file can decode to, per format, with margin: Radiance RLE
+// packs a run of 127 pixels in 2 bytes per channel (4 channels); EXR's ZIP (deflate, at most
+// about 1032:1) over a half-float channel; PNG's deflate over 1-bit pixels. A header that
+// claims more pixels than the file can hold is refused before the pixels are allocated.
+constexpr int64_t kMaxHdrPixelsPerByte = 32;
+constexpr int64_t kMaxExrPixelsPerByte = 1100;
+constexpr int64_t kMaxPngPixelsPerByte = 8300;
+
+// Empty when a w x h image fits in `file_bytes` of a format decoding at most
+// `pixels_per_byte`; else the reason.
+std::string ClaimedSizeError(int64_t w, int64_t h, size_t file_bytes, int64_t pixels_per_byte) {
+  if (w * h <= int64_t(file_bytes) * pixels_per_byte) return "";
+  return "header claims " + std::to_string(w) + "x" + std::to_string(h) + " pixels, more than " +
+         std::to_string(int64_t(file_bytes) * pixels_per_byte) + " that a file of " +
+         std::to_string(file_bytes) + " bytes can hold (truncated or corrupt)";
+}
+
 // An Imf::IStream over bytes already in memory, so the file is read exactly once.
 class MemoryIStream : public Imf::IStream {
  public:
@@ -112,6 +129,9 @@ StatusOr<Image> ReadExrBytes(const std::string& path, const std::string& bytes) 
       return ReadError(path, "bad EXR header: data window " + std::to_string(w) + "x" +
                                  std::to_string(h) + " is empty or too large");
     }
+    if (const std::string e = ClaimedSizeError(w, h, bytes.size(), kMaxExrPixelsPerByte);
+        !e.empty())
+      return ReadError(path, "bad EXR header: " + e);
     const Imf::ChannelList& channels = file.header().channels();
     const bool has_rgb =
         channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
@@ -173,6 +193,10 @@ StatusOr<Image> ReadStbBytes(const std::string& path, const std::string& bytes, 
     return ReadError(path, std::string("bad ") + kind + " header: size " + std::to_string(w) + "x" +
                                std::to_string(h) + " is empty or too large");
   }
+  if (const std::string e = ClaimedSizeError(
+          w, h, bytes.size(), hdr ? kMaxHdrPixelsPerByte : kMaxPngPixelsPerByte);
+      !e.empty())
+    return ReadError(path, std::string("bad ") + kind + " header: " + e);
   Image image(w, h);
   const size_t n = image.rgb.size();
   if (hdr) {

@@ -245,6 +245,26 @@ TEST_F(ImageIo, UnreadableFilesGiveErrorsNamingTheFile) {
   ExpectReadError(Path("bad_scale.pfm"), "bad PFM header");
 }
 
+// Issue 12, finding 7: a header claiming far more pixels than the file holds is refused before
+// the pixels are allocated (a 16383x16383 Radiance HDR of 100 bytes allocated 3 GB).
+TEST_F(ImageIo, HeadersClaimingMorePixelsThanTheFileHoldsAreRefused) {
+  ExpectReadError(PTLAB_SOURCE_DIR "/tests/data/bad/huge_claim.hdr", "can hold");
+  // An EXR of one pixel whose dataWindow is patched to one line of 2^24 pixels: OpenEXR 3
+  // refuses it itself (bytes per scanline; taller windows: the line offset table runs past
+  // the end of the file) before ptlab's own pixels-per-byte check is reached.
+  Image one(1, 1);
+  ASSERT_TRUE(WriteExr(Path("one.exr"), one, {}).ok());
+  std::ifstream in(Path("one.exr"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const int32_t box[4] = {0, 0, (1 << 24) - 1, 0};
+  std::memcpy(&bytes[at + key.size() + 4], box, sizeof(box));
+  WriteBytes(Path("claim.exr"), bytes);
+  ExpectReadError(Path("claim.exr"), "EXR");
+}
+
 // Issue 12, finding 6: a device or a FIFO is refused before it is read (/dev/zero used to be
 // read until memory ran out, a FIFO blocked forever).
 TEST_F(ImageIo, DevicesAndFifosAreRefusedBeforeReading) {
