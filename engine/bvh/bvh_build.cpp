@@ -85,9 +85,12 @@ struct Split {
 
 // Bin index of a doubled centroid; shared by the binning pass and the partition so both put
 // every reference on the same side.
+// Clamped in float before the conversion, so an overflowing or NaN position (bounds near
+// FLT_MAX) still gives a bin in [0, kBins) instead of an undefined int.
 inline int BinOf(float c2, float lo, float scale) {
-  const int b = static_cast<int>((c2 - lo) * scale);
-  return std::min(b, kBins - 1);
+  const float b = (c2 - lo) * scale;
+  if (!(b > 0.0f)) return 0;
+  return b < static_cast<float>(kBins - 1) ? static_cast<int>(b) : kBins - 1;
 }
 
 // Triangles that can never be hit are left out: non-finite coordinates (they would poison
@@ -251,7 +254,7 @@ class Builder {
     const Vec3f extent = centroids.hi - centroids.lo;
     for (int a = 0; a < 3; ++a) {
       scale[a] = static_cast<float>(kBins) / extent[a];
-      binnable[a] = extent[a] > 0.0f && std::isfinite(scale[a]);
+      binnable[a] = extent[a] > 0.0f && std::isfinite(extent[a]) && std::isfinite(scale[a]);
     }
     if (!binnable[0] && !binnable[1] && !binnable[2]) return Split{};
     for (uint32_t i = begin; i < end; ++i) {

@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include <limits>
 #include <set>
 
+#include "engine/core/input_file.h"
 #include "engine/image/srgb.h"
 
 namespace ptlab {
@@ -41,14 +43,9 @@ Status ReadError(const std::string& path, const std::string& what) {
 }
 
 StatusOr<std::string> ReadFileBytes(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) return ReadError(path, "file does not exist");
-  if (fs::is_directory(st)) return ReadError(path, "is a directory, not an image file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ReadError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return ReadError(path, "I/O error while reading");
+  std::string bytes;
+  const Status read = ReadInputFile(path, "image file", &bytes);
+  if (!read.ok()) return Status::Error("ReadImage: " + read.message());
   if (bytes.empty()) return ReadError(path, "file is empty");
   return bytes;
 }
@@ -64,6 +61,23 @@ std::string HexPrefix(const std::string& bytes) {
 }
 
 bool SizeOk(int64_t w, int64_t h) { return w > 0 && h > 0 && w * h <= kMaxPixels; }
+
+// The most pixels one byte of a file can decode to, per format, with margin: Radiance RLE
+// packs a run of 127 pixels in 2 bytes per channel (4 channels); EXR's ZIP (deflate, at most
+// about 1032:1) over a half-float channel; PNG's deflate over 1-bit pixels. A header that
+// claims more pixels than the file can hold is refused before the pixels are allocated.
+constexpr int64_t kMaxHdrPixelsPerByte = 32;
+constexpr int64_t kMaxExrPixelsPerByte = 1100;
+constexpr int64_t kMaxPngPixelsPerByte = 8300;
+
+// Empty when a w x h image fits in `file_bytes` of a format decoding at most
+// `pixels_per_byte`; else the reason.
+std::string ClaimedSizeError(int64_t w, int64_t h, size_t file_bytes, int64_t pixels_per_byte) {
+  if (w * h <= int64_t(file_bytes) * pixels_per_byte) return "";
+  return "header claims " + std::to_string(w) + "x" + std::to_string(h) + " pixels, more than " +
+         std::to_string(int64_t(file_bytes) * pixels_per_byte) + " that a file of " +
+         std::to_string(file_bytes) + " bytes can hold (truncated or corrupt)";
+}
 
 // An Imf::IStream over bytes already in memory, so the file is read exactly once.
 class MemoryIStream : public Imf::IStream {
@@ -115,6 +129,9 @@ StatusOr<Image> ReadExrBytes(const std::string& path, const std::string& bytes) 
       return ReadError(path, "bad EXR header: data window " + std::to_string(w) + "x" +
                                  std::to_string(h) + " is empty or too large");
     }
+    if (const std::string e = ClaimedSizeError(w, h, bytes.size(), kMaxExrPixelsPerByte);
+        !e.empty())
+      return ReadError(path, "bad EXR header: " + e);
     const Imf::ChannelList& channels = file.header().channels();
     const bool has_rgb =
         channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
@@ -176,6 +193,10 @@ StatusOr<Image> ReadStbBytes(const std::string& path, const std::string& bytes, 
     return ReadError(path, std::string("bad ") + kind + " header: size " + std::to_string(w) + "x" +
                                std::to_string(h) + " is empty or too large");
   }
+  if (const std::string e = ClaimedSizeError(
+          w, h, bytes.size(), hdr ? kMaxHdrPixelsPerByte : kMaxPngPixelsPerByte);
+      !e.empty())
+    return ReadError(path, std::string("bad ") + kind + " header: " + e);
   Image image(w, h);
   const size_t n = image.rgb.size();
   if (hdr) {
@@ -401,6 +422,45 @@ Status WriteFileAtomically(const std::string& path, std::string_view bytes) {
     RemoveTemporary(tmp);
     return Status::Error(path + ": cannot rename " + tmp + " into place: " + ec.message());
   }
+  return Status::Ok();
+}
+
+namespace {
+// The pid of a temporary "<name>.tmp-<pid>" of `name`, or 0.
+pid_t TemporaryPid(const std::string& file, const std::string& name) {
+  const std::string prefix = name + ".tmp-";
+  if (file.rfind(prefix, 0) != 0 || file.size() == prefix.size()) return 0;
+  long pid = 0;
+  for (size_t i = prefix.size(); i < file.size(); ++i) {
+    if (!std::isdigit(uint8_t(file[i])) || pid > 1000000000L) return 0;
+    pid = pid * 10 + (file[i] - '0');
+  }
+  return pid_t(pid);
+}
+}  // namespace
+
+Status PrepareOutputFile(const std::string& path) {
+  if (path.empty()) return Status::Error("output path is empty; expected a file name");
+  const fs::path p(path);
+  if (!p.has_filename()) return Status::Error(path + ": output path names a directory; expected a file");
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    return Status::Error(path + ": output directory '" + dir.string() + "' does not exist");
+  if (fs::is_directory(p, ec)) return Status::Error(path + ": output path is a directory");
+  const std::string name = p.filename().string();
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t pid = TemporaryPid(it->path().filename().string(), name);
+    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH)
+      RemoveTemporary(it->path().string());  // a stale temporary of a dead process
+  }
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wbx");
+  if (f == nullptr)
+    return Status::Error(path + ": cannot write beside the output (" + std::strerror(errno) +
+                         "); expected a writable directory");
+  std::fclose(f);
+  RemoveTemporary(tmp);
   return Status::Ok();
 }
 

@@ -43,6 +43,12 @@ StatusOr<std::vector<std::pair<std::string, std::string>>> ReadExrStringAttribut
 /// Not for concurrent writes of the same path from several threads of one process.
 Status WriteFileAtomically(const std::string& path, std::string_view bytes);
 
+/// Before a long computation whose result goes to `path` (through WriteFileAtomically):
+/// removes the temporaries `<path>.tmp-<pid>` left by processes that no longer run (a render
+/// killed with SIGKILL), then checks that `path` can be written by creating and removing this
+/// process's temporary beside it. The error names `path` and says what is wrong.
+Status PrepareOutputFile(const std::string& path);
+
 /// Writes `image` as an OpenEXR file: scanline, ZIP, 32-bit float R,G,B, plus each
 /// (name, value) of `header_attributes` as a string attribute. Atomic (see WriteFileAtomically).
 /// Names must be non-empty and must not be standard attributes ("channels", "compression", ...).

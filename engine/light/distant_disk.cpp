@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/scene/scene_limits.h"
+
 namespace ptlab {
 namespace {
 
@@ -18,8 +20,9 @@ bool InCone(const DistantDiskTable& t, uint32_t row, const Vec3f& w) {
 
 StatusOr<uint32_t> AddDistantDisk(const Color3f& radiance, float theta_a_deg, const Frame& to_world,
                                   const std::string& name, DistantDiskTable* table) {
-  if (!(radiance.r >= 0 && radiance.g >= 0 && radiance.b >= 0) || !IsFinite(radiance))
-    return Status::Error(name + ": distant disk radiance must have finite components >= 0");
+  if (!(radiance.r >= 0 && radiance.g >= 0 && radiance.b >= 0 && radiance.r <= kMaxRadiance &&
+        radiance.g <= kMaxRadiance && radiance.b <= kMaxRadiance))
+    return Status::Error(name + ": distant disk radiance must have components in [0, 1e20]");
   if (!(theta_a_deg > 0.0f && theta_a_deg <= 180.0f)) {
     char buffer[48];
     std::snprintf(buffer, sizeof(buffer), "%g", double(theta_a_deg));
@@ -29,6 +32,13 @@ StatusOr<uint32_t> AddDistantDisk(const Color3f& radiance, float theta_a_deg, co
   const double theta = double(theta_a_deg) * (3.14159265358979323846 / 180.0);
   // 1 - cos θ = 2 sin²(θ/2), without cancellation for small cones.
   const double one_minus_cos = 2.0 * std::sin(theta / 2) * std::sin(theta / 2);
+  if (!(2.0 * 3.14159265358979323846 * one_minus_cos >= kMinDistantDiskSolidAngle)) {
+    char buffer[48];
+    std::snprintf(buffer, sizeof(buffer), "%g", double(theta_a_deg));
+    return Status::Error(name + ": thetaA = " + buffer +
+                         " degrees gives a cone too small to sample; expected a solid angle >= " +
+                         "1e-12 sr (thetaA >= 3.3e-5 degrees)");
+  }
   table->radiance.push_back(radiance);
   table->max_chord2.push_back(theta_a_deg == 180.0f ? INFINITY : float(2.0 * one_minus_cos));
   table->solid_angle.push_back(float(2.0 * 3.14159265358979323846 * one_minus_cos));

@@ -10,6 +10,7 @@
 #include "engine/image/image_io.h"
 #include "engine/image/srgb.h"
 #include "engine/sampling/warp.h"
+#include "engine/scene/scene_limits.h"
 
 namespace ptlab {
 namespace {
@@ -39,7 +40,7 @@ Status CheckPixels(const Image& image, float scale, const std::string& name) {
         if (!(p[c] >= 0.0f) || std::isinf(p[c])) {
           if (!pixel_bad && bad == 0) first_x = x, first_y = y, first_c = c, first_value = p[c];
           pixel_bad = true;
-        } else if (std::isinf(p[c] * scale)) {
+        } else if (!(p[c] * scale <= kMaxRadiance)) {
           pixel_overflow = true;
         }
       }
@@ -61,8 +62,9 @@ Status CheckPixels(const Image& image, float scale, const std::string& name) {
   if (overflow > 0)
     return Status::Error(name + ": environment map pixel (" + std::to_string(over_x) + ", " +
                          std::to_string(over_y) + ") times scale " + FormatValue(scale) +
-                         " overflows to infinity (" + std::to_string(overflow) +
-                         " pixels); expected a smaller scale");
+                         " exceeds the largest radiance ptlab accepts, " + FormatValue(kMaxRadiance) +
+                         " (" + std::to_string(overflow) +
+                         " pixels); expected smaller values or a smaller scale");
   return Status::Ok();
 }
 

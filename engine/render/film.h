@@ -6,11 +6,13 @@
 #include "engine/core/vec.h"
 #include "engine/image/image.h"
 #include "engine/render/filter.h"
+#include "engine/scene/scene_limits.h"
 
 namespace ptlab {
 
 /// Pixels a sample may touch along one axis; filters are limited to radius < kMaxFilterTaps / 2.
 inline constexpr int kMaxFilterTaps = 32;
+static_assert(2 * kMaxFilterRadius + 1 <= kMaxFilterTaps, "the largest filter must fit its taps");
 
 /// A rectangle of pixel accumulators (sum of w·L and of w). A tile block covers its tile plus
 /// a border of the filter radius; blocks are merged into the full film in a fixed order so

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
+#include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -73,7 +75,10 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     pixel_sampling = {uint64_t(width), active.data(), moments.data()};
   }
   const PixelSampling* pixels = adaptive ? &pixel_sampling : nullptr;
-  auto cancelled = [&] { return options.cancel && options.cancel->load(); };
+  std::atomic<bool> start_failed{false};  // a worker thread could not be started
+  auto cancelled = [&] {
+    return start_failed.load() || (options.cancel && options.cancel->load());
+  };
 
   const RenderDistribution* dist = options.distribution;
   double on_pass_seconds = 0;  // time spent in options.on_pass, left out of RenderPass::seconds
@@ -134,7 +139,17 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       tile_done.notify_one();
     };
     std::vector<std::thread> pool;
-    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+    try {
+      for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+    } catch (const std::system_error& e) {
+      // Out of memory for stacks or a process limit: stop the workers that did start.
+      start_failed.store(true);
+      result.error = "cannot start worker thread " + std::to_string(pool.size() + 1) + " of " +
+                     std::to_string(threads) + " (" + e.what() + "); expected a thread count " +
+                     "the system can run (--threads)";
+      std::lock_guard<std::mutex> lock(mutex);
+      workers_running -= threads - int(pool.size());  // those never ran
+    }
     {
       // The coordinating thread reports progress while the workers run.
       std::unique_lock<std::mutex> lock(mutex);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <vector>
+#include <string>
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image.h"
@@ -91,6 +92,7 @@ struct RenderResult {
   Image image;
   uint32_t spp_done = 0;       // samples per pixel in the image (< spp when interrupted)
   bool interrupted = false;
+  std::string error;  // non-empty: the render could not run (e.g. its threads did not start)
   double seconds = 0;
   uint64_t rays = 0;
   uint64_t nonfinite_samples = 0;  // dropped, never splatted

@@ -186,13 +186,20 @@ class TestParser {
     if (!ParseInt(value, &v))
       return at_.Error(node, "malformed integer '" + value + "'; expected a decimal integer");
     if (name == "sampleCount") {
-      const bool ok = ttest ? v >= 2 : (v == -1 || v >= 1);
+      const bool ok = (ttest ? v >= 2 : (v == -1 || v >= 1)) && v <= kMaxNoriTestSampleCount;
       if (!ok)
         return at_.Error(node, "sampleCount = " + value + " is out of range; expected " +
-                                   (ttest ? ">= 2" : ">= 1, or -1 for automatic"));
+                                   (ttest ? "2.." : "1..") +
+                                   std::to_string(kMaxNoriTestSampleCount) +
+                                   (ttest ? "" : ", or -1 for automatic"));
       p.sample_count = v;
     } else {
-      if (v < 1) return at_.Error(node, name + " = " + value + " is out of range; expected >= 1");
+      const int max = name == "resolution" ? kMaxNoriTestResolution
+                                           : (name == "testCount" ? kMaxNoriTestCount
+                                                                  : kMaxNoriTestSampleCount);
+      if (v < 1 || v > max)
+        return at_.Error(node, name + " = " + value + " is out of range; expected 1.." +
+                                   std::to_string(max));
       (name == "resolution"        ? p.resolution
        : name == "minExpFrequency" ? p.min_exp_frequency
                                    : p.test_count) = v;

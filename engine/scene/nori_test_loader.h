@@ -12,6 +12,12 @@
 
 namespace ptlab {
 
+/// Limits on a test file's counts: the automatic chi² sample count resolution x 2·resolution x
+/// 5000 then fits an int, and the histograms and sample counts fit memory and time.
+inline constexpr int kMaxNoriTestResolution = 256;
+inline constexpr int kMaxNoriTestSampleCount = 1000000000;
+inline constexpr int kMaxNoriTestCount = 10000;
+
 enum class NoriTestType : uint8_t {
   kTTest,     // Nori `ttest`: Student t-tests of BSDF albedos or of 1-pixel scene radiance
   kChi2Test,  // Nori `chi2test`: χ² tests of BSDF sampling against the BSDF's pdf

@@ -26,8 +26,8 @@ struct PendingIndex {
   char kind;   // 'v', 't' or 'n'
 };
 
-// The separators tinyobjloader accepts (plus the '\r' of CRLF line ends).
-bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+// The separators tinyobjloader accepts ('\r' never reaches here: line ends are normalised).
+bool IsBlank(char c) { return c == ' ' || c == '\t'; }
 
 std::vector<std::string_view> SplitWords(std::string_view line) {
   std::vector<std::string_view> words;
@@ -221,7 +221,25 @@ struct VertexKeyHash {
 
 }  // namespace
 
-StatusOr<MeshData> LoadObjFromString(const std::string& text, const std::string& display_name) {
+// One definition of a line for the validator and tinyobjloader: "\r\n" (DOS), a lone "\r"
+// (classic Mac) and "\n" all end a line. tinyobjloader only knows the first and the last, so
+// the text both readers see has "\n" alone.
+std::string NormalizeLineEnds(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\r') {
+      out.push_back(text[i]);
+    } else if (i + 1 >= text.size() || text[i + 1] != '\n') {
+      out.push_back('\n');
+    }
+  }
+  return out;
+}
+
+StatusOr<MeshData> LoadObjFromString(const std::string& raw_text,
+                                     const std::string& display_name) {
+  const std::string text = NormalizeLineEnds(raw_text);
   ObjValidator validator(display_name);
   PTLAB_RETURN_IF_ERROR(validator.Run(text));
   const ObjCounts& counts = validator.counts();

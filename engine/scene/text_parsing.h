@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/input_file.h"
 #include "engine/core/status.h"
 
 namespace ptlab {
@@ -75,22 +76,10 @@ inline bool SplitList(std::string_view text, std::vector<std::string_view>* item
   }
 }
 
-/// Reads a whole file. On failure the Status reads "path: cannot read <what>: <reason>".
+/// Reads a whole file (a regular file within the size limit of input_file.h). On failure the
+/// Status reads "path: cannot read <what>: <reason>".
 inline Status ReadTextFile(const std::string& path, const char* what, std::string* text) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    return Status::Error(path + ": cannot read " + what + ": it is a directory");
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (file == nullptr)
-    return Status::Error(path + ": cannot read " + what + ": " + std::strerror(errno));
-  text->clear();
-  char buffer[1 << 16];
-  size_t got = 0;
-  while ((got = std::fread(buffer, 1, sizeof(buffer), file)) > 0) text->append(buffer, got);
-  const bool failed = std::ferror(file) != 0;
-  std::fclose(file);
-  if (failed) return Status::Error(path + ": cannot read " + what + ": read error");
-  return Status::Ok();
+  return ReadInputFile(path, what, text);
 }
 
 }  // namespace ptlab

@@ -20,6 +20,7 @@
 #include "engine/light/environment_map.h"
 #include "engine/scene/mesh_builder.h"
 #include "engine/scene/obj_loader.h"
+#include "engine/scene/scene_limits.h"
 #include "engine/scene/shapes.h"
 #include "engine/scene/text_parsing.h"
 #include "engine/scene/xml_loader_internal.h"
@@ -603,11 +604,14 @@ class SceneParser {
     const TriangleTable& tri = scene_.triangles;
     for (uint32_t t = first; t < tri.size(); ++t)
       for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)})
-        if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)))
+        if (!(std::abs(v.x) <= kMaxWorldCoordinate && std::abs(v.y) <= kMaxWorldCoordinate &&
+              std::abs(v.z) <= kMaxWorldCoordinate))
           return at_.Error(node, "triangle " + std::to_string(t - first) + " of " + Describe(node) +
-                                     " has a non-finite world-space vertex; "
-                                     "expected coordinates and toWorld that stay within float "
-                                     "range");
+                                     " has the world-space vertex (" + FormatNumber(v.x) + ", " +
+                                     FormatNumber(v.y) + ", " + FormatNumber(v.z) +
+                                     "); expected coordinates and toWorld that keep every "
+                                     "coordinate finite and within +-" +
+                                     FormatNumber(kMaxWorldCoordinate));
     if (emitter_node) {
       AreaLightTable& lights = scene_.area_lights;
       const EmitterRef ref = EmitterRef::Make(EmitterTag::kArea, uint32_t(lights.size()));
@@ -619,15 +623,15 @@ class SceneParser {
     return Status::Ok();
   }
 
-  // Reflectances must lie in [0, 1]; radiance, eta and k only need to be >= 0.
+  // Reflectances must lie in [0, 1]; radiance, power, eta and k in [0, kMaxRadiance].
   enum class Range { kUnit, kNonNegative };
   Status CheckColor(PropertyList& props, const char* name, const Color3f& c, Range range) {
-    const float max = range == Range::kUnit ? 1.0f : INFINITY;
+    const float max = range == Range::kUnit ? 1.0f : kMaxRadiance;
     if (c.r >= 0 && c.g >= 0 && c.b >= 0 && c.r <= max && c.g <= max && c.b <= max)
       return Status::Ok();
     return props.Error(name, std::string("'") + name + "' = (" + FormatColor(c) +
                                  ") is out of range; expected components " +
-                                 (range == Range::kUnit ? "in [0, 1]" : ">= 0"));
+                                 (range == Range::kUnit ? "in [0, 1]" : "in [0, 1e20]"));
   }
   Status CheckPositive(PropertyList& props, const char* name, float v) {
     if (v > 0) return Status::Ok();
@@ -886,6 +890,10 @@ class SceneParser {
                                     " is out of range; expected degrees in (0, 180)");
     if (camera.width < 1) return props.Error("width", "width must be >= 1 pixel");
     if (camera.height < 1) return props.Error("height", "height must be >= 1 pixel");
+    if (const std::string size = FilmSizeError(camera.width, camera.height); !size.empty())
+      return props.Error(camera.width > kMaxFilmSide || camera.height <= kMaxFilmSide ? "width"
+                                                                                        : "height",
+                         size);
     PTLAB_RETURN_IF_ERROR(CheckPositive(props, "nearClip", camera.near_clip));
     if (!(camera.far_clip > camera.near_clip))
       return props.Error("farClip", "farClip must be > nearClip");
@@ -916,6 +924,10 @@ class SceneParser {
     }
     PTLAB_RETURN_IF_ERROR(props.Float("radius", &filter.radius));
     PTLAB_RETURN_IF_ERROR(CheckPositive(props, "radius", filter.radius));
+    if (!(filter.radius <= kMaxFilterRadius))
+      return props.Error("radius", "radius = " + FormatNumber(filter.radius) +
+                                       " is out of range; expected a filter radius in (0, " +
+                                       FormatNumber(kMaxFilterRadius) + "] pixels");
     scene_.filter = filter;
     return Status::Ok();
   }

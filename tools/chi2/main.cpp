@@ -11,6 +11,7 @@
 #include "tools/chi2/report.h"
 #include "tools/chi2/subjects.h"
 #include "tools/mpi/mpi_session.h"
+#include "tools/cli_checks.h"
 
 namespace {
 
@@ -100,9 +101,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 4096))
       ->capture_default_str();
   app.add_option("--seed", options.seed, "PCG32 seed (the stream comes from the subject name)")
+      ->check(ptlab::UnsignedDecimal())
       ->capture_default_str();
   app.add_option("--alpha", options.alpha, "significance level of the whole run")
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(ptlab::FiniteRange(1e-12, 0.5))
       ->capture_default_str();
   app.add_option("--images", images_dir,
                  "write <DIR>/<name>.png (observed | expected | difference) and .csv per test");

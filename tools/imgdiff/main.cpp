@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/image/image_io.h"
+#include "tools/cli_checks.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace {
@@ -63,28 +64,28 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--tol", options.block_tol, "block relative tolerance T")
-      ->check(CLI::PositiveNumber)
+      ->check(ptlab::FinitePositive())
       ->capture_default_str();
   app.add_option("--block-min", options.block_min, "floor on B's block mean for eligibility")
-      ->check(CLI::NonNegativeNumber)
+      ->check(ptlab::FiniteRange(0, HUGE_VAL))
       ->capture_default_str();
   app.add_option("--heatmap", heatmap_path, "write the relative-error heat map here");
   app.add_option("--heatmap-scale", heatmap_scale, "relative error shown at full colour")
-      ->check(CLI::PositiveNumber)
+      ->check(ptlab::FinitePositive())
       ->capture_default_str();
   CLI::Option* o_rmse = app.add_option("--fail-rmse", fail_rmse, "fail if RMSE (all) > X")
-                            ->check(CLI::NonNegativeNumber);
+                            ->check(ptlab::FiniteRange(0, HUGE_VAL));
   CLI::Option* o_relmse = app.add_option("--fail-relmse", fail_relmse, "fail if relMSE (all) > X")
-                              ->check(CLI::NonNegativeNumber);
+                              ->check(ptlab::FiniteRange(0, HUGE_VAL));
   CLI::Option* o_mean = app.add_option("--fail-mean-rel", fail_mean_rel,
                                        "fail if max over channels |meanA-meanB|/meanB > X")
-                            ->check(CLI::NonNegativeNumber);
+                            ->check(ptlab::FiniteRange(0, HUGE_VAL));
   CLI::Option* o_share = app.add_option("--fail-block-share", fail_block_share,
                                         "fail if the share of blocks within --tol is < F")
-                             ->check(CLI::Range(0.0, 1.0));
+                             ->check(ptlab::FiniteRange(0.0, 1.0));
   CLI::Option* o_parity =
       app.add_option("--parity", parity, "fail unless PARITY.md's criterion P(F) holds")
-          ->check(CLI::Range(0.0, 1.0));
+          ->check(ptlab::FiniteRange(0.0, 1.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,8 +1,13 @@
 // ptlab command line: `ptlab render scene.xml` (and, later, test and envmap tools).
+#include <pthread.h>
 #include <sched.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <cstdint>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +23,7 @@
 #include "engine/light/environment_map.h"
 #include "engine/render/integrator.h"
 #include "engine/render/render.h"
+#include "engine/scene/scene_limits.h"
 #include "engine/scene/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/targets.h"
@@ -28,20 +34,20 @@
 #include "tools/mpi/mpi_session.h"
 #include "tools/ptlab/converge_command.h"
 #include "tools/ptlab/test_over_ranks.h"
+#include "tools/cli_checks.h"
 
 namespace ptlab {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
+std::atomic<int> g_signal{0};
 
-void OnSigint(int) {
+// SIGINT (Ctrl-C) and SIGTERM (kill, timeout, schedulers) stop the render after the pass in
+// flight; a second one ends the process at once (but not while the outputs are written).
+void OnInterrupt(int signal) {
+  g_signal.store(signal);
   g_interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
-}
-
-// mpirun passes Ctrl-C on to the ranks as SIGTERM.
-void OnSigterm(int) {
-  g_interrupted.store(true);
+  std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
 }
 
@@ -52,6 +58,23 @@ int UsableCores() {
   if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
   return std::max(1, int(std::thread::hardware_concurrency()));
 }
+
+// Holds SIGINT and SIGTERM while it lives, so the EXR and the PNG are both written or neither
+// is; a signal that arrived meanwhile is delivered when it ends.
+class BlockInterrupts {
+ public:
+  BlockInterrupts() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~BlockInterrupts() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+
+ private:
+  sigset_t old_;
+};
 
 std::string FormatDuration(double s) {
   char buf[32];
@@ -158,8 +181,16 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   }
   if (args.width > 0 || args.height > 0) {
     const double aspect = double(scene.camera.width) / double(scene.camera.height);
-    scene.camera.width = args.width > 0 ? args.width : int(std::lround(args.height * aspect));
-    scene.camera.height = args.height > 0 ? args.height : int(std::lround(args.width / aspect));
+    const double width = args.width > 0 ? args.width : std::round(args.height * aspect);
+    const double height = args.height > 0 ? args.height : std::round(args.width / aspect);
+    const std::string size = FilmSizeError(int64_t(std::min(width, 1e15)),
+                                           int64_t(std::min(height, 1e15)));
+    if (!size.empty()) {
+      std::fprintf(stderr, "error: --width/--height: %s\n", size.c_str());
+      return 2;
+    }
+    scene.camera.width = int(width);
+    scene.camera.height = int(height);
   }
   std::string out = args.output;
   if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".exr";
@@ -173,12 +204,21 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     output_ok = Status::Error("output directory '" + out_path.parent_path().string() +
                               "' does not exist");
   }
+  const std::string png = std::filesystem::path(out).replace_extension(".png").string();
+  for (const std::string& file : {out, png}) {
+    if (!output_ok.ok() || !mpi.root()) break;
+    output_ok = PrepareOutputFile(file);
+  }
   output_ok = mpi.Agree(output_ok);
   if (!output_ok.ok()) {
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", output_ok.message().c_str());
     return 1;
   }
 
+  const int cores = std::max(1, int(std::thread::hardware_concurrency()));
+  if (!mpi.active() && args.threads > cores)
+    std::fprintf(stderr, "warning: --threads %d is more than the %d cores of this machine\n",
+                 args.threads, cores);
   RenderOptions options;
   options.spp = args.spp > 0 ? uint32_t(args.spp) : scene.sampler.sample_count;
   options.threads = args.threads > 0 ? args.threads : UsableCores();
@@ -220,18 +260,33 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                packets ? ("8-wide packets, Highway target " +
                           std::string(simd::Traverse8TargetName())).c_str()
                        : "scalar oracle (one ray at a time)");
-  std::signal(SIGINT, OnSigint);
-  if (mpi.active()) std::signal(SIGTERM, OnSigterm);
+  std::signal(SIGINT, OnInterrupt);
+  std::signal(SIGTERM, OnInterrupt);
   const RenderResult result = Render(scene, bvh, options);
+  BlockInterrupts hold_interrupts;
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  const int interrupted_code = g_signal.load() == SIGTERM ? 143 : 130;
+  if (!result.error.empty()) {
+    std::fprintf(stderr, "error: %s\n", result.error.c_str());
+    return 1;
+  }
   if (!quiet) reporter.Finish();
-  if (!mpi.root()) return result.interrupted ? 130 : 0;  // rank 0 keeps the film and writes it
+  if (!mpi.root()) return result.interrupted ? interrupted_code : 0;  // rank 0 writes the film
   if (args.stats) PrintStats(result, options.threads * mpi.size(), packets);
 
   if (result.nonfinite_samples > 0)
     std::fprintf(stderr, "warning: dropped %llu NaN/Inf samples (first at pixel %d,%d)\n",
                  (unsigned long long)result.nonfinite_samples, result.first_nonfinite_x,
                  result.first_nonfinite_y);
+  // Pixels that end non-finite in the film (sums that overflowed), beside the dropped samples.
+  size_t nonfinite_pixels = 0;
+  for (size_t i = 0; i < result.image.rgb.size(); i += 3)
+    nonfinite_pixels += !(std::isfinite(result.image.rgb[i]) &&
+                          std::isfinite(result.image.rgb[i + 1]) &&
+                          std::isfinite(result.image.rgb[i + 2]));
+  if (nonfinite_pixels > 0)
+    std::fprintf(stderr, "warning: %zu pixels of the image are NaN/Inf\n", nonfinite_pixels);
   const std::vector<std::pair<std::string, std::string>> header = {
       {"ptlab:scene", args.scene},
       {"ptlab:spp", std::to_string(result.spp_done)},
@@ -240,17 +295,17 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
       {"ptlab:seconds", std::to_string(result.seconds)},
       {"ptlab:interrupted", result.interrupted ? "true" : "false"},
       {"ptlab:nonfinite_samples", std::to_string(result.nonfinite_samples)},
+      {"ptlab:nonfinite_pixels", std::to_string(nonfinite_pixels)},
       {"ptlab:traversal", traversal},
       {"ptlab:threads", std::to_string(options.threads)},
       {"ptlab:ranks", std::to_string(mpi.size())},
   };
   if (result.spp_done == 0) {
     std::fprintf(stderr, "interrupted before the first pass completed: nothing written\n");
-    return 130;
+    return interrupted_code;
   }
   Status st = WriteExr(out, result.image, header);
-  if (st.ok()) st = WritePng(std::filesystem::path(out).replace_extension(".png").string(),
-                             result.image);
+  if (st.ok()) st = WritePng(png, result.image);
   if (st.ok() && !args.tile_times.empty()) st = WriteTileTimes(args.tile_times, result);
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
@@ -260,7 +315,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
               result.interrupted ? "interrupted, wrote partial image" : "wrote", out.c_str(),
               result.spp_done, result.seconds,
               result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0);
-  return result.interrupted ? 130 : 0;
+  return result.interrupted ? interrupted_code : 0;
 }
 
 }  // namespace
@@ -276,12 +331,16 @@ int main(int argc, char** argv) {
   ptlab::RenderArgs render;
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (Nori XML) to EXR + PNG");
   cmd->add_option("scene", render.scene, "Scene file (.xml)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)");
+  cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)")
+      ->check(CLI::Validator(
+          [](std::string& path) { return path.empty() ? "the output path is empty" : ""; },
+          "PATH"));
   cmd->add_option("--spp", render.spp, "Samples per pixel (default: the scene's sampleCount)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--threads", render.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams");
+  cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams")
+      ->check(ptlab::UnsignedDecimal());
   cmd->add_option("--width", render.width, "Override the image width")->check(CLI::Range(1, 65536));
   cmd->add_option("--height", render.height, "Override the image height")
       ->check(CLI::Range(1, 65536));
@@ -327,10 +386,15 @@ int main(int argc, char** argv) {
                  argv[1]);
     return 3;
   }
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // help and version: 0; bad usage: 2
+  }
   if (cmd->parsed()) return ptlab::RunRender(render, mpi);
   if (converge_cmd->parsed()) {
-    std::signal(SIGINT, ptlab::OnSigint);
+    std::signal(SIGINT, ptlab::OnInterrupt);
+    std::signal(SIGTERM, ptlab::OnInterrupt);
     return ptlab::RunConverge(converge, &ptlab::g_interrupted);
   }
   if (test_cmd->parsed())

@@ -326,6 +326,25 @@ TEST(BvhBuild, ExponentialSpacingStaysUnderMaxDepth) {
   EXPECT_EQ(failures, 0);
 }
 
+// Issue 12, finding 2: bounds near FLT_MAX overflow the doubled centroids and the extent to
+// Inf; binning used to turn that into bin INT_MIN and write outside its array. Finite
+// triangles whose sums overflow still build a valid tree and keep every triangle.
+TEST(BvhBuild, BoundsNearFloatMaxBinSafely) {
+  TriangleTable t;
+  const float big = 3e38f;
+  for (int i = 0; i < 64; ++i) {
+    const float s = (i % 2 == 0 ? 1.0f : -1.0f) * big * (0.5f + 0.0078125f * float(i));
+    t.Append({s, 0, 0}, {s, s, 0}, {0, s, s});
+  }
+  for (int i = 0; i < 64; ++i) {
+    const float x = float(i);
+    t.Append({x, 0, 5}, {x + 1, 0, 5}, {x, 1, 5});
+  }
+  const Bvh bvh = BuildBvh(t);
+  EXPECT_EQ(bvh.prim_id.size(), t.size());
+  CheckStructure(bvh, t);
+}
+
 TEST(BvhBuild, DegenerateTrianglesAreDroppedAndNeverHit) {
   TriangleTable t;
   t.Append({0, 0, 0}, {1, 0, 0}, {0, 1, 0});                // 0: regular

@@ -2,6 +2,7 @@
 #include "engine/image/image_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <stb/stb_image_write.h>
 #include <unistd.h>
 
@@ -232,7 +233,7 @@ void ExpectReadError(const std::string& path, const std::string& what) {
 }
 
 TEST_F(ImageIo, UnreadableFilesGiveErrorsNamingTheFile) {
-  ExpectReadError(Path("missing.exr"), "does not exist");
+  ExpectReadError(Path("missing.exr"), "No such file");
   ExpectReadError(dir_.string(), "directory");
   WriteBytes(Path("empty.png"), "");
   ExpectReadError(Path("empty.png"), "empty");
@@ -242,6 +243,35 @@ TEST_F(ImageIo, UnreadableFilesGiveErrorsNamingTheFile) {
   ExpectReadError(Path("bad_size.pfm"), "bad PFM header");
   WriteBytes(Path("bad_scale.pfm"), std::string("PF\n1 1\nzero\n") + std::string(12, '\0'));
   ExpectReadError(Path("bad_scale.pfm"), "bad PFM header");
+}
+
+// Issue 12, finding 7: a header claiming far more pixels than the file holds is refused before
+// the pixels are allocated (a 16383x16383 Radiance HDR of 100 bytes allocated 3 GB).
+TEST_F(ImageIo, HeadersClaimingMorePixelsThanTheFileHoldsAreRefused) {
+  ExpectReadError(PTLAB_SOURCE_DIR "/tests/data/bad/huge_claim.hdr", "can hold");
+  // An EXR of one pixel whose dataWindow is patched to one line of 2^24 pixels: OpenEXR 3
+  // refuses it itself (bytes per scanline; taller windows: the line offset table runs past
+  // the end of the file) before ptlab's own pixels-per-byte check is reached.
+  Image one(1, 1);
+  ASSERT_TRUE(WriteExr(Path("one.exr"), one, {}).ok());
+  std::ifstream in(Path("one.exr"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const int32_t box[4] = {0, 0, (1 << 24) - 1, 0};
+  std::memcpy(&bytes[at + key.size() + 4], box, sizeof(box));
+  WriteBytes(Path("claim.exr"), bytes);
+  ExpectReadError(Path("claim.exr"), "EXR");
+}
+
+// Issue 12, finding 6: a device or a FIFO is refused before it is read (/dev/zero used to be
+// read until memory ran out, a FIFO blocked forever).
+TEST_F(ImageIo, DevicesAndFifosAreRefusedBeforeReading) {
+  ExpectReadError("/dev/zero", "not a regular file");
+  const std::string fifo = Path("pipe.exr");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ExpectReadError(fifo, "not a regular file");
 }
 
 TEST_F(ImageIo, TruncatedFilesGiveErrorsNamingTheFile) {

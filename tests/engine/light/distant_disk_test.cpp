@@ -124,19 +124,26 @@ TEST(DistantDisk, BlackDiskNeverSamples) {
 
 TEST(DistantDisk, RejectsOutOfRangeParameters) {
   DistantDiskTable t;
-  for (const float theta_a : {0.0f, -5.0f, 180.5f, std::nanf("")}) {
+  // 1e-30 and 1e-5 degrees: cones whose solid angle underflows or is too small to sample
+  // (issue 12, finding 9: they gave NaN samples).
+  for (const float theta_a : {0.0f, -5.0f, 180.5f, std::nanf(""), 1e-30f, 1e-5f}) {
     const StatusOr<uint32_t> row = AddDistantDisk({1, 1, 1}, theta_a, Frame(), "here", &t);
     ASSERT_FALSE(row.ok());
     EXPECT_NE(row.status().message().find("thetaA"), std::string::npos);
     EXPECT_EQ(row.status().message().rfind("here:", 0), 0u);
   }
   for (const Color3f& radiance :
-       {Color3f{-1, 0, 0}, Color3f{0, std::nanf(""), 0}, Color3f{0, 0, INFINITY}}) {
+       {Color3f{-1, 0, 0}, Color3f{0, std::nanf(""), 0}, Color3f{0, 0, INFINITY},
+        Color3f{3e38f, 0, 0}}) {
     const StatusOr<uint32_t> row = AddDistantDisk(radiance, 10, Frame(), "here", &t);
     ASSERT_FALSE(row.ok());
     EXPECT_NE(row.status().message().find("radiance"), std::string::npos);
   }
   EXPECT_EQ(t.size(), 0u);
+  // The smallest accepted cone still has a finite, positive pdf.
+  ASSERT_TRUE(AddDistantDisk({1, 1, 1}, 4e-5f, Frame(), "here", &t).ok());
+  EXPECT_GT(t.solid_angle[0], 0.0f);
+  EXPECT_TRUE(std::isfinite(1.0f / t.solid_angle[0]));
 }
 
 }  // namespace

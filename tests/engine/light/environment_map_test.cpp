@@ -390,7 +390,12 @@ TEST(EnvironmentMapPolicy, RejectsBadScaleAndEmptyImages) {
   desc.scale = 10.0f;
   StatusOr<uint32_t> row = AddEnvironmentMap(huge, desc, "s.hdr", &t);
   ASSERT_FALSE(row.ok());
-  EXPECT_NE(row.status().message().find("overflows"), std::string::npos);
+  EXPECT_NE(row.status().message().find("exceeds the largest radiance"), std::string::npos);
+  // Issue 12, finding 9: finite values near FLT_MAX at scale 1 overflowed the sampling sums.
+  desc.scale = 1.0f;
+  row = AddEnvironmentMap(huge, desc, "s.hdr", &t);
+  ASSERT_FALSE(row.ok());
+  EXPECT_NE(row.status().message().find("exceeds the largest radiance"), std::string::npos);
   row = AddEnvironmentMap(Image(), {}, "s.hdr", &t);
   ASSERT_FALSE(row.ok());
   EXPECT_NE(row.status().message().find("empty"), std::string::npos);

@@ -93,6 +93,28 @@ TEST(ObjLoader, NoriMeshes) {
   EXPECT_EQ(floor->triangle_count(), 138u);
 }
 
+std::string BadInput(const std::string& name) { return PTLAB_SOURCE_DIR "/tests/data/bad/" + name; }
+
+// Issue 12, finding 1: a lone '\r' ends a line for both the line checker and tinyobjloader
+// (it used to crash the loader, which read past a buffer).
+TEST(ObjLoader, ClassicMacLineEndsAreLines) {
+  const StatusOr<MeshData> mesh = LoadObj(BadInput("quad_cr_only.obj"));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+  EXPECT_EQ(Indices(*mesh), (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(mesh->positions[2].y, 1.0f);
+}
+
+// The error of a CR-only file names the right line.
+TEST(ObjLoader, ClassicMacLineEndsErrorLine) {
+  const std::string path = BadInput("cr_only_bad_index.obj");
+  ExpectObjError(LoadObj(path), path, 4, {"position", "7", "expected an index in 1..3"});
+}
+
+// Issue 12, finding 6: devices are refused before reading (the same check guards every input).
+TEST(ObjLoader, DeviceInsteadOfFile) {
+  ExpectObjError(LoadObj("/dev/zero"), "/dev/zero", 0, {"cannot read", "not a regular file"});
+}
+
 TEST(ObjLoader, MissingFile) {
   const std::string path = Fixture("does_not_exist.obj");
   ExpectObjError(LoadObj(path), path, 0, {"cannot read", "No such file"});

@@ -646,7 +646,10 @@ TEST(SceneLoader, OutOfRangeValues) {
   ExpectParseError(
       "<shape type=\"sphere\">\n<float name=\"radius\" value=\"1e38\"/>\n"
       "<transform name=\"toWorld\"><scale value=\"10 10 10\"/></transform></shape>\n",
-      4, {"non-finite world-space vertex"});
+      4, {"world-space vertex (0, 0, inf)", "within +-1e+12"});
+  // Issue 12, finding 2: finite coordinates whose bounds overflow (sums of two reach Inf).
+  ExpectParseError("<shape type=\"sphere\">\n<float name=\"radius\" value=\"3e38\"/></shape>\n",
+                   4, {"<shape type=\"sphere\">", "3e+38", "within +-1e+12"});
   ExpectError(Parse("<scene>\n<camera type=\"perspective\"/>\n<integrator type=\"path_mis\">\n"
                     "<string name=\"heuristic\" value=\"max\"/></integrator></scene>\n"),
               "bad.xml", 4, {"unknown heuristic 'max'", "balance or power"});

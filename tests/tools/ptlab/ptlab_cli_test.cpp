@@ -166,9 +166,10 @@ TEST(PtlabCli, EnvmapPdfWritesTheDebugImage) {
   EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
-// Ctrl-C: the image of every completed pass is written, marked as interrupted, exit 130.
-TEST(PtlabCli, InterruptWritesWhatItHas) {
-  const fs::path dir = TempDir("cli_sigint");
+// Ctrl-C (SIGINT, exit 130) and SIGTERM (exit 143): the image of every completed pass is
+// written, EXR and PNG, marked as interrupted.
+void ExpectInterruptWritesWhatItHas(int signal, int exit_code) {
+  const fs::path dir = TempDir("cli_signal_" + std::to_string(signal));
   const fs::path out = dir / "cbox.exr", log = dir / "log";
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
@@ -188,12 +189,13 @@ TEST(PtlabCli, InterruptWritesWhatItHas) {
     started = ReadFile(log).find("progress  10%") != std::string::npos;
   }
   ASSERT_TRUE(started) << ReadFile(log);
-  kill(pid, SIGINT);
+  kill(pid, signal);
   int status = 0;
   waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(WEXITSTATUS(status), exit_code);
   ASSERT_TRUE(fs::exists(out)) << ReadFile(log);
+  EXPECT_TRUE(fs::exists(dir / "cbox.png"));
   auto attrs = ReadExrStringAttributes(out.string());
   ASSERT_TRUE(attrs.ok());
   int spp = -1;
@@ -207,6 +209,11 @@ TEST(PtlabCli, InterruptWritesWhatItHas) {
   EXPECT_LT(spp, 4096);
   EXPECT_EQ(spp % 16, 0);
 }
+
+TEST(PtlabCli, InterruptWritesWhatItHas) { ExpectInterruptWritesWhatItHas(SIGINT, 130); }
+
+// Issue 12, finding 12: SIGTERM (kill, timeout, schedulers) behaves like Ctrl-C.
+TEST(PtlabCli, TerminateWritesWhatItHas) { ExpectInterruptWritesWhatItHas(SIGTERM, 143); }
 
 }  // namespace
 }  // namespace ptlab
