@@ -120,7 +120,8 @@ struct LightSampler {
     const uint32_t k = std::min(n - 1, static_cast<uint32_t>(rng.NextFloat() * n));
     const float u_tri = rng.NextFloat();
     const Vec2f u{rng.NextFloat(), rng.NextFloat()};
-    const AreaLightSample s = SampleAreaLight(*scene, k, u_tri, u);
+    const AreaLightSample s =
+        SampleAreaLight(*scene, k, Vec3f{}, TriangleSampling::kArea, {u_tri, u.x});
     *ng = s.ng;
     return s.p;
   }

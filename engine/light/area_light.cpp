@@ -2,8 +2,10 @@
 #include "engine/light/area_light.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/sampling/guide_table.h"
+#include "engine/sampling/spherical_triangle.h"
 
 namespace ptlab {
 
@@ -26,24 +28,75 @@ Vec3f ShadingNormalAt(const Scene& scene, uint32_t tri, float b1, float b2) {
   return len > 0 ? ng / len : Vec3f{0, 0, 1};
 }
 
-AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, float u_tri, const Vec2f& u) {
+namespace {
+
+float TriangleArea(const TriangleTable& t, uint32_t tri) {
+  return 0.5f * Length(Cross(t.V1(tri) - t.V0(tri), t.V2(tri) - t.V0(tri)));
+}
+
+// Area density at p turned into solid-angle density at ref (n: the light's normal at p).
+float AreaToSolidAngle(float pdf_area, const Vec3f& p, const Vec3f& n, const Vec3f& ref) {
+  const Vec3f d = p - ref;
+  const float dist2 = Dot(d, d);
+  if (!(dist2 > 0)) return 0.0f;
+  const float cos_l = -Dot(n, d) / std::sqrt(dist2);
+  if (!(cos_l > 0)) return 0.0f;
+  return pdf_area * dist2 / cos_l;
+}
+
+}  // namespace
+
+AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f& ref,
+                                TriangleSampling mode, Vec2f u) {
   const AreaLightTable& lights = scene.area_lights;
+  AreaLightSample s;
+  if (!(lights.area[light] > 0)) return s;
   const uint32_t mesh = lights.mesh[light];
   const uint32_t count = scene.meshes.triangle_count[mesh];
   const float* cdf = lights.triangle_cdf.data() + lights.cdf_offset[light];
   const uint32_t* guide = lights.triangle_guide.data() + lights.guide_offset[light];
-  const uint32_t k = std::min<uint32_t>(GuidedUpperBound(cdf, count, guide, u_tri), count - 1);
+  const uint32_t k = std::min<uint32_t>(GuidedUpperBound(cdf, count, guide, u.x), count - 1);
   const uint32_t tri = scene.meshes.first_triangle[mesh] + k;
-  const Vec2f b = SampleUniformTriangle(u);
+  // u.x within the triangle's CDF interval is uniform again: it goes on to the point, so that a
+  // stratified u stays stratified over the whole light.
+  const float lo = k > 0 ? cdf[k - 1] : 0.0f, width = cdf[k] - lo;
+  u.x = width > 0 ? std::min((u.x - lo) / width, 0x1.fffffep-1f) : 0.5f;
+  u.x = std::max(u.x, 0.0f);
   const TriangleTable& t = scene.triangles;
-  AreaLightSample s;
+  const Vec3f ng = Cross(t.V1(tri) - t.V0(tri), t.V2(tri) - t.V0(tri));
+  s.radiance = lights.radiance[light];
+  SphericalTriangleSample st;
+  if (mode == TriangleSampling::kSolidAngle &&
+      SampleSphericalTriangle(t.V0(tri), t.V1(tri), t.V2(tri), ref, u, &st)) {
+    s.p = st.p;
+    s.n = ShadingNormalAt(scene, tri, st.b1, st.b2);
+    s.ng = Length(ng) > 0 ? Normalize(ng) : s.n;
+    // The triangle is picked with probability area_tri / area_light.
+    const float d = Dot(s.n, s.p - ref);
+    s.pdf = d < 0 ? st.pdf * TriangleArea(t, tri) / lights.area[light] : 0.0f;
+    return s;
+  }
+  const Vec2f b = SampleUniformTriangle(u);
   s.p = t.V0(tri) * (1.0f - b.x - b.y) + t.V1(tri) * b.x + t.V2(tri) * b.y;
   s.n = ShadingNormalAt(scene, tri, b.x, b.y);
-  const Vec3f ng = Cross(t.V1(tri) - t.V0(tri), t.V2(tri) - t.V0(tri));
   s.ng = Length(ng) > 0 ? Normalize(ng) : s.n;
-  s.radiance = lights.radiance[light];
-  s.pdf_area = lights.area[light] > 0 ? 1.0f / lights.area[light] : 0.0f;
+  s.pdf = AreaToSolidAngle(1.0f / lights.area[light], s.p, s.n, ref);
   return s;
+}
+
+float AreaLightPdf(const Scene& scene, uint32_t light, uint32_t tri, const Vec3f& p,
+                   const Vec3f& n, const Vec3f& ref, TriangleSampling mode) {
+  const AreaLightTable& lights = scene.area_lights;
+  if (!(lights.area[light] > 0)) return 0.0f;
+  if (mode == TriangleSampling::kSolidAngle) {
+    const TriangleTable& t = scene.triangles;
+    const float omega = SphericalTriangleArea(t.V0(tri), t.V1(tri), t.V2(tri), ref);
+    if (UsesSphericalTriangleSampling(omega)) {
+      if (!(Dot(n, p - ref) < 0)) return 0.0f;
+      return TriangleArea(t, tri) / (lights.area[light] * omega);
+    }
+  }
+  return AreaToSolidAngle(1.0f / lights.area[light], p, n, ref);
 }
 
 }  // namespace ptlab

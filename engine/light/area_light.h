@@ -1,4 +1,5 @@
-// Area lights: uniform sampling by area over an emitting mesh, and emitted radiance.
+// Area lights: sampling points of an emitting mesh (a triangle by area, then a point uniform by
+// area or by the solid angle seen from the shading point), their densities, emitted radiance.
 #pragma once
 
 #include <algorithm>
@@ -12,20 +13,30 @@ namespace ptlab {
 
 /// A point sampled on a light: position, its shading normal n (which decides the emitting
 /// side), its unit geometric normal ng (for offsetting shadow rays), the radiance it emits, and
-/// the area density of the sample on that light (1 / area).
+/// the solid-angle density of the sample's direction seen from the reference point (0: no
+/// valid sample, e.g. the point is behind the light or coincides with the reference point).
 struct AreaLightSample {
   Vec3f p, n, ng;
   Color3f radiance;
-  float pdf_area = 0.0f;
+  float pdf = 0.0f;
 };
 
 /// Normal at barycentrics (b1, b2) of triangle `tri`: the interpolated vertex normal when the
 /// mesh has normals, else the geometric normal (both unit length).
 Vec3f ShadingNormalAt(const Scene& scene, uint32_t tri, float b1, float b2);
 
-/// Samples light `light` (row in AreaLightTable) uniformly by area: u_tri picks the triangle
-/// (∝ area), u the point within it.
-AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, float u_tri, const Vec2f& u);
+/// Samples light `light` (row in AreaLightTable) for the reference point ref: u.x picks the
+/// triangle (∝ area) and, rescaled to the triangle's share, goes on with u.y to the point within
+/// it, uniform by area or (kSolidAngle) uniform in the triangle's solid angle from ref where
+/// that is accurate (UsesSphericalTriangleSampling). One 2-D point for the whole light keeps a
+/// stratified point set stratified across its triangles.
+AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f& ref,
+                                TriangleSampling mode, Vec2f u);
+
+/// Solid-angle density with which SampleAreaLight(light, ref, mode) produces the point p on
+/// triangle tri of the light, whose shading normal there is n; 0 when p faces away from ref.
+float AreaLightPdf(const Scene& scene, uint32_t light, uint32_t tri, const Vec3f& p,
+                   const Vec3f& n, const Vec3f& ref, TriangleSampling mode);
 
 /// Radiance leaving a light point with normal n towards direction w (unit, pointing away from
 /// the light): one-sided, zero behind the surface.

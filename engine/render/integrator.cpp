@@ -28,8 +28,10 @@ bool Trace(const RenderContext& ctx, const Ray& ray, Hit* hit, RayCounters* c) {
 // One emitter sample for the direct light at its (wo: local direction to the viewer).
 // With mis, the sample is weighted against BSDF sampling (balance or power heuristic).
 Color3f SampleEmitterDirect(const RenderContext& ctx, const SurfaceInteraction& its,
-                            const Vec3f& wo, bool mis, Pcg32& rng, RayCounters* c) {
-  const EmitterSampleRequest req = PrepareEmitterSample(ctx.scene, its, wo, mis, rng);
+                            const Vec3f& wo, bool mis, PathSampler& sampler, int depth,
+                            RayCounters* c, uint32_t sub = 0, uint32_t sub_count = 1) {
+  const EmitterSampleRequest req =
+      PrepareEmitterSample(ctx.scene, its, wo, mis, sampler, depth, sub, sub_count);
   if (!req.traced) return {};
   ++c->rays;
   return EmitterSampleResult(req, Occluded1(ctx.bvh, req.shadow));
@@ -43,7 +45,7 @@ Color3f LiNormals(const RenderContext& ctx, const Ray& ray, RayCounters* c) {
 }
 
 // Direct illumination: Le at the first hit plus one bounce of emitter and/or BSDF sampling.
-Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, Pcg32& rng,
+Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, PathSampler& sampler,
                  RayCounters* c) {
   const Scene& scene = ctx.scene;
   Hit hit;
@@ -53,12 +55,11 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, Pcg32& rng
   Color3f L = Emitted(scene, its, wo_world);
   const Vec3f wo = its.frame.ToLocal(wo_world);
   const bool mis = type == Type::kDirectMis;
-  if (type != Type::kDirectMats) L += SampleEmitterDirect(ctx, its, wo, mis, rng, c);
+  if (type != Type::kDirectMats) L += SampleEmitterDirect(ctx, its, wo, mis, sampler, 0, c);
   if (type == Type::kDirectEms) return L;
 
   BsdfSample bs;
-  const float u1 = rng.NextFloat();
-  if (!BsdfSampleDirection(scene.materials, its.material, wo, u1, Next2D(rng), &bs)) return L;
+  if (!SampleBsdf(scene, its, wo, sampler, 0, &bs)) return L;
   const Vec3f wi = its.frame.ToWorld(bs.wi);
   Ray next{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
   Hit hit2;
@@ -80,7 +81,7 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, Pcg32& rng
 // Whitted: emitter sampling on non-specular surfaces, specular chains continued through delta
 // lobes with Russian roulette (continuation 0.95, Nori's definition). Iterative: the throughput
 // of the chain carries each delta weight divided by the continuation probability.
-Color3f LiWhitted(const RenderContext& ctx, Ray ray, Pcg32& rng, RayCounters* c) {
+Color3f LiWhitted(const RenderContext& ctx, Ray ray, PathSampler& sampler, RayCounters* c) {
   const Scene& scene = ctx.scene;
   Color3f L, throughput{1, 1, 1};
   for (int depth = 0;; ++depth) {
@@ -94,13 +95,14 @@ Color3f LiWhitted(const RenderContext& ctx, Ray ray, Pcg32& rng, RayCounters* c)
     L += throughput * Emitted(scene, its, wo_world);
     const Vec3f wo = its.frame.ToLocal(wo_world);
     if (!IsDeltaMaterial(its.material.tag())) {
-      L += throughput * SampleEmitterDirect(ctx, its, wo, /*mis=*/false, rng, c);
+      L += throughput * SampleEmitterDirect(ctx, its, wo, /*mis=*/false, sampler, depth, c);
       break;
     }
-    if (depth >= kWhittedMaxDepth || rng.NextFloat() >= kWhittedContinuation) break;
+    if (depth >= kWhittedMaxDepth ||
+        sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) >= kWhittedContinuation)
+      break;
     BsdfSample bs;
-    const float u1 = rng.NextFloat();
-    if (!BsdfSampleDirection(scene.materials, its.material, wo, u1, Next2D(rng), &bs)) break;
+    if (!SampleBsdf(scene, its, wo, sampler, depth, &bs)) break;
     throughput *= bs.weight * (1.0f / kWhittedContinuation);
     const Vec3f wi = its.frame.ToWorld(bs.wi);
     ray = Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
@@ -112,7 +114,8 @@ Color3f LiWhitted(const RenderContext& ctx, Ray ray, Pcg32& rng, RayCounters* c)
 // by MIS. Russian roulette as in Nori: after 3 bounces continue with probability
 // min(max(throughput) η², 0.99). max_depth follows CS184: 0 = emitted light only,
 // 1 = direct lighting, ...; negative = unbounded.
-Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, Pcg32& rng, RayCounters* c) {
+Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, PathSampler& sampler,
+               RayCounters* c) {
   const Scene& scene = ctx.scene;
   const IntegratorDesc& desc = scene.integrator;
   const bool nee = type != Type::kPathMats, mis = type == Type::kPathMis;
@@ -149,17 +152,18 @@ Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, Pcg32& rng, RayCoun
     if (nee && !delta) {
       Color3f direct;
       const int n = std::max(1, desc.light_samples);
-      for (int i = 0; i < n; ++i) direct += SampleEmitterDirect(ctx, its, wo, mis, rng, c);
+      for (int i = 0; i < n; ++i)
+        direct += SampleEmitterDirect(ctx, its, wo, mis, sampler, depth, c, uint32_t(i),
+                                      uint32_t(n));
       L += throughput * direct * (1.0f / float(n));
     }
     if (depth >= 3) {
       const float q = std::min(MaxComponent(throughput) * eta * eta, 0.99f);
-      if (!(rng.NextFloat() < q)) break;
+      if (!(sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) < q)) break;
       throughput *= 1.0f / q;
     }
     BsdfSample bs;
-    const float u1 = rng.NextFloat();
-    if (!BsdfSampleDirection(scene.materials, its.material, wo, u1, Next2D(rng), &bs)) break;
+    if (!SampleBsdf(scene, its, wo, sampler, depth, &bs)) break;
     throughput *= bs.weight;
     eta *= bs.eta;
     if (IsBlack(throughput)) break;
@@ -174,16 +178,17 @@ Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, Pcg32& rng, RayCoun
 
 }  // namespace
 
-Color3f Li(const RenderContext& ctx, const Ray& ray, Pcg32& rng, RayCounters* counters) {
+Color3f Li(const RenderContext& ctx, const Ray& ray, PathSampler& sampler,
+           RayCounters* counters) {
   switch (ctx.scene.integrator.type) {
     case Type::kNormals: return LiNormals(ctx, ray, counters);
     case Type::kDirectEms:
     case Type::kDirectMats:
-    case Type::kDirectMis: return LiDirect(ctx, ray, ctx.scene.integrator.type, rng, counters);
-    case Type::kWhitted: return LiWhitted(ctx, ray, rng, counters);
+    case Type::kDirectMis: return LiDirect(ctx, ray, ctx.scene.integrator.type, sampler, counters);
+    case Type::kWhitted: return LiWhitted(ctx, ray, sampler, counters);
     case Type::kPathMats:
     case Type::kPathEms:
-    case Type::kPathMis: return LiPath(ctx, ray, ctx.scene.integrator.type, rng, counters);
+    case Type::kPathMis: return LiPath(ctx, ray, ctx.scene.integrator.type, sampler, counters);
   }
   return {};
 }

@@ -5,7 +5,7 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/core/ray.h"
-#include "engine/core/rng.h"
+#include "engine/sampling/sampler.h"
 #include "engine/scene/scene.h"
 
 namespace ptlab {
@@ -21,9 +21,11 @@ struct RayCounters {
   uint64_t rays = 0;
 };
 
-/// Radiance arriving along the camera ray, by the scene's integrator. Never NaN by design;
-/// the caller still drops non-finite samples.
-Color3f Li(const RenderContext& ctx, const Ray& ray, Pcg32& rng, RayCounters* counters);
+/// Radiance arriving along the camera ray, by the scene's integrator, with the random numbers
+/// of `sampler` (the camera ray took its pixel and lens dimensions). Never NaN by design; the
+/// caller still drops non-finite samples.
+Color3f Li(const RenderContext& ctx, const Ray& ray, PathSampler& sampler,
+           RayCounters* counters);
 
 /// Empty when the scene can be rendered by Li, else a message naming what is not supported.
 std::string UnsupportedFeature(const Scene& scene);

@@ -9,9 +9,10 @@
 #include "engine/bsdf/bsdf.h"
 #include "engine/bvh/ray_offset.h"
 #include "engine/core/ray.h"
-#include "engine/core/rng.h"
 #include "engine/light/area_light.h"
 #include "engine/light/infinite_light.h"
+#include "engine/light/light_selection.h"
+#include "engine/sampling/sampler.h"
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 
@@ -25,11 +26,6 @@ inline constexpr float kWhittedContinuation = 0.95f;
 inline constexpr int kWhittedMaxDepth = 64;
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-inline Vec2f Next2D(Pcg32& rng) {
-  const float a = rng.NextFloat();
-  return {a, rng.NextFloat()};
-}
-
 /// Origin of a ray leaving its.p toward direction w, pushed off the surface on w's side.
 inline Vec3f SpawnOrigin(const SurfaceInteraction& its, const Vec3f& w) {
   return OffsetRayOrigin(its.p, Dot(its.ng, w) >= 0 ? its.ng : -its.ng);
@@ -41,16 +37,14 @@ inline Color3f Emitted(const Scene& scene, const SurfaceInteraction& its, const 
   return AreaLightRadiance(scene.area_lights.radiance[its.emitter.index()], its.frame.n, w);
 }
 
-/// Solid-angle density with which emitter sampling (one emitter chosen uniformly, a point
-/// uniform by area) produces the point `its` on a light seen from `from`.
+/// Solid-angle density with which emitter sampling (an emitter chosen by the scene's light
+/// selection, a point by its triangle sampling) produces the point `its` on a light seen from
+/// `from`.
 inline float EmitterPdf(const Scene& scene, const SurfaceInteraction& its, const Vec3f& from) {
   if (!its.emitter.valid() || its.emitter.tag() != EmitterTag::kArea) return 0.0f;
-  const Vec3f d = its.p - from;
-  const float dist2 = Dot(d, d);
-  const float cos_l = -Dot(its.frame.n, d) / std::sqrt(dist2);
-  if (cos_l <= 0) return 0.0f;
-  const float area = scene.area_lights.area[its.emitter.index()];
-  return dist2 / (cos_l * area * float(scene.emitters.size()));
+  return EmitterSelectionPmf(scene, its.emitter) *
+         AreaLightPdf(scene, its.emitter.index(), its.prim, its.p, its.frame.n, from,
+                      scene.integrator.triangle_sampling);
 }
 
 /// MIS weight of a strategy with density pdf_a against one with density pdf_b (one sample
@@ -65,19 +59,18 @@ inline float MisWeight(float pdf_a, float pdf_b, bool power) {
 }
 
 /// Radiance of the infinite emitters along an escaping ray of direction w. With mis, each
-/// emitter's share is weighted against its own emitter-sampling density (one emitter is chosen
-/// uniformly among all of them), bsdf_pdf being the density of the BSDF sample that made w.
+/// emitter's share is weighted against its own emitter-sampling density (times the probability
+/// that light selection picks it), bsdf_pdf being the density of the BSDF sample that made w.
 inline Color3f Escaped(const Scene& scene, const Vec3f& w, bool mis, float bsdf_pdf) {
   if (scene.environment_maps.size() + scene.distant_disks.size() == 0) return {};
   if (!mis) return EscapedRadiance(scene, w);
   Color3f L;
-  const float n = float(scene.emitters.size());
   for (const EmitterRef e : scene.emitters) {
     if (!IsInfiniteLight(e)) continue;
     const Color3f Le = InfiniteLightRadiance(scene, e, w);
     if (IsBlack(Le)) continue;
-    L += Le *
-         MisWeight(bsdf_pdf, InfiniteLightPdf(scene, e, w) / n, scene.integrator.power_heuristic);
+    L += Le * MisWeight(bsdf_pdf, InfiniteLightPdf(scene, e, w) * EmitterSelectionPmf(scene, e),
+                        scene.integrator.power_heuristic);
   }
   return L;
 }
@@ -98,8 +91,9 @@ inline Color3f LightSampleContribution(const Scene& scene, MaterialRef material,
 
 /// One emitter sample for the direct light at its (wo: local direction to the viewer), with
 /// the shadow test left to the caller: when `traced`, the sample adds `contribution` unless
-/// `shadow` is occluded; otherwise it adds nothing and no ray is traced. Always draws four
-/// random numbers first, so the stream stays in step whatever the visibility.
+/// `shadow` is occluded; otherwise it adds nothing and no ray is traced. Always draws its three
+/// numbers first (light pick, then the point: the Decision dimensions of vertex `depth`,
+/// sub-sample `sub` of `sub_count`), so an independent stream stays in step whatever happens.
 struct EmitterSampleRequest {
   bool traced = false;
   Ray shadow;
@@ -107,14 +101,17 @@ struct EmitterSampleRequest {
 };
 
 inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const SurfaceInteraction& its,
-                                                 const Vec3f& wo, bool mis, Pcg32& rng) {
+                                                 const Vec3f& wo, bool mis, PathSampler& sampler,
+                                                 int depth, uint32_t sub = 0,
+                                                 uint32_t sub_count = 1) {
   EmitterSampleRequest req;
   const size_t n = scene.emitters.size();
   if (n == 0) return req;
-  const size_t k = std::min(n - 1, size_t(rng.NextFloat() * float(n)));
-  const float u_tri = rng.NextFloat();
-  const Vec2f u = Next2D(rng);
-  const EmitterRef emitter = scene.emitters[k];
+  const float u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), sub, sub_count);
+  const Vec2f u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), sub, sub_count);
+  float pick_pmf = 0.0f;
+  const EmitterRef emitter = SelectEmitter(scene, u_pick, &pick_pmf);
+  if (!(pick_pmf > 0)) return req;
   if (IsInfiniteLight(emitter)) {
     EnvironmentSample es;
     if (!SampleInfiniteLight(scene, emitter, u, &es)) return req;
@@ -123,12 +120,12 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
     if (IsBlack(f)) return req;
     req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
     req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
-                                               es.radiance, es.pdf / float(n), mis);
+                                               es.radiance, es.pdf * pick_pmf, mis);
     req.traced = true;
     return req;
   }
   if (emitter.tag() == EmitterTag::kPoint) {
-    // A delta light: chosen with probability 1/n, no MIS (BSDF sampling never reaches it).
+    // A delta light, picked with probability pick_pmf; no MIS (BSDF sampling never reaches it).
     const Vec3f p = scene.point_lights.position[emitter.index()];
     const Vec3f d = p - its.p;
     const float dist2 = Dot(d, d);
@@ -143,19 +140,20 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
     req.shadow.t_max = 1.0f;
     const Color3f intensity = scene.point_lights.power[emitter.index()] * (0.25f * kInvPi);
     req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
-                                               intensity * (1.0f / dist2), 1.0f / float(n),
+                                               intensity * (1.0f / dist2), pick_pmf,
                                                /*mis=*/false);
     req.traced = true;
     return req;
   }
   if (emitter.tag() != EmitterTag::kArea) return req;
-  const AreaLightSample ls = SampleAreaLight(scene, emitter.index(), u_tri, u);
+  const AreaLightSample ls = SampleAreaLight(scene, emitter.index(), its.p,
+                                             scene.integrator.triangle_sampling, u);
+  if (!(ls.pdf > 0)) return req;
   const Vec3f d = ls.p - its.p;
   const float dist2 = Dot(d, d);
-  if (!(dist2 > 0) || !(ls.pdf_area > 0)) return req;
+  if (!(dist2 > 0)) return req;
   const Vec3f wi = d / std::sqrt(dist2);
-  const float cos_l = -Dot(ls.n, wi);
-  if (cos_l <= 0) return req;
+  if (!(Dot(ls.n, wi) < 0)) return req;
   const Vec3f wi_local = its.frame.ToLocal(wi);
   const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
   if (IsBlack(f)) return req;
@@ -166,10 +164,17 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
   req.shadow.t_min = 0.0f;
   req.shadow.t_max = 1.0f;
   req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
-                                             ls.radiance, ls.pdf_area * dist2 / (cos_l * float(n)),
-                                             mis);
+                                             ls.radiance, ls.pdf * pick_pmf, mis);
   req.traced = true;
   return req;
+}
+
+/// Samples the BSDF at its (wo local) with the lobe and direction dimensions of vertex depth.
+inline bool SampleBsdf(const Scene& scene, const SurfaceInteraction& its, const Vec3f& wo,
+                       PathSampler& sampler, int depth, BsdfSample* bs) {
+  const float u1 = sampler.Get1D(DecisionDimension(depth, Decision::kBsdfLobe));
+  const Vec2f u2 = sampler.Get2D(DecisionDimension(depth, Decision::kBsdfDirection));
+  return BsdfSampleDirection(scene.materials, its.material, wo, u1, u2, bs);
 }
 
 /// What a prepared emitter sample adds once its shadow ray's visibility is known (the scalar

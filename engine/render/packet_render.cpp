@@ -67,12 +67,12 @@ void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const Pixe
       if (pixels && pixels->active && !pixels->active[pixel]) continue;
       PixelMoments* moments = pixels && pixels->moments ? &pixels->moments[pixel] : nullptr;
       for (uint32_t s = s_begin; s < s_end; ++s) {
-        Pcg32 rng(PixelSeed(seed, pixel), s);
-        const float jx = rng.NextFloat(), jy = rng.NextFloat();
-        const float lx = rng.NextFloat(), ly = rng.NextFloat();
-        const float sx = float(x) + jx, sy = float(y) + jy;
-        const Ray ray = camera.GenerateRay(sx, sy, {lx, ly});
-        const Color3f L = Li(ctx, ray, rng, &counters);
+        PathSampler sampler(ctx.scene.sampler.type, PixelSeed(seed, pixel), s);
+        const Vec2f jitter = sampler.Get2D(kDimensionPixel);
+        const Vec2f lens = sampler.Get2D(kDimensionLens);
+        const float sx = float(x) + jitter.x, sy = float(y) + jitter.y;
+        const Ray ray = camera.GenerateRay(sx, sy, lens);
+        const Color3f L = Li(ctx, ray, sampler, &counters);
         if (moments) AddPixelSample(L, moments);
         if (!IsFinite(L)) {
           if (stats->nonfinite++ == 0) stats->first_x = x, stats->first_y = y;

@@ -22,8 +22,8 @@ using integrator::kInfinity;
 using integrator::kWhittedContinuation;
 using integrator::kWhittedMaxDepth;
 using integrator::MisWeight;
-using integrator::Next2D;
 using integrator::PrepareEmitterSample;
+using integrator::SampleBsdf;
 using integrator::SpawnOrigin;
 using Type = IntegratorDesc::Type;
 using Clock = std::chrono::steady_clock;
@@ -149,7 +149,7 @@ class Wavefront {
     const uint64_t width = uint64_t(camera.width());
     const size_t samples = s_end - s_begin, tile_w = size_t(x1 - x0);
     const size_t n = size_t(y1 - y0) * tile_w * samples;
-    rng_.resize(n), slot_.resize(n);
+    sampler_.resize(n), slot_.resize(n);
     L_.assign(n, Color3f{}), throughput_.assign(n, Color3f{1, 1, 1}), nee_throughput_.resize(n);
     eta_.assign(n, 1.0f), prev_pdf_.assign(n, 0.0f), prev_p_.resize(n);
     specular_.assign(n, 1);  // the camera ray counts as specular: emission is always seen
@@ -164,22 +164,22 @@ class Wavefront {
             if (px >= x1 || py >= y1) continue;
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
             if (pixels && pixels->active && !pixels->active[pixel]) continue;
-            Pcg32& rng = rng_[id];
-            rng = Pcg32(PixelSeed(seed, pixel), s);
-            const float jx = rng.NextFloat(), jy = rng.NextFloat();
-            const float lx = rng.NextFloat(), ly = rng.NextFloat();
-            const float sx = float(px) + jx, sy = float(py) + jy;
+            PathSampler& sampler = sampler_[id];
+            sampler = PathSampler(scene_.sampler.type, PixelSeed(seed, pixel), s);
+            const Vec2f jitter = sampler.Get2D(kDimensionPixel);
+            const Vec2f lens = sampler.Get2D(kDimensionLens);
+            const float sx = float(px) + jitter.x, sy = float(py) + jitter.y;
             slot_[id] = uint32_t((size_t(py - y0) * tile_w + size_t(px - x0)) * samples +
                                  (s - s_begin));
             results_[slot_[id]] = {sx, sy, Color3f{}, true};
-            rays_.Push(camera.GenerateRay(sx, sy, {lx, ly}), id);
+            rays_.Push(camera.GenerateRay(sx, sy, lens), id);
             ++id;
           }
         }
       }
     }
     // Fewer paths than slots when pixels are inactive: Splat reads only the paths made here.
-    slot_.resize(id), rng_.resize(id);
+    slot_.resize(id), sampler_.resize(id);
     stats_->seconds.sampling += Seconds(t0, Clock::now());
   }
 
@@ -272,12 +272,13 @@ class Wavefront {
       const uint32_t i = rays_.owner[q];
       const SurfaceInteraction& its = its_[q];
       const Vec3f& wo = wo_[q];
-      Pcg32& rng = rng_[i];
+      PathSampler& sampler = sampler_[i];
       const bool delta = IsDeltaMaterial(its.material.tag());
       if (rules_.nee && (!delta || rules_.nee_on_delta)) {
         for (int s = 0; s < n_light; ++s) {
           const uint32_t r = uint32_t(requests_.size());
-          requests_.push_back(PrepareEmitterSample(scene_, its, wo, rules_.mis, rng));
+          requests_.push_back(PrepareEmitterSample(scene_, its, wo, rules_.mis, sampler, depth,
+                                                   uint32_t(s), uint32_t(n_light)));
           if (requests_.back().traced) shadows_.Push(requests_.back().shadow, r);
         }
         nee_paths_.push_back(i);
@@ -288,15 +289,16 @@ class Wavefront {
       float roulette_scale = 1.0f;
       if (rules_.roulette == VertexRules::Roulette::kNori && depth >= 3) {
         const float q_continue = std::min(MaxComponent(throughput_[i]) * eta_[i] * eta_[i], 0.99f);
-        if (!(rng.NextFloat() < q_continue)) continue;
+        if (!(sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) < q_continue)) continue;
         throughput_[i] *= 1.0f / q_continue;
       } else if (rules_.roulette == VertexRules::Roulette::kWhitted) {
-        if (depth >= kWhittedMaxDepth || rng.NextFloat() >= kWhittedContinuation) continue;
+        if (depth >= kWhittedMaxDepth ||
+            sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) >= kWhittedContinuation)
+          continue;
         roulette_scale = 1.0f / kWhittedContinuation;
       }
       BsdfSample bs;
-      const float u1 = rng.NextFloat();
-      if (!BsdfSampleDirection(scene_.materials, its.material, wo, u1, Next2D(rng), &bs)) continue;
+      if (!SampleBsdf(scene_, its, wo, sampler, depth, &bs)) continue;
       if (rules_.roulette == VertexRules::Roulette::kWhitted) {
         throughput_[i] *= bs.weight * roulette_scale;
       } else {
@@ -381,7 +383,7 @@ class Wavefront {
   TileSampleStats* stats_;
 
   // Path state (SoA, by path id).
-  std::vector<Pcg32> rng_;
+  std::vector<PathSampler> sampler_;
   std::vector<Color3f> L_, throughput_, nee_throughput_;
   std::vector<float> eta_, prev_pdf_;
   std::vector<Vec3f> prev_p_;

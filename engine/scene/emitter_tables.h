@@ -75,4 +75,18 @@ struct PointLightTable {
   size_t size() const { return position.size(); }
 };
 
+/// Selection of an emitter by power, over Scene::emitters in order: pmf and CDF (with a guide
+/// table) of each emitter's power (luminance of its emitted flux; infinite emitters as seen by
+/// a disk of the scene's bounding-sphere radius, pbrt's convention), and for each emitter
+/// table row its position in Scene::emitters. Empty when the scene has no emitters.
+struct EmitterSelectionTable {
+  std::vector<float> power;        // luminance flux (W) per emitter, for messages and tests
+  std::vector<float> pmf;          // selection probability per emitter (sums to 1)
+  AlignedVector<float> cdf;        // normalised, last entry = 1
+  AlignedVector<uint32_t> guide;   // emitters.size() + 1 entries
+  std::vector<uint32_t> slot_area, slot_environment, slot_disk, slot_point;
+
+  size_t size() const { return pmf.size(); }
+};
+
 }  // namespace ptlab

@@ -1,6 +1,8 @@
 // Scene-wide systems that loaders run once all shapes are in.
 #include "engine/scene/scene.h"
 
+#include "engine/light/light_selection.h"
+
 #include "engine/sampling/guide_table.h"
 
 namespace ptlab {
@@ -67,6 +69,7 @@ void FinalizeAreaLights(Scene* scene) {
     BuildGuideTable(&lights.triangle_cdf[lights.cdf_offset[i]], count,
                     &lights.triangle_guide[lights.guide_offset[i]]);
   }
+  BuildEmitterSelection(scene);
 }
 
 }  // namespace ptlab

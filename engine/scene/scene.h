@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/transform.h"
+#include "engine/sampling/sampler.h"
 #include "engine/scene/emitter_tables.h"
 #include "engine/scene/geometry_tables.h"
 #include "engine/scene/material_tables.h"
@@ -32,9 +33,20 @@ struct FilterDesc {
   float stddev = 0.5f;
 };
 
+/// The scene's sampler (Nori `<sampler type=... >`); scenes that name none get kDefaultSampler.
 struct SamplerDesc {
+  static constexpr SamplerType kDefaultSampler = SamplerType::kSobol;
+  SamplerType type = kDefaultSampler;
   uint32_t sample_count = 1;
 };
+
+/// How emitter sampling picks the emitter: uniformly (Nori's rule), or in proportion to the
+/// emitters' power (EmitterSelectionTable).
+enum class LightSelection : uint8_t { kUniform, kPower };
+/// How emitter sampling draws a point on a triangle of an area light: uniform by area, or
+/// uniform in the solid angle the triangle subtends (Arvo 1995), falling back to area
+/// sampling where that is not accurate in float (tiny or nearly hemispherical triangles).
+enum class TriangleSampling : uint8_t { kArea, kSolidAngle };
 
 struct IntegratorDesc {
   enum class Type : uint8_t {
@@ -51,6 +63,8 @@ struct IntegratorDesc {
   int max_depth = -1;      // CS184 meaning: 0 = emitted only, 1 = direct, ...; -1 = unbounded
   int light_samples = 1;   // emitter samples per hit (CS184's -l)
   bool power_heuristic = false;
+  LightSelection light_selection = LightSelection::kPower;
+  TriangleSampling triangle_sampling = TriangleSampling::kSolidAngle;
 };
 
 struct Scene {
@@ -63,7 +77,8 @@ struct Scene {
   EnvironmentMapTable environment_maps;
   DistantDiskTable distant_disks;
   PointLightTable point_lights;
-  std::vector<EmitterRef> emitters;  // all emitters, for uniform selection
+  std::vector<EmitterRef> emitters;  // all emitters, in selection order
+  EmitterSelectionTable emitter_selection;
 
   CameraDesc camera;
   FilterDesc filter;
@@ -80,8 +95,9 @@ const char* IntegratorTypeName(IntegratorDesc::Type type);
 /// The integrator type of an XML name; false for an unknown name.
 bool IntegratorTypeFromName(std::string_view name, IntegratorDesc::Type* type);
 
-/// Fills area_lights' areas and triangle CDFs from the meshes that carry an area emitter.
-/// Called by loaders after all shapes are in; idempotent.
+/// Fills area_lights' areas and triangle CDFs from the meshes that carry an area emitter, and
+/// the emitter selection table of all emitters. Called by loaders after all shapes and
+/// emitters are in (and again by whoever adds emitters later); idempotent.
 void FinalizeAreaLights(Scene* scene);
 
 }  // namespace ptlab

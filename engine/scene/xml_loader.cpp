@@ -936,8 +936,8 @@ class SceneParser {
     PropertyList props(&at_, node);
     PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
     const std::string type = node.attribute("type").value();
-    if (type != "independent")
-      return at_.Error(node, "unknown sampler type '" + type + "'; expected independent");
+    if (!SamplerTypeFromName(type, &scene_.sampler.type))
+      return at_.Error(node, "unknown sampler type '" + type + "'; expected independent or sobol");
     PTLAB_RETURN_IF_ERROR(props.Expect({"sampleCount"}));
     int count = 1;
     PTLAB_RETURN_IF_ERROR(props.Integer("sampleCount", &count));
@@ -975,7 +975,11 @@ class SceneParser {
                                  "whitted, path_mats, path_ems or path_mis");
     std::vector<const char*> names;
     if (kind->depth) names.push_back("maxDepth");
-    if (kind->light_samples) names.push_back("lightSamples");
+    if (kind->light_samples) {
+      names.push_back("lightSamples");
+      names.push_back("lightSelection");
+      names.push_back("triangleSampling");
+    }
     if (kind->heuristic) names.push_back("heuristic");
     PTLAB_RETURN_IF_ERROR(props.Expect(std::move(names)));
     IntegratorDesc desc;
@@ -988,6 +992,19 @@ class SceneParser {
     if (kind->light_samples) {
       PTLAB_RETURN_IF_ERROR(props.Integer("lightSamples", &desc.light_samples));
       if (desc.light_samples < 1) return props.Error("lightSamples", "lightSamples must be >= 1");
+      std::string selection = "power", triangles = "solidAngle";
+      PTLAB_RETURN_IF_ERROR(props.String("lightSelection", &selection));
+      if (selection != "uniform" && selection != "power")
+        return props.Error("lightSelection", "unknown light selection '" + selection +
+                                                 "'; expected uniform or power");
+      desc.light_selection =
+          selection == "power" ? LightSelection::kPower : LightSelection::kUniform;
+      PTLAB_RETURN_IF_ERROR(props.String("triangleSampling", &triangles));
+      if (triangles != "area" && triangles != "solidAngle")
+        return props.Error("triangleSampling", "unknown triangle sampling '" + triangles +
+                                                   "'; expected area or solidAngle");
+      desc.triangle_sampling =
+          triangles == "area" ? TriangleSampling::kArea : TriangleSampling::kSolidAngle;
     }
     if (kind->heuristic) {
       std::string heuristic = "balance";

@@ -538,10 +538,14 @@ void ExpectPacketRenderEqualsScalar(const char* rel_path, int width) {
   const TraversalBackend8 oracle = ScalarTraversalBackend(bvh);
   using Type = IntegratorDesc::Type;
   const Type own = scene.integrator.type;
+  for (const SamplerType sampler : {SamplerType::kIndependent, SamplerType::kSobol}) {
+  scene.sampler.type = sampler;
+  scene.integrator.type = own;
   for (const Type type : {own, Type::kPathMats, Type::kPathEms, Type::kDirectMis, Type::kDirectEms,
                           Type::kDirectMats, Type::kWhitted, Type::kNormals}) {
     scene.integrator.type = type;
-    SCOPED_TRACE(std::string(rel_path) + " integrator " + std::to_string(int(type)));
+    SCOPED_TRACE(std::string(rel_path) + " sampler " + SamplerTypeName(sampler) + " integrator " +
+                 std::to_string(int(type)));
     const uint32_t spp = type == own ? 4 : 2;
     const RenderRun scalar = RenderWith(scene, bvh, nullptr, spp);
     const RenderRun simd = RenderWith(scene, bvh, &packets, spp);
@@ -562,25 +566,39 @@ void ExpectPacketRenderEqualsScalar(const char* rel_path, int width) {
   }
   // Path tracing with several emitter samples per vertex, a depth limit, the power heuristic:
   // the wavefront's shadow queue holds several requests per path, summed in sample order.
+  // Uniform light selection and area sampling of triangles (Nori's rules) as well as the
+  // defaults (power, solid angle).
   struct PathConfig {
     Type type;
     int max_depth, light_samples;
     bool power;
+    LightSelection lights;
+    TriangleSampling triangles;
   };
-  for (const PathConfig c : {PathConfig{Type::kPathMis, 3, 3, true},
-                             PathConfig{Type::kPathEms, 1, 2, false},
-                             PathConfig{Type::kPathMats, 0, 1, false}}) {
+  const IntegratorDesc saved = scene.integrator;
+  for (const PathConfig c :
+       {PathConfig{Type::kPathMis, 3, 3, true, LightSelection::kPower, TriangleSampling::kSolidAngle},
+        PathConfig{Type::kPathMis, 3, 2, false, LightSelection::kUniform, TriangleSampling::kArea},
+        PathConfig{Type::kPathEms, 1, 2, false, LightSelection::kUniform,
+                   TriangleSampling::kSolidAngle},
+        PathConfig{Type::kPathMats, 0, 1, false, LightSelection::kPower, TriangleSampling::kArea}}) {
     scene.integrator.type = c.type;
     scene.integrator.max_depth = c.max_depth;
     scene.integrator.light_samples = c.light_samples;
     scene.integrator.power_heuristic = c.power;
-    SCOPED_TRACE(std::string(rel_path) + " path config " + std::to_string(int(c.type)) + " depth " +
+    scene.integrator.light_selection = c.lights;
+    scene.integrator.triangle_sampling = c.triangles;
+    SCOPED_TRACE(std::string(rel_path) + " sampler " + SamplerTypeName(sampler) +
+                 " path config " + std::to_string(int(c.type)) + " depth " +
                  std::to_string(c.max_depth) + " light samples " +
-                 std::to_string(c.light_samples));
+                 std::to_string(c.light_samples) + " lights " + std::to_string(int(c.lights)) +
+                 " triangles " + std::to_string(int(c.triangles)));
     const RenderRun scalar = RenderWith(scene, bvh, nullptr, 2);
     const RenderRun simd = RenderWith(scene, bvh, &packets, 2);
     EXPECT_EQ(CountDifferentPixels(scalar.image, simd.image), 0);
     EXPECT_EQ(scalar.stats.rays, simd.stats.rays);
+  }
+  scene.integrator = saved;
   }
 }
 

@@ -84,12 +84,13 @@ Chi2Subject AreaLightSubject(std::string name, std::shared_ptr<const Scene> scen
   s.name = std::move(name);
   s.params = "quad split into triangles of area 0.2938 and 0.11395, plane z = 0.25";
   s.domain = Chi2Domain::UnitSquare();
-  s.uniform_dims = 3;
-  s.sample = [scene](float u1, const Vec2f& u2, Chi2Point* p) {
-    const AreaLightSample ls = SampleAreaLight(*scene, 0, u1, u2);
+  // Sampled by area from a point one unit in front of the light's emitting side.
+  const Vec3f front = Vec3f{0.0f, 0.0f, 0.25f} + ShadingNormalAt(*scene, 0, 0.3f, 0.3f);
+  s.sample = [scene, front](float, const Vec2f& u2, Chi2Point* p) {
+    const AreaLightSample ls = SampleAreaLight(*scene, 0, front, TriangleSampling::kArea, u2);
     *p = {ls.p.x, ls.p.y, 0.0f};
-    // The light's own claim of its density must hold too (constant: no pdf at a point).
-    return ls.pdf_area > 0;
+    // The light must claim a density for every point it samples (seen from the front).
+    return ls.pdf > 0;
   };
   // 1/area inside the quad (convex, so inside = left of all four edges), from the corners in
   // double: independent of the area FinalizeAreaLights computed.

@@ -20,7 +20,7 @@ inline constexpr float kChi2QuadZ = 0.25f;
 ///   with k = α (narrower lobes fall inside the top row of the hemisphere grid; α = 1e-4 is
 ///   the clamp limit kBeckmannMinAlpha);
 /// - "area_light/quad": SampleAreaLight over a two-triangle mesh built in code (the quad above),
-///   (x, y) on the unit square, pdf 1/area inside the quad; 3 uniforms (u1 picks the triangle);
+///   (x, y) on the unit square, pdf 1/area inside the quad (u.x picks the triangle, rescaled);
 /// - "camera/thin_lens_aperture": the origins of Camera::GenerateRay (identity camera_to_world,
 ///   aperture radius 0.3) divided by the radius: uniform on the unit disk;
 /// - "broken/beckmann_normal_pdf_no_sin_jacobian": claims the (θ, φ) density D cosθ sinθ as a

@@ -156,11 +156,14 @@ void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, in
         for (int64_t chunk; (chunk = next.fetch_add(1)) < chunks;) {
           const int64_t end = std::min(samples, (chunk + 1) * kSceneChunk);
           for (int64_t k = chunk * kSceneChunk; k < end; ++k) {
-            Pcg32 rng(seed, uint64_t(k));
-            const float px = std::min(rng.NextFloat() * w, std::nextafter(w, 0.0f));
-            const float py = std::min(rng.NextFloat() * h, std::nextafter(h, 0.0f));
-            const Vec2f lens{rng.NextFloat(), rng.NextFloat()};
-            const Color3f L = Li(ctx, camera.GenerateRay(px, py, lens), rng, &counters);
+            // Independent samples whatever the scene's sampler: the t-test's variance estimate
+            // assumes i.i.d. samples (a stratified set would make it conservative).
+            PathSampler sampler(SamplerType::kIndependent, seed, uint32_t(k));
+            const Vec2f pixel = sampler.Get2D(kDimensionPixel);
+            const float px = std::min(pixel.x * w, std::nextafter(w, 0.0f));
+            const float py = std::min(pixel.y * h, std::nextafter(h, 0.0f));
+            const Vec2f lens = sampler.Get2D(kDimensionLens);
+            const Color3f L = Li(ctx, camera.GenerateRay(px, py, lens), sampler, &counters);
             if (!IsFinite(L)) {
               ++nonfinite[size_t(chunk)];
               continue;

@@ -2,6 +2,7 @@
 #include "tools/chi2/subjects.h"
 
 #include "tools/chi2/bsdf_subjects.h"
+#include "tools/chi2/emitter_subjects.h"
 #include "tools/chi2/geometry_subjects.h"
 #include "tools/chi2/light_subjects.h"
 
@@ -101,6 +102,7 @@ Chi2Registry DefaultChi2Registry() {
   RegisterBrokenSubjects(&registry);
   RegisterLightSubjects(&registry);
   RegisterGeometrySubjects(&registry);
+  RegisterEmitterSubjects(&registry);
   RegisterBsdfSubjects(&registry);
   return registry;
 }

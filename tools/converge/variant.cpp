@@ -58,6 +58,29 @@ constexpr VariantKey kKeys[] = {
        if (t) t->scene->integrator.max_depth = n;
        return Status::Ok();
      }},
+    {"sampler", "independent or sobol",
+     [](const std::string& v, VariantTarget* t) {
+       SamplerType type;
+       if (!SamplerTypeFromName(v, &type)) return Status::Error("");
+       if (t) t->scene->sampler.type = type;
+       return Status::Ok();
+     }},
+    {"lights", "uniform or power (how emitter sampling picks the emitter)",
+     [](const std::string& v, VariantTarget* t) {
+       if (v != "uniform" && v != "power") return Status::Error("");
+       if (t)
+         t->scene->integrator.light_selection =
+             v == "power" ? LightSelection::kPower : LightSelection::kUniform;
+       return Status::Ok();
+     }},
+    {"triangles", "area or solidAngle (how emitter sampling draws a point on a triangle)",
+     [](const std::string& v, VariantTarget* t) {
+       if (v != "area" && v != "solidAngle") return Status::Error("");
+       if (t)
+         t->scene->integrator.triangle_sampling =
+             v == "area" ? TriangleSampling::kArea : TriangleSampling::kSolidAngle;
+       return Status::Ok();
+     }},
     {"sampling", "uniform or importance",
      [](const std::string& v, VariantTarget* t) {
        if (v != "uniform" && v != "importance") return Status::Error("");

@@ -31,6 +31,9 @@ struct VariantTarget {
 ///   lightSamples integer >= 1
 ///   maxDepth     integer >= -1 (-1: unbounded)
 ///   sampling     uniform|importance (every environment map)
+///   sampler      independent|sobol
+///   lights       uniform|power (emitter selection)
+///   triangles    area|solidAngle (points on area-light triangles)
 ///   path         packet|scalar
 ///   adaptive     BATCH:TOLERANCE (CS184's -a: integer batch >= 2, tolerance > 0), or off
 /// An unknown key or a malformed value is an error naming the key and what was expected.

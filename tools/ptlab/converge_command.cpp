@@ -156,6 +156,10 @@ CLI::App* AddConvergeCommand(CLI::App* app, ConvergeArgs* a) {
   cmd->add_option("--seed", a->seed, "First seed");
   cmd->add_option("-o,--output", a->out_dir, "Output folder")->required();
   cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot plots");
+  cmd->add_option("--width", a->width,
+                  "Image width of every scene (height keeps its aspect ratio); with --ref auto, "
+                  "or references of that size")
+      ->check(CLI::Range(1, 16384));
   cmd->add_option("--lookat", a->lookat, "lookat convention, as for render: nori or nori2015")
       ->check(CLI::IsMember({"nori", "nori2015"}));
   return cmd;
@@ -205,6 +209,11 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
       return kExitUsage;
     }
     ls->scene = std::move(*loaded);
+    if (args.width > 0) {
+      CameraDesc& cam = ls->scene.camera;
+      cam.height = std::max(1, int(std::lround(double(args.width) * cam.height / cam.width)));
+      cam.width = args.width;
+    }
     // Every variant must apply before anything renders.
     for (const Variant& v : variants) {
       Scene copy = ls->scene;

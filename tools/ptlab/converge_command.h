@@ -20,6 +20,7 @@ struct ConvergeArgs {
   uint64_t seed = 1;  // first seed; runs use seed, seed + 1, ...
   std::string out_dir;
   std::string lookat = "nori";  // or nori2015 (the eth2015 references' camera frame)
+  int width = 0;                // > 0: image width (height keeps the aspect); with --ref auto
   bool no_plots = false;
 };
 

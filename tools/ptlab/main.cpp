@@ -128,6 +128,7 @@ struct RenderArgs {
   bool scalar = false;
   bool stats = false;
   std::string tile_times;
+  std::string sampler;  // empty: the scene's
 };
 
 // --tile-times: pass, tile and wall seconds of every tile (input of benchmarks/mpi_model).
@@ -179,6 +180,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     std::fprintf(stderr, "error: %s: %s\n", args.scene.c_str(), unsupported.c_str());
     return 1;
   }
+  if (!args.sampler.empty()) SamplerTypeFromName(args.sampler, &scene.sampler.type);
   if (args.width > 0 || args.height > 0) {
     const double aspect = double(scene.camera.width) / double(scene.camera.height);
     const double width = args.width > 0 ? args.width : std::round(args.height * aspect);
@@ -292,6 +294,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
       {"ptlab:spp", std::to_string(result.spp_done)},
       {"ptlab:spp_requested", std::to_string(options.spp)},
       {"ptlab:seed", std::to_string(args.seed)},
+      {"ptlab:sampler", SamplerTypeName(scene.sampler.type)},
       {"ptlab:seconds", std::to_string(result.seconds)},
       {"ptlab:interrupted", result.interrupted ? "true" : "false"},
       {"ptlab:nonfinite_samples", std::to_string(result.nonfinite_samples)},
@@ -341,6 +344,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams")
       ->check(ptlab::UnsignedDecimal());
+  cmd->add_option("--sampler", render.sampler,
+                  "Sampler, overriding the scene's: independent (PCG32) or sobol (Owen-scrambled "
+                  "Sobol'; the default of scenes that name none)")
+      ->check(CLI::IsMember({"independent", "sobol"}));
   cmd->add_option("--width", render.width, "Override the image width")->check(CLI::Range(1, 65536));
   cmd->add_option("--height", render.height, "Override the image height")
       ->check(CLI::Range(1, 65536));

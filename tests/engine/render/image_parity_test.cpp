@@ -35,6 +35,9 @@ struct ParityCase {
   // --full (PTLAB_FULL unset) for the expensive path-traced scenes, to keep the suite short.
   uint32_t full_spp = 0;
   uint32_t quick_spp = 0;
+  // The sampler to render with instead of the XML's (null: the XML's, `independent` in every
+  // Nori scene).
+  const char* sampler = nullptr;
 };
 
 bool FullQuality() {
@@ -53,6 +56,7 @@ TEST_P(ImageParity, MatchesReference) {
     GTEST_SKIP() << "reference data not found under " << kData;
   StatusOr<Scene> scene = LoadScene(scene_path, LoadOptions{c.lookat});
   ASSERT_TRUE(scene.ok()) << scene.status().message();
+  if (c.sampler) ASSERT_TRUE(SamplerTypeFromName(c.sampler, &scene->sampler.type));
   StatusOr<Image> reference = ReadImage(ref_path);
   ASSERT_TRUE(reference.ok()) << reference.status().message();
 
@@ -152,6 +156,23 @@ INSTANTIATE_TEST_SUITE_P(
         ParityCase{"table_path_mis_512spp", "epfl/scenes/pa5/table/table_mis.xml",
                    "eth2015/scenes/pa4/table/ref/table_path_mis_512spp.exr", 0.97,
                    LookatConvention::kNori2015, 512, 64}),
+    [](const ::testing::TestParamInfo<ParityCase>& info) { return std::string(info.param.name); });
+
+// The Sobol' sampler (issue 15) reaches the same references as the independent one, with the
+// default power light selection and solid-angle triangle sampling (every case above runs
+// those too, with the XMLs' independent sampler).
+INSTANTIATE_TEST_SUITE_P(
+    Samplers, ImageParity,
+    ::testing::Values(
+        ParityCase{"veach_mis_sobol", "epfl/scenes/pa5/veach_mi/veach_mis.xml",
+                   "epfl/references/veach_mis.exr", 0.88, LookatConvention::kNori, 0, 64,
+                   "sobol"},
+        ParityCase{"table_path_mis_512spp_sobol", "epfl/scenes/pa5/table/table_mis.xml",
+                   "eth2015/scenes/pa4/table/ref/table_path_mis_512spp.exr", 0.97,
+                   LookatConvention::kNori2015, 512, 64, "sobol"},
+        ParityCase{"cbox_distributed_sobol", "epfl/scenes/pa4/cbox/cbox-distributed.xml",
+                   "epfl/references/cbox-distributed.exr", 0.97, LookatConvention::kNori, 0, 0,
+                   "sobol"}),
     [](const ::testing::TestParamInfo<ParityCase>& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -1,0 +1,110 @@
+// Emitter selection by power.
+#include "engine/light/light_selection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/core/check.h"
+#include "engine/sampling/guide_table.h"
+
+namespace ptlab {
+namespace {
+
+// Radius of a sphere around every triangle (0 without geometry): the disk an infinite emitter
+// shines on, pbrt's measure of an environment light's power.
+double SceneRadius(const TriangleTable& t) {
+  if (t.size() == 0) return 0.0;
+  Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+           std::numeric_limits<float>::max()};
+  Vec3f hi = -lo;
+  for (size_t i = 0; i < t.size(); ++i) {
+    for (const Vec3f& v : {t.V0(i), t.V1(i), t.V2(i)}) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+  }
+  return 0.5 * double(Length(hi - lo));
+}
+
+constexpr double kPiD = 3.14159265358979323846;
+
+}  // namespace
+
+void BuildEmitterSelection(Scene* scene) {
+  EmitterSelectionTable& t = scene->emitter_selection;
+  const size_t n = scene->emitters.size();
+  t = EmitterSelectionTable{};
+  t.slot_area.assign(scene->area_lights.size(), 0);
+  t.slot_environment.assign(scene->environment_maps.size(), 0);
+  t.slot_disk.assign(scene->distant_disks.size(), 0);
+  t.slot_point.assign(scene->point_lights.size(), 0);
+  if (n == 0) return;
+  const double radius = SceneRadius(scene->triangles);
+  // An infinite emitter in a scene without geometry lights nothing; a unit disk keeps it
+  // selectable.
+  const double disk_area = kPiD * std::max(radius * radius, 1.0);
+  t.power.resize(n);
+  double total = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const EmitterRef e = scene->emitters[k];
+    const uint32_t i = e.index();
+    double power = 0;
+    switch (e.tag()) {
+      case EmitterTag::kArea:
+        t.slot_area[i] = uint32_t(k);
+        power = kPiD * double(scene->area_lights.area[i]) *
+                double(Luminance(scene->area_lights.radiance[i]));
+        break;
+      case EmitterTag::kEnvironment:
+        t.slot_environment[i] = uint32_t(k);
+        power = disk_area * double(scene->environment_maps.luminance_integral[i]);
+        break;
+      case EmitterTag::kDistantDisk:
+        t.slot_disk[i] = uint32_t(k);
+        power = disk_area * double(scene->distant_disks.solid_angle[i]) *
+                double(Luminance(scene->distant_disks.radiance[i]));
+        break;
+      case EmitterTag::kPoint:
+        t.slot_point[i] = uint32_t(k);
+        power = double(Luminance(scene->point_lights.power[i]));
+        break;
+    }
+    power = std::isfinite(power) ? std::max(power, 0.0) : 0.0;
+    t.power[k] = float(power);
+    total += power;
+  }
+  t.pmf.resize(n);
+  t.cdf.resize(n);
+  double running = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const double p = total > 0 ? double(t.power[k]) / total : 1.0 / double(n);
+    t.pmf[k] = float(p);
+    running += p;
+    t.cdf[k] = float(std::min(running, 1.0));
+  }
+  // The last emitter with a non-zero probability ends the CDF at exactly 1.
+  for (size_t k = n; k-- > 0;) {
+    t.cdf[k] = 1.0f;
+    if (t.pmf[k] > 0) break;
+  }
+  t.guide.resize(n + 1);
+  BuildGuideTable(t.cdf.data(), uint32_t(n), t.guide.data());
+}
+
+EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf) {
+  const size_t n = scene.emitters.size();
+  PTLAB_DCHECK(n > 0);
+  if (scene.integrator.light_selection == LightSelection::kUniform) {
+    *pmf = 1.0f / float(n);
+    return scene.emitters[std::min(n - 1, size_t(u * float(n)))];
+  }
+  const EmitterSelectionTable& t = scene.emitter_selection;
+  PTLAB_CHECK(t.size() == n);  // BuildEmitterSelection ran after the last emitter was added
+  const uint32_t k = std::min<uint32_t>(
+      GuidedUpperBound(t.cdf.data(), uint32_t(n), t.guide.data(), u), uint32_t(n - 1));
+  *pmf = t.pmf[k];
+  return scene.emitters[k];
+}
+
+}  // namespace ptlab

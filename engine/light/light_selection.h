@@ -1,0 +1,34 @@
+// Choosing the emitter of an emitter sample: uniformly, or in proportion to power.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/scene/refs.h"
+#include "engine/scene/scene.h"
+
+namespace ptlab {
+
+/// Fills scene->emitter_selection from the emitters, lights and geometry (after
+/// FinalizeAreaLights has the lights' areas). Emitters whose power is zero are never picked;
+/// when every emitter's power is zero the table is uniform.
+void BuildEmitterSelection(Scene* scene);
+
+/// Probability that emitter sampling picks emitter e under the scene's light selection.
+inline float EmitterSelectionPmf(const Scene& scene, EmitterRef e) {
+  const size_t n = scene.emitters.size();
+  if (n == 0) return 0.0f;
+  if (scene.integrator.light_selection == LightSelection::kUniform) return 1.0f / float(n);
+  const EmitterSelectionTable& t = scene.emitter_selection;
+  switch (e.tag()) {
+    case EmitterTag::kArea: return t.pmf[t.slot_area[e.index()]];
+    case EmitterTag::kEnvironment: return t.pmf[t.slot_environment[e.index()]];
+    case EmitterTag::kDistantDisk: return t.pmf[t.slot_disk[e.index()]];
+    case EmitterTag::kPoint: return t.pmf[t.slot_point[e.index()]];
+  }
+  return 0.0f;
+}
+
+/// Picks an emitter with u in [0, 1) (the scene must have one); *pmf = its probability.
+EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf);
+
+}  // namespace ptlab

@@ -1,0 +1,103 @@
+// Emitter selection: power-proportional probabilities (area, point, infinite emitters), the
+// uniform rule, the XML and variant names, and the pick agreeing with its pmf.
+#include "engine/light/light_selection.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/scene/xml_loader.h"
+
+namespace ptlab {
+namespace {
+
+// Two quads (areas 1 and 4, radiances 2 and 1) and a point light of power 3π.
+Scene TwoQuadsAndAPoint(const std::string& integrator_props) {
+  const std::string xml = R"(<scene>
+    <integrator type="path_mis">)" + integrator_props + R"(</integrator>
+    <camera type="perspective"><integer name="width" value="8"/><integer name="height" value="8"/></camera>
+    <shape type="rectangle">
+      <transform name="toWorld"><scale value="0.5, 0.5, 1"/><translate value="0, 0, 3"/></transform>
+      <emitter type="area"><color name="radiance" value="2, 2, 2"/></emitter>
+    </shape>
+    <shape type="rectangle">
+      <transform name="toWorld"><translate value="0, 0, 5"/></transform>
+      <emitter type="area"><color name="radiance" value="1, 1, 1"/></emitter>
+    </shape>
+    <emitter type="point"><point name="position" value="0, 1, 0"/><color name="power" value="9.42477796, 9.42477796, 9.42477796"/></emitter>
+  </scene>)";
+  StatusOr<Scene> scene = LoadSceneFromString(xml, ".", "selection.xml");
+  EXPECT_TRUE(scene.ok()) << scene.status().message();
+  return scene.ok() ? std::move(*scene) : Scene{};
+}
+
+TEST(LightSelection, PowerIsFluxLuminance) {
+  const Scene scene = TwoQuadsAndAPoint("");
+  ASSERT_EQ(scene.emitters.size(), 3u);
+  const EmitterSelectionTable& t = scene.emitter_selection;
+  ASSERT_EQ(t.size(), 3u);
+  // Φ = π A L for a one-sided diffuse emitter: 2π and 4π; the point light's power 3π.
+  const double pi = 3.14159265358979;
+  EXPECT_NEAR(t.power[0], 2 * pi, 1e-4);
+  EXPECT_NEAR(t.power[1], 4 * pi, 1e-4);
+  EXPECT_NEAR(t.power[2], 3 * pi, 1e-4);
+  EXPECT_NEAR(t.pmf[0], 2.0 / 9.0, 1e-6);
+  EXPECT_NEAR(t.pmf[1], 4.0 / 9.0, 1e-6);
+  EXPECT_NEAR(t.pmf[2], 3.0 / 9.0, 1e-6);
+  EXPECT_EQ(scene.integrator.light_selection, LightSelection::kPower);  // the default
+}
+
+TEST(LightSelection, PickFrequenciesMatchThePmf) {
+  for (const char* rule : {"uniform", "power"}) {
+    const Scene scene =
+        TwoQuadsAndAPoint(std::string(R"(<string name="lightSelection" value=")") + rule + R"("/>)");
+    const int n = 90000;
+    std::vector<int> count(3, 0);
+    for (int i = 0; i < n; ++i) {
+      float pmf = 0;
+      const EmitterRef e = SelectEmitter(scene, (float(i) + 0.5f) / float(n), &pmf);
+      EXPECT_EQ(pmf, EmitterSelectionPmf(scene, e));
+      for (size_t k = 0; k < 3; ++k)
+        if (scene.emitters[k] == e) ++count[k];
+    }
+    for (size_t k = 0; k < 3; ++k)
+      EXPECT_NEAR(double(count[k]) / n, EmitterSelectionPmf(scene, scene.emitters[k]), 1e-4)
+          << rule << " emitter " << k;
+  }
+}
+
+TEST(LightSelection, ZeroPowerEmittersAreNeverPicked) {
+  Scene scene = TwoQuadsAndAPoint("");
+  scene.area_lights.radiance[0] = {0, 0, 0};
+  BuildEmitterSelection(&scene);
+  EXPECT_EQ(scene.emitter_selection.pmf[0], 0.0f);
+  for (float u : {0.0f, 1e-7f, 0.3f, 0.9999999f}) {
+    float pmf = 0;
+    const EmitterRef e = SelectEmitter(scene, u, &pmf);
+    EXPECT_FALSE(e == scene.emitters[0]) << u;
+    EXPECT_GT(pmf, 0.0f);
+  }
+  // All black: uniform, so that nothing divides by zero.
+  scene.area_lights.radiance[1] = {0, 0, 0};
+  scene.point_lights.power[0] = {0, 0, 0};
+  BuildEmitterSelection(&scene);
+  for (float p : scene.emitter_selection.pmf) EXPECT_NEAR(p, 1.0f / 3.0f, 1e-6f);
+}
+
+TEST(LightSelection, BadXmlValuesAreErrors) {
+  const std::string xml = R"(<scene><integrator type="path_mis"><string name="lightSelection" value="area"/></integrator></scene>)";
+  StatusOr<Scene> s = LoadSceneFromString(xml, ".", "bad.xml");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.status().message().find("expected uniform or power"), std::string::npos)
+      << s.status().message();
+  const std::string xml2 = R"(<scene><integrator type="path_mis"><string name="triangleSampling" value="x"/></integrator></scene>)";
+  s = LoadSceneFromString(xml2, ".", "bad.xml");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.status().message().find("expected area or solidAngle"), std::string::npos)
+      << s.status().message();
+}
+
+}  // namespace
+}  // namespace ptlab
