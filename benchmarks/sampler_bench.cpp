@@ -6,6 +6,8 @@
 #include <benchmark/benchmark.h>
 
 #include "engine/sampling/sampler.h"
+#include "simd/sampler8.h"
+#include <vector>
 
 namespace ptlab {
 namespace {
@@ -31,6 +33,26 @@ void BM_Sampler_PathSample(benchmark::State& state) {
 
 BENCHMARK_TEMPLATE(BM_Sampler_PathSample, SamplerType::kIndependent)->Arg(8)->Arg(32);
 BENCHMARK_TEMPLATE(BM_Sampler_PathSample, SamplerType::kSobol)->Arg(8)->Arg(32);
+
+// The wavefront's batch draws: one 2-D dimension for 4096 paths, scalar oracle vs the 8-wide
+// kernel (items: numbers, two per row).
+template <bool kSimd>
+void BM_Sampler_SobolBatch2D(benchmark::State& state) {
+  const size_t n = 4096;
+  std::vector<uint32_t> seed(n), index(n);
+  for (size_t i = 0; i < n; ++i) seed[i] = Hash32(uint32_t(i)), index[i] = uint32_t(i % 64);
+  std::vector<float> x(n), y(n);
+  uint32_t dim = 0;
+  for (auto _ : state) {
+    if (kSimd) simd::ScrambledSobol2DBatch(seed.data(), index.data(), dim, n, x.data(), y.data());
+    else ScrambledSobol2DBatch(seed.data(), index.data(), dim, n, x.data(), y.data());
+    dim = (dim + 1) & 31;
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(2 * n));
+}
+BENCHMARK_TEMPLATE(BM_Sampler_SobolBatch2D, false);
+BENCHMARK_TEMPLATE(BM_Sampler_SobolBatch2D, true);
 
 }  // namespace
 }  // namespace ptlab

@@ -1,6 +1,7 @@
 // The render path's packet traversal backend (engine/render/packet_render.h) on simd/traverse8.
 #include "simd/traverse8_backend.h"
 
+#include "simd/sampler8.h"
 #include "simd/traverse8.h"
 
 namespace ptlab::simd {
@@ -21,6 +22,8 @@ TraversalBackend8 PacketTraversalBackend(const Bvh8& bvh) {
   b.accel = &bvh;
   b.intersect8 = BackendIntersect8;
   b.occluded8 = BackendOccluded8;
+  b.sobol2d = simd::ScrambledSobol2DBatch;
+  b.sobol1d = simd::ScrambledSobol1DBatch;
   b.name = Traverse8TargetName();
   return b;
 }

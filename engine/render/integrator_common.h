@@ -100,15 +100,13 @@ struct EmitterSampleRequest {
   Color3f contribution;
 };
 
-inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const SurfaceInteraction& its,
-                                                 const Vec3f& wo, bool mis, PathSampler& sampler,
-                                                 int depth, uint32_t sub = 0,
-                                                 uint32_t sub_count = 1) {
+/// PrepareEmitterSample with its numbers given: u_pick picks the emitter, u the point on it.
+inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
+                                                     const SurfaceInteraction& its,
+                                                     const Vec3f& wo, bool mis, float u_pick,
+                                                     const Vec2f& u) {
   EmitterSampleRequest req;
-  const size_t n = scene.emitters.size();
-  if (n == 0) return req;
-  const float u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), sub, sub_count);
-  const Vec2f u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), sub, sub_count);
+  if (scene.emitters.empty()) return req;
   float pick_pmf = 0.0f;
   const EmitterRef emitter = SelectEmitter(scene, u_pick, &pick_pmf);
   if (!(pick_pmf > 0)) return req;
@@ -169,12 +167,28 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
   return req;
 }
 
+inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const SurfaceInteraction& its,
+                                                 const Vec3f& wo, bool mis, PathSampler& sampler,
+                                                 int depth, uint32_t sub = 0,
+                                                 uint32_t sub_count = 1) {
+  if (scene.emitters.empty()) return {};  // draws nothing
+  const float u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), sub, sub_count);
+  const Vec2f u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), sub, sub_count);
+  return PrepareEmitterSampleWith(scene, its, wo, mis, u_pick, u);
+}
+
+/// Samples the BSDF at its (wo local) with u1 for the lobe and u2 for the direction.
+inline bool SampleBsdfWith(const Scene& scene, const SurfaceInteraction& its, const Vec3f& wo,
+                           float u1, const Vec2f& u2, BsdfSample* bs) {
+  return BsdfSampleDirection(scene.materials, its.material, wo, u1, u2, bs);
+}
+
 /// Samples the BSDF at its (wo local) with the lobe and direction dimensions of vertex depth.
 inline bool SampleBsdf(const Scene& scene, const SurfaceInteraction& its, const Vec3f& wo,
                        PathSampler& sampler, int depth, BsdfSample* bs) {
   const float u1 = sampler.Get1D(DecisionDimension(depth, Decision::kBsdfLobe));
   const Vec2f u2 = sampler.Get2D(DecisionDimension(depth, Decision::kBsdfDirection));
-  return BsdfSampleDirection(scene.materials, its.material, wo, u1, u2, bs);
+  return SampleBsdfWith(scene, its, wo, u1, u2, bs);
 }
 
 /// What a prepared emitter sample adds once its shadow ray's visibility is known (the scalar

@@ -2,6 +2,7 @@
 // traced through a registered packet backend; shading reproduces the scalar integrators' bits.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "engine/bvh/bvh.h"
@@ -10,6 +11,7 @@
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
+#include "engine/sampling/sobol.h"
 
 namespace ptlab {
 
@@ -22,6 +24,13 @@ struct TraversalBackend8 {
   Mask8 (*intersect8)(const void* accel, const RayPacket8& rays, Mask8 active,
                       HitPacket8* hits) = nullptr;
   Mask8 (*occluded8)(const void* accel, const RayPacket8& rays, Mask8 active) = nullptr;
+  /// The Sobol' sampler's batch draws (engine/sampling/sobol.h; contract: bit-identical to
+  /// those oracles, which are the defaults). The wavefront draws a decision's numbers for all
+  /// its paths with one call when the scene's sampler is `sobol`.
+  void (*sobol2d)(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim, size_t n,
+                  float* x, float* y) = ScrambledSobol2DBatch;
+  void (*sobol1d)(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim, size_t n,
+                  float* x) = ScrambledSobol1DBatch;
   const char* name = "";
 };
 

@@ -23,7 +23,9 @@ using integrator::kWhittedContinuation;
 using integrator::kWhittedMaxDepth;
 using integrator::MisWeight;
 using integrator::PrepareEmitterSample;
+using integrator::PrepareEmitterSampleWith;
 using integrator::SampleBsdf;
+using integrator::SampleBsdfWith;
 using integrator::SpawnOrigin;
 using Type = IntegratorDesc::Type;
 using Clock = std::chrono::steady_clock;
@@ -126,7 +128,7 @@ class Wavefront {
  public:
   Wavefront(const RenderContext& ctx, const TraversalBackend8& backend, TileSampleStats* stats)
       : scene_(ctx.scene), backend_(backend), rules_(RulesFor(ctx.scene.integrator)),
-        stats_(stats) {}
+        stats_(stats), sobol_(ctx.scene.sampler.type == SamplerType::kSobol) {}
 
   void RenderTile(const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
                   uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
@@ -155,6 +157,7 @@ class Wavefront {
     specular_.assign(n, 1);  // the camera ray counts as specular: emission is always seen
     results_.assign(n, Result{});
     rays_.Clear();
+    gen_px_.clear(), gen_py_.clear();
     uint32_t id = 0;
     for (int y = y0; y < y1; y += 2) {
       for (int bx = x0; bx < x1; bx += 4) {
@@ -164,19 +167,33 @@ class Wavefront {
             if (px >= x1 || py >= y1) continue;
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
             if (pixels && pixels->active && !pixels->active[pixel]) continue;
-            PathSampler& sampler = sampler_[id];
-            sampler = PathSampler(scene_.sampler.type, PixelSeed(seed, pixel), s);
-            const Vec2f jitter = sampler.Get2D(kDimensionPixel);
-            const Vec2f lens = sampler.Get2D(kDimensionLens);
-            const float sx = float(px) + jitter.x, sy = float(py) + jitter.y;
+            sampler_[id] = PathSampler(scene_.sampler.type, PixelSeed(seed, pixel), s);
             slot_[id] = uint32_t((size_t(py - y0) * tile_w + size_t(px - x0)) * samples +
                                  (s - s_begin));
-            results_[slot_[id]] = {sx, sy, Color3f{}, true};
-            rays_.Push(camera.GenerateRay(sx, sy, lens), id);
+            gen_px_.push_back(px), gen_py_.push_back(py);
             ++id;
           }
         }
       }
+    }
+    // Film and lens positions: with `sobol`, one batch draw per dimension for all the paths;
+    // otherwise each path's stream in the scalar order (pixel, then lens).
+    jitter_.resize(id), lens_.resize(id);
+    if (sobol_) {
+      all_paths_.resize(id);
+      for (uint32_t i = 0; i < id; ++i) all_paths_[i] = i;
+      DrawSobol2D(all_paths_, kDimensionPixel, 0, 1, jitter_.data());
+      DrawSobol2D(all_paths_, kDimensionLens, 0, 1, lens_.data());
+    } else {
+      for (uint32_t i = 0; i < id; ++i) {
+        jitter_[i] = sampler_[i].Get2D(kDimensionPixel);
+        lens_[i] = sampler_[i].Get2D(kDimensionLens);
+      }
+    }
+    for (uint32_t i = 0; i < id; ++i) {
+      const float sx = float(gen_px_[i]) + jitter_[i].x, sy = float(gen_py_[i]) + jitter_[i].y;
+      results_[slot_[i]] = {sx, sy, Color3f{}, true};
+      rays_.Push(camera.GenerateRay(sx, sy, lens_[i]), i);
     }
     // Fewer paths than slots when pixels are inactive: Splat reads only the paths made here.
     slot_.resize(id), sampler_.resize(id);
@@ -267,8 +284,13 @@ class Wavefront {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
     requests_.clear(), nee_paths_.clear();
+    if (sobol_) DrawVertexNumbers(depth);
+    const bool emitters = !scene_.emitters.empty();
+    const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
+    size_t c = 0;
     for (size_t q = 0; q < rays_.size(); ++q) {
       if (!goes_on_[q]) continue;
+      const size_t k = c++;
       const uint32_t i = rays_.owner[q];
       const SurfaceInteraction& its = its_[q];
       const Vec3f& wo = wo_[q];
@@ -277,8 +299,16 @@ class Wavefront {
       if (rules_.nee && (!delta || rules_.nee_on_delta)) {
         for (int s = 0; s < n_light; ++s) {
           const uint32_t r = uint32_t(requests_.size());
-          requests_.push_back(PrepareEmitterSample(scene_, its, wo, rules_.mis, sampler, depth,
-                                                   uint32_t(s), uint32_t(n_light)));
+          if (!emitters) {
+            requests_.push_back({});
+          } else if (sobol_) {
+            const size_t at = size_t(s) * m + k;
+            requests_.push_back(PrepareEmitterSampleWith(scene_, its, wo, rules_.mis,
+                                                         light_pick_[at], light_point_[at]));
+          } else {
+            requests_.push_back(PrepareEmitterSample(scene_, its, wo, rules_.mis, sampler, depth,
+                                                     uint32_t(s), uint32_t(n_light)));
+          }
           if (requests_.back().traced) shadows_.Push(requests_.back().shadow, r);
         }
         nee_paths_.push_back(i);
@@ -286,19 +316,25 @@ class Wavefront {
         if (rules_.nee_ends_path && !delta) continue;
       }
       if (!rules_.bsdf_sampling) continue;
+      const auto roulette = [&] {
+        return sobol_ ? roulette_[k]
+                      : sampler.Get1D(DecisionDimension(depth, Decision::kRoulette));
+      };
       float roulette_scale = 1.0f;
       if (rules_.roulette == VertexRules::Roulette::kNori && depth >= 3) {
         const float q_continue = std::min(MaxComponent(throughput_[i]) * eta_[i] * eta_[i], 0.99f);
-        if (!(sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) < q_continue)) continue;
+        if (!(roulette() < q_continue)) continue;
         throughput_[i] *= 1.0f / q_continue;
       } else if (rules_.roulette == VertexRules::Roulette::kWhitted) {
-        if (depth >= kWhittedMaxDepth ||
-            sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) >= kWhittedContinuation)
-          continue;
+        if (depth >= kWhittedMaxDepth || roulette() >= kWhittedContinuation) continue;
         roulette_scale = 1.0f / kWhittedContinuation;
       }
       BsdfSample bs;
-      if (!SampleBsdf(scene_, its, wo, sampler, depth, &bs)) continue;
+      if (sobol_) {
+        if (!SampleBsdfWith(scene_, its, wo, bsdf_lobe_[k], bsdf_direction_[k], &bs)) continue;
+      } else if (!SampleBsdf(scene_, its, wo, sampler, depth, &bs)) {
+        continue;
+      }
       if (rules_.roulette == VertexRules::Roulette::kWhitted) {
         throughput_[i] *= bs.weight * roulette_scale;
       } else {
@@ -312,6 +348,58 @@ class Wavefront {
       const Vec3f wi = its.frame.ToWorld(bs.wi);
       next_rays_.Push(Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity}, i);
     }
+  }
+
+  // Sobol' numbers of every decision of vertex `depth` for the paths that go on (continuing_,
+  // in queue order), one batch draw per dimension (and emitter sub-sample).
+  void DrawVertexNumbers(int depth) {
+    continuing_.clear();
+    for (size_t q = 0; q < rays_.size(); ++q)
+      if (goes_on_[q]) continuing_.push_back(rays_.owner[q]);
+    const size_t m = continuing_.size();
+    const uint32_t n_light = uint32_t(rules_.light_samples);
+    if (rules_.nee && !scene_.emitters.empty()) {
+      light_pick_.resize(m * n_light), light_point_.resize(m * n_light);
+      for (uint32_t s = 0; s < n_light; ++s) {
+        DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kLightPick), s, n_light,
+                    light_pick_.data() + s * m);
+        DrawSobol2D(continuing_, DecisionDimension(depth, Decision::kLightPoint), s, n_light,
+                    light_point_.data() + s * m);
+      }
+    }
+    if (!rules_.bsdf_sampling) return;
+    roulette_.resize(m), bsdf_lobe_.resize(m), bsdf_direction_.resize(m);
+    if (rules_.roulette != VertexRules::Roulette::kNone)
+      DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kRoulette), 0, 1,
+                  roulette_.data());
+    DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kBsdfLobe), 0, 1,
+                bsdf_lobe_.data());
+    DrawSobol2D(continuing_, DecisionDimension(depth, Decision::kBsdfDirection), 0, 1,
+                bsdf_direction_.data());
+  }
+
+  // Dimension `dim` of the given paths' samples (sub-sample sub of sub_count), by the
+  // backend's batch kernel.
+  void FillSobolRows(const std::vector<uint32_t>& paths, uint32_t sub, uint32_t sub_count) {
+    const size_t m = paths.size();
+    draw_seed_.resize(m), draw_index_.resize(m), draw_x_.resize(m), draw_y_.resize(m);
+    for (size_t k = 0; k < m; ++k) {
+      const PathSampler& p = sampler_[paths[k]];
+      draw_seed_[k] = p.pixel_seed32();
+      draw_index_[k] = p.index() * sub_count + sub;
+    }
+  }
+  void DrawSobol1D(const std::vector<uint32_t>& paths, uint32_t dim, uint32_t sub,
+                   uint32_t sub_count, float* out) {
+    FillSobolRows(paths, sub, sub_count);
+    backend_.sobol1d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), out);
+  }
+  void DrawSobol2D(const std::vector<uint32_t>& paths, uint32_t dim, uint32_t sub,
+                   uint32_t sub_count, Vec2f* out) {
+    FillSobolRows(paths, sub, sub_count);
+    backend_.sobol2d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), draw_x_.data(),
+                     draw_y_.data());
+    for (size_t k = 0; k < paths.size(); ++k) out[k] = {draw_x_[k], draw_y_[k]};
   }
 
   void TraceShadows() {
@@ -384,6 +472,15 @@ class Wavefront {
 
   // Path state (SoA, by path id).
   std::vector<PathSampler> sampler_;
+  const bool sobol_;
+  // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
+  std::vector<int> gen_px_, gen_py_;
+  std::vector<Vec2f> jitter_, lens_;
+  std::vector<uint32_t> all_paths_, continuing_;
+  std::vector<float> light_pick_, roulette_, bsdf_lobe_;
+  std::vector<Vec2f> light_point_, bsdf_direction_;
+  std::vector<uint32_t> draw_seed_, draw_index_;
+  std::vector<float> draw_x_, draw_y_;
   std::vector<Color3f> L_, throughput_, nee_throughput_;
   std::vector<float> eta_, prev_pdf_;
   std::vector<Vec3f> prev_p_;

@@ -53,6 +53,9 @@ class PathSampler {
         type_(type) {}
 
   SamplerType type() const { return type_; }
+  /// What the Sobol' points depend on: the pixel's 32-bit seed and the sample index.
+  uint32_t pixel_seed32() const { return pixel_seed32_; }
+  uint32_t index() const { return index_; }
 
   /// A number in [0, 1) for dimension `dim`; sub / sub_count: the sub-sample of a decision
   /// taken sub_count times per vertex (emitter samples).
