@@ -30,6 +30,27 @@ Vec3f ShadingNormalAt(const Scene& scene, uint32_t tri, float b1, float b2) {
 
 namespace {
 
+// Solid-angle sampling pays off only for triangles that look large from ref: below
+// kSolidAngleWorthIt the density of area sampling varies across the triangle by about its
+// angular size (~0.1 rad), and Arvo's construction costs more than it saves. A float estimate
+// A |cos| / d² at the centroid skips the exact solid angle for triangles far below it.
+constexpr float kSolidAngleWorthIt = 0.01f;
+
+// The solid angle of triangle tri from ref when SampleAreaLight and AreaLightPdf sample it by
+// solid angle (the same test in both), else 0.
+float SolidAngleSampled(const TriangleTable& t, uint32_t tri, const Vec3f& ref) {
+  const Vec3f v0 = t.V0(tri), v1 = t.V1(tri), v2 = t.V2(tri);
+  const Vec3f n2 = Cross(v1 - v0, v2 - v0);  // 2 A n
+  const Vec3f d = (v0 + v1 + v2) * (1.0f / 3.0f) - ref;
+  const float dist2 = Dot(d, d);
+  // 0.5 |n2 · d| / d³ against half the threshold (the estimate is not a bound for large
+  // triangles, so anything near the threshold is decided by the exact solid angle).
+  if (dist2 > 0 && 0.5f * std::abs(Dot(n2, d)) < 0.5f * kSolidAngleWorthIt * dist2 * std::sqrt(dist2))
+    return 0.0f;
+  const float omega = SphericalTriangleArea(v0, v1, v2, ref);
+  return omega >= kSolidAngleWorthIt && UsesSphericalTriangleSampling(omega) ? omega : 0.0f;
+}
+
 float TriangleArea(const TriangleTable& t, uint32_t tri) {
   return 0.5f * Length(Cross(t.V1(tri) - t.V0(tri), t.V2(tri) - t.V0(tri)));
 }
@@ -66,7 +87,7 @@ AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f&
   const Vec3f ng = Cross(t.V1(tri) - t.V0(tri), t.V2(tri) - t.V0(tri));
   s.radiance = lights.radiance[light];
   SphericalTriangleSample st;
-  if (mode == TriangleSampling::kSolidAngle &&
+  if (mode == TriangleSampling::kSolidAngle && SolidAngleSampled(t, tri, ref) > 0 &&
       SampleSphericalTriangle(t.V0(tri), t.V1(tri), t.V2(tri), ref, u, &st)) {
     s.p = st.p;
     s.n = ShadingNormalAt(scene, tri, st.b1, st.b2);
@@ -90,8 +111,7 @@ float AreaLightPdf(const Scene& scene, uint32_t light, uint32_t tri, const Vec3f
   if (!(lights.area[light] > 0)) return 0.0f;
   if (mode == TriangleSampling::kSolidAngle) {
     const TriangleTable& t = scene.triangles;
-    const float omega = SphericalTriangleArea(t.V0(tri), t.V1(tri), t.V2(tri), ref);
-    if (UsesSphericalTriangleSampling(omega)) {
+    if (const float omega = SolidAngleSampled(t, tri, ref); omega > 0) {
       if (!(Dot(n, p - ref) < 0)) return 0.0f;
       return TriangleArea(t, tri) / (lights.area[light] * omega);
     }

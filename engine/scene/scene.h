@@ -64,7 +64,7 @@ struct IntegratorDesc {
   int light_samples = 1;   // emitter samples per hit (CS184's -l)
   bool power_heuristic = false;
   LightSelection light_selection = LightSelection::kPower;
-  TriangleSampling triangle_sampling = TriangleSampling::kSolidAngle;
+  TriangleSampling triangle_sampling = TriangleSampling::kArea;
 };
 
 struct Scene {

@@ -992,7 +992,7 @@ class SceneParser {
     if (kind->light_samples) {
       PTLAB_RETURN_IF_ERROR(props.Integer("lightSamples", &desc.light_samples));
       if (desc.light_samples < 1) return props.Error("lightSamples", "lightSamples must be >= 1");
-      std::string selection = "power", triangles = "solidAngle";
+      std::string selection = "power", triangles = "area";
       PTLAB_RETURN_IF_ERROR(props.String("lightSelection", &selection));
       if (selection != "uniform" && selection != "power")
         return props.Error("lightSelection", "unknown light selection '" + selection +

@@ -184,16 +184,19 @@ void RegisterEmitterSubjects(Chi2Registry* r) {
                                    Vec3f{0.0f, 2.5f, 0.5f}},
                                   "large triangle close to the origin"));
 
-  // Three quads facing the origin: powers ∝ radiance × area = 1 × 0.36, 4 × 0.5, 0.5 × 1.2.
+  // Quads facing the origin: powers ∝ radiance × area = 1 × 0.36, 4 × 0.5, 0.5 × 1.2, 30 × 0.04.
   const std::vector<QuadLight> quads = {
       {{-0.3f, -0.3f, 1.5f}, {0.0f, 0.6f, 0.0f}, {0.6f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}},
       {{1.2f, -0.5f, -0.5f}, {0.0f, 0.0f, 1.0f}, {0.0f, 0.5f, 0.0f}, {4.0f, 3.0f, 5.0f}},
       {{-0.6f, -1.0f, -0.5f}, {0.0f, 0.0f, 1.0f}, {1.2f, 0.0f, 0.0f}, {0.5f, 0.4f, 0.6f}},
+      // Small and far (0.0025 sr): sampled by area even with triangles=solidAngle, so the
+      // distribution mixes both rules and the pdf must follow the same switch.
+      {{-0.1f, -0.1f, -4.0f}, {0.2f, 0.0f, 0.0f}, {0.0f, 0.2f, 0.0f}, {30.0f, 30.0f, 30.0f}},
   };
   auto power = QuadLightsScene(quads);
   power->integrator.light_selection = LightSelection::kPower;
   power->integrator.triangle_sampling = TriangleSampling::kSolidAngle;
-  r->Add(EmitterSelectionSubject("emitter/power_selection_three_quads", power, false,
+  r->Add(EmitterSelectionSubject("emitter/power_selection_four_quads", power, false,
                                  Chi2Expect::kPass));
   auto uniform = std::make_shared<Scene>(*power);
   uniform->integrator.light_selection = LightSelection::kUniform;

@@ -11,8 +11,8 @@ namespace ptlab {
 ///   (directions on the sphere) against 1 / solid angle inside the triangle's projection, the
 ///   solid angle by Girard's theorem in double (not the sampler's formula): a triangle of
 ///   0.54 sr ahead, a tilted one seen at grazing angles, and one of 2.6 sr;
-/// - "emitter/power_selection_three_quads": three quad lights of different power (radiance and
-///   area) around the origin; u1 picks the light by power (and, rescaled, its triangle), u2 the
+/// - "emitter/power_selection_four_quads": three quad lights of different power (radiance and
+///   area) around the origin, and a fourth, small and far, that solid-angle mode samples by area; u1 picks the light by power (and, rescaled, its triangle), u2 the
 ///   point by solid angle; pdf = Σ pmf(light) × AreaLightPdf;
 /// - "emitter/uniform_selection_area_sampling": the same scene, uniform pick, area sampling;
 /// - "broken/power_selection_claims_uniform_pmf": power picks with a pdf built on 1/3 per light.

@@ -56,7 +56,9 @@ TEST_P(ImageParity, MatchesReference) {
     GTEST_SKIP() << "reference data not found under " << kData;
   StatusOr<Scene> scene = LoadScene(scene_path, LoadOptions{c.lookat});
   ASSERT_TRUE(scene.ok()) << scene.status().message();
-  if (c.sampler) ASSERT_TRUE(SamplerTypeFromName(c.sampler, &scene->sampler.type));
+  if (c.sampler) {
+    ASSERT_TRUE(SamplerTypeFromName(c.sampler, &scene->sampler.type));
+  }
   StatusOr<Image> reference = ReadImage(ref_path);
   ASSERT_TRUE(reference.ok()) << reference.status().message();
 

@@ -32,6 +32,9 @@ TEST(ConvergeVariant, RejectsUnknownKeysAndBadValuesNamingThem) {
                         Case{"maxDepth=-2", "an integer >= -1"},
                         Case{"sampling=cosine", "uniform or importance"},
                         Case{"path=gpu", "packet or scalar"},
+                        Case{"sampler=halton", "independent or sobol"},
+                        Case{"lights=area", "uniform or power"},
+                        Case{"triangles=solid", "area or solidAngle"},
                         Case{"integrator", "is not key=value"},
                         Case{"=3", "is not key=value"}}) {
     StatusOr<Variant> v = ParseVariant(c.spec);
@@ -54,6 +57,23 @@ TEST(ConvergeVariant, AppliesToTheSceneAndTheExecutionPath) {
   EXPECT_EQ(scene.integrator.light_samples, 2);
   EXPECT_TRUE(scene.integrator.power_heuristic);
   EXPECT_TRUE(target.scalar);
+}
+
+TEST(ConvergeVariant, SamplerLightSelectionAndTriangleSampling) {
+  Scene scene;
+  StatusOr<Variant> v = ParseVariant("sampler=independent,lights=uniform,triangles=area");
+  ASSERT_TRUE(v.ok());
+  VariantTarget target(&scene);
+  ASSERT_TRUE(ApplyVariant(*v, &target).ok());
+  EXPECT_EQ(scene.sampler.type, SamplerType::kIndependent);
+  EXPECT_EQ(scene.integrator.light_selection, LightSelection::kUniform);
+  EXPECT_EQ(scene.integrator.triangle_sampling, TriangleSampling::kArea);
+  v = ParseVariant("sampler=sobol,lights=power,triangles=solidAngle");
+  ASSERT_TRUE(v.ok());
+  ASSERT_TRUE(ApplyVariant(*v, &target).ok());
+  EXPECT_EQ(scene.sampler.type, SamplerType::kSobol);
+  EXPECT_EQ(scene.integrator.light_selection, LightSelection::kPower);
+  EXPECT_EQ(scene.integrator.triangle_sampling, TriangleSampling::kSolidAngle);
 }
 
 TEST(ConvergeVariant, ImportanceSamplingNeedsTheMapsDistribution) {

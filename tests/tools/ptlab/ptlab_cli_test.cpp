@@ -74,6 +74,30 @@ TEST(PtlabCli, RendersExrAndPngWithHeader) {
   EXPECT_EQ(files, 2);
 }
 
+// --sampler overrides the scene's sampler (recorded in the header); a bad name is an error.
+TEST(PtlabCli, SamplerOption) {
+  const fs::path dir = TempDir("cli_sampler");
+  for (const char* sampler : {"independent", "sobol"}) {
+    const fs::path out = dir / (std::string(sampler) + ".exr");
+    ASSERT_EQ(RunPtlab("render " + kScenes + "/cbox.xml -o " + out.string() +
+                           " --spp 2 --width 40 --height 30 -q --sampler " + sampler,
+                       dir / "log"),
+              0)
+        << ReadFile(dir / "log");
+    auto attrs = ReadExrStringAttributes(out.string());
+    ASSERT_TRUE(attrs.ok());
+    std::string recorded;
+    for (const auto& [k, v] : *attrs)
+      if (k == "ptlab:sampler") recorded = v;
+    EXPECT_EQ(recorded, sampler);
+  }
+  EXPECT_EQ(RunPtlab("render " + kScenes + "/cbox.xml -o " + (dir / "x.exr").string() +
+                         " --sampler halton",
+                     dir / "log"),
+            2);
+  EXPECT_NE(ReadFile(dir / "log").find("halton"), std::string::npos) << ReadFile(dir / "log");
+  EXPECT_FALSE(fs::exists(dir / "x.exr"));
+}
 
 // --stats: the stage fractions of the packet path add up to 100 %, the packets are counted.
 TEST(PtlabCli, StatsReportsStagesAndPackets) {
