@@ -297,8 +297,11 @@ double IntegrateWithBatchPdf(const Chi2Subject& subject, const Chi2Options& opti
     IntegrateCells(subject, lookup, options, &pass, &replay);
     if (missing.empty()) break;
     std::vector<double> values(missing.size());
-    subject.pdf_batch(missing.data(), int64_t(missing.size()), values.data());
     ++calls;
+    if (!subject.pdf_batch(missing.data(), int64_t(missing.size()), values.data())) {
+      r->failures.push_back(Format("the batch pdf could not answer (call %.0f)", double(calls)));
+      return std::numeric_limits<double>::quiet_NaN();
+    }
     for (size_t i = 0; i < missing.size(); ++i) tables[missing_cell[i]].Set(missing[i], values[i]);
     points += int64_t(missing.size());
   }

@@ -32,7 +32,8 @@ using Chi2PdfFn = std::function<double(const Chi2Point& p)>;
 /// call once per point (another process, a Python function over NumPy arrays). If a subject sets
 /// it, it is used instead of Chi2PdfFn, and the result equals what Chi2PdfFn returning the same
 /// values would give (the adaptive integration is replayed until it needs no new point).
-using Chi2BatchPdfFn = std::function<void(const Chi2Point* p, int64_t n, double* density)>;
+/// Returns false when it cannot answer (a pdf program died): the test then stops and fails.
+using Chi2BatchPdfFn = std::function<bool(const Chi2Point* p, int64_t n, double* density)>;
 
 /// What a run of the subject must show: real subjects pass, deliberately broken ones fail.
 enum class Chi2Expect { kPass, kFail };
