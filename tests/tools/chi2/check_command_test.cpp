@@ -82,7 +82,7 @@ TEST(StatChi2Check, SameResultAsTheCppRoute) {
   EXPECT_EQ(JsonNumber(json, "dof"), r.dof);
 }
 
-// A pdf tabulated on a 3 x 2049 grid of (phi, cos theta) passes; the wrong exponent fails.
+// A pdf tabulated on a 3 x 513 grid of (phi, cos theta) passes; the wrong exponent fails.
 TEST(StatChi2Check, PdfGrid) {
   const fs::path dir = TempDir("chi2_check_grid");
   std::vector<chi2::Point> drawn;
@@ -94,10 +94,10 @@ TEST(StatChi2Check, PdfGrid) {
   WriteRaw(dir / "samples.f32", drawn);
   for (const double n : {10.0, 11.0}) {
     std::ofstream grid(dir / "grid.txt");
-    grid << "# power cosine n=" << n << "\n3 2049\n";
+    grid << "# power cosine n=" << n << "\n3 513\n";
     char line[128];
-    for (int j = 0; j < 2049; ++j) {
-      const double v = (n + 1) / (2 * M_PI) * std::pow(j / 2048.0, n);
+    for (int j = 0; j < 513; ++j) {
+      const double v = (n + 1) / (2 * M_PI) * std::pow(j / 512.0, n);
       std::snprintf(line, sizeof(line), "%.17g %.17g %.17g\n", v, v, v);
       grid << line;
     }

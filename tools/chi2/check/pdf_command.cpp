@@ -41,9 +41,10 @@ std::string Points(const chi2::Point* p, int64_t n, int dims) {
   char line[128];
   for (int64_t i = 0; i < n; ++i) {
     if (dims == 3) {
-      std::snprintf(line, sizeof(line), "%.9g %.9g %.9g\n", p[i].x, p[i].y, p[i].z);
+      std::snprintf(line, sizeof(line), "%.17g %.17g %.17g\n", double(p[i].x), double(p[i].y),
+                    double(p[i].z));
     } else {
-      std::snprintf(line, sizeof(line), "%.9g %.9g\n", p[i].x, p[i].y);
+      std::snprintf(line, sizeof(line), "%.17g %.17g\n", double(p[i].x), double(p[i].y));
     }
     text += line;
   }
