@@ -76,8 +76,8 @@ Status CheckOptions(const Options& o) {
 
 Status CheckDomain(const Domain& d) {
   if (d.kind == DomainKind::kBox &&
-      !(std::isfinite(d.x0) && std::isfinite(d.x1) && std::isfinite(d.y0) &&
-        std::isfinite(d.y1) && d.x0 < d.x1 && d.y0 < d.y1))
+      !(std::isfinite(d.x0) && std::isfinite(d.x1) && std::isfinite(d.y0) && std::isfinite(d.y1) &&
+        d.x0 < d.x1 && d.y0 < d.y1))
     return Status::Error("a box domain needs finite corners with x0 < x1 and y0 < y1, got " +
                          DomainName(d));
   return Status::Ok();
@@ -88,7 +88,8 @@ Status CheckPoints(const Domain& d, const Point* points, int64_t n) {
   const Chi2Domain internal = ToInternal(d);
   for (int64_t i = 0; i < n; ++i) {
     const Point& p = points[i];
-    const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && (d.dims() == 2 || std::isfinite(p.z));
+    const bool finite =
+        std::isfinite(p.x) && std::isfinite(p.y) && (d.dims() == 2 || std::isfinite(p.z));
     if (!finite)
       return Status::Error("sample " + std::to_string(i) + " is " + FormatPoint(d, p) +
                            ": not finite");
@@ -139,7 +140,8 @@ Status ParseDomain(const std::string& text, Domain* domain) {
   if (text == "hemisphere") return *domain = Domain::Hemisphere(), Status::Ok();
   const std::string expected =
       "expected square, disk, sphere, hemisphere or box:x0,y0,x1,y1 (e.g. box:0,0,2,1)";
-  if (text.rfind("box:", 0) != 0) return Status::Error("unknown domain \"" + text + "\": " + expected);
+  if (text.rfind("box:", 0) != 0)
+    return Status::Error("unknown domain \"" + text + "\": " + expected);
   double v[4];
   const char* s = text.c_str() + 4;
   for (int i = 0; i < 4; ++i) {
@@ -213,7 +215,8 @@ Status TestPoints(const std::string& name, const Domain& domain, const Point* po
   const Chi2Result r = RunChi2Test(s, o);
   if (!pdf_status.ok()) return Status::Error("the pdf failed: " + pdf_status.message());
   Result out = ToPublic(domain, r);
-  if (!options.images_dir.empty()) PTLAB_CHI2_RETURN_IF_ERROR(WriteImages(options.images_dir, name, out));
+  if (!options.images_dir.empty())
+    PTLAB_CHI2_RETURN_IF_ERROR(WriteImages(options.images_dir, name, out));
   *result = std::move(out);
   return Status::Ok();
 }

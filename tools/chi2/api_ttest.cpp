@@ -1,4 +1,4 @@
-// The public t-test API (ptlab/chi2.h): moments of the values, then the lab's Student / Welch tests.
+// The public t-test API (ptlab/chi2.h): moments of the values, then Student / Welch tests.
 #include <cmath>
 #include <string>
 
@@ -53,8 +53,8 @@ Status OneSampleTTest(const double* values, int64_t n, double reference, double 
   RunningMoments m;
   st = Moments("values", values, n, &m);
   if (!st.ok()) return st;
-  *result = ToPublic(
-      ptlab::OneSampleTTest(m.mean, m.Variance(), m.n, reference, alpha, test_count), m);
+  *result =
+      ToPublic(ptlab::OneSampleTTest(m.mean, m.Variance(), m.n, reference, alpha, test_count), m);
   return Status::Ok();
 }
 

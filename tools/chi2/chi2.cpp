@@ -308,8 +308,7 @@ double IntegrateWithBatchPdf(const Chi2Subject& subject, const Chi2Options& opti
   replay.misses = 0, replay.complete = nullptr;
   const double total = IntegrateCells(subject, lookup, options, r, &replay);
   PTLAB_CHECK(replay.misses == 0);
-  r->notes.push_back(
-      Format("batch pdf: %.0f points in %.0f calls", double(points), double(calls)));
+  r->notes.push_back(Format("batch pdf: %.0f points in %.0f calls", double(points), double(calls)));
   return total;
 }
 
@@ -337,8 +336,9 @@ Chi2Result RunChi2Test(const Chi2Subject& subject, const Chi2Options& options) {
 
   TabulateSamples(subject, options, &r);
 
-  const double total = subject.pdf_batch ? IntegrateWithBatchPdf(subject, options, &r)
-                                         : IntegrateCells(subject, subject.pdf, options, &r, nullptr);
+  const double total = subject.pdf_batch
+                           ? IntegrateWithBatchPdf(subject, options, &r)
+                           : IntegrateCells(subject, subject.pdf, options, &r, nullptr);
   r.pdf_integral = total;
 
   if (std::isnan(subject.albedo)) {

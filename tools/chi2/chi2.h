@@ -51,8 +51,8 @@ struct Chi2Subject {
   Chi2BatchSampleFn sample_batch;  // optional
   Chi2PdfFn pdf;
   Chi2BatchPdfFn pdf_batch;  // optional
-  int uniform_dims = 2;  // 2, or 3 to also draw u1
-  double albedo = 1.0;   // total mass of the distribution; < 1 (or unknown) = defective
+  int uniform_dims = 2;      // 2, or 3 to also draw u1
+  double albedo = 1.0;       // total mass of the distribution; < 1 (or unknown) = defective
   Chi2Expect expect = Chi2Expect::kPass;
 
   bool defective() const { return !(albedo == 1.0); }

@@ -11,8 +11,8 @@
 #include "tools/chi2/chi2.h"
 #include "tools/chi2/report.h"
 #include "tools/chi2/subjects.h"
-#include "tools/mpi/mpi_session.h"
 #include "tools/cli_checks.h"
+#include "tools/mpi/mpi_session.h"
 
 namespace {
 
@@ -85,7 +85,8 @@ int RunOverRanks(const ptlab::mpi::Session& mpi,
 
 int main(int argc, char** argv) {
   // `chi2 check ...` tests samples from a file (any language's sampler); see check_command.h.
-  if (argc >= 2 && std::string(argv[1]) == "check") return ptlab::RunCheckCommand(argc - 1, argv + 1);
+  if (argc >= 2 && std::string(argv[1]) == "check")
+    return ptlab::RunCheckCommand(argc - 1, argv + 1);
   // Under mpirun the subjects are shared among the ranks; rank 0 prints them in order.
   const ptlab::mpi::Session mpi(&argc, &argv);
   CLI::App app{"chi2: chi-square goodness-of-fit tests of sampling routines against their pdfs"};

@@ -1,6 +1,4 @@
 // The public API (ptlab/chi2.h): same results as the lab's own test, clear errors on bad input.
-#include "ptlab/chi2.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +6,7 @@
 #include <vector>
 
 #include "engine/core/vec.h"
+#include "ptlab/chi2.h"
 #include "tools/chi2/chi2.h"
 #include "tools/chi2/subjects.h"
 
@@ -154,9 +153,9 @@ TEST(StatChi2Api, TTests) {
   ASSERT_TRUE(chi2::OneSampleTTest(v.data(), 1000, 0.45, 0.01, 1, &t).ok());
   EXPECT_TRUE(t.passed);
   EXPECT_NEAR(t.t, 0.0, 1e-9);
-  ASSERT_TRUE(chi2::OneSampleTTest(v.data(), 1000, 0.45 + 10 * std::sqrt(t.variance / 1000), 0.01,
-                                   1, &t)
-                  .ok());
+  ASSERT_TRUE(
+      chi2::OneSampleTTest(v.data(), 1000, 0.45 + 10 * std::sqrt(t.variance / 1000), 0.01, 1, &t)
+          .ok());
   EXPECT_FALSE(t.passed);
   EXPECT_NEAR(t.t, -10.0, 1e-9);
   ASSERT_TRUE(chi2::WelchTTest(v.data(), 1000, w.data(), 1000, 0.01, 1, &t).ok());

@@ -45,7 +45,8 @@ TEST_P(StatChi2BatchPdf, EqualsScalarPdf) {
 
 INSTANTIATE_TEST_SUITE_P(Subjects, StatChi2BatchPdf,
                          ::testing::Values("warp/cosine_hemisphere", "warp/concentric_disk",
-                                           "warp/uniform_triangle", "distantdisk/cone_10deg_rotated",
+                                           "warp/uniform_triangle",
+                                           "distantdisk/cone_10deg_rotated",
                                            "broken/cosine_hemisphere_pdf_over_2pi"),
                          [](const auto& info) {
                            std::string s = info.param;

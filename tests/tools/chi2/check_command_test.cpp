@@ -1,4 +1,4 @@
-// `chi2 check` as a user runs it: same χ² as the C++ route, exit 2 and a clear error on bad input.
+// `chi2 check` as a user runs it: same χ² as the C++ route, exit 2 on bad input.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -36,11 +36,13 @@ chi2::Subject RecordingPowerCosine(std::vector<chi2::Point>* drawn) {
   s.name = "power_cosine_n10";
   s.domain = chi2::Domain::Hemisphere();
   s.sample = [drawn](const float* u, int64_t n, int dims, chi2::Point* p) {
-    for (int64_t i = 0; i < n; ++i) drawn->push_back(p[i] = SamplePowerCosine(u[i * dims], u[i * dims + 1], 10));
+    for (int64_t i = 0; i < n; ++i)
+      drawn->push_back(p[i] = SamplePowerCosine(u[i * dims], u[i * dims + 1], 10));
     return chi2::Status::Ok();
   };
   s.pdf = [](const chi2::Point* w, int64_t n, double* d) {
-    for (int64_t i = 0; i < n; ++i) d[i] = w[i].z > 0 ? 11.0f / (2.0f * kPiF) * std::pow(w[i].z, 10.0f) : 0.0f;
+    for (int64_t i = 0; i < n; ++i)
+      d[i] = w[i].z > 0 ? 11.0f / (2.0f * kPiF) * std::pow(w[i].z, 10.0f) : 0.0f;
     return chi2::Status::Ok();
   };
   return s;
@@ -80,6 +82,33 @@ TEST(StatChi2Check, SameResultAsTheCppRoute) {
   EXPECT_NEAR(JsonNumber(json, "chi2"), r.chi2, 1e-5 * r.chi2) << json;
   EXPECT_NEAR(JsonNumber(json, "p_value"), r.p_value, 1e-5) << json;
   EXPECT_EQ(JsonNumber(json, "dof"), r.dof);
+}
+
+// The README's broken variants through the file route: a pdf program answering half the
+// density, and one answering the n = 11 lobe, are both rejected (exit 1).
+TEST(StatChi2Check, BrokenVariantsFail) {
+  const fs::path dir = TempDir("chi2_check_broken");
+  std::vector<chi2::Point> drawn;
+  chi2::Options o;
+  o.samples = 200000;
+  o.res = 25;
+  chi2::Result r;
+  ASSERT_TRUE(chi2::Test(RecordingPowerCosine(&drawn), o, &r).ok());
+  WriteRaw(dir / "samples.f32", drawn);
+  for (const char* formula : {"0.5 * 11 / (2 * np.pi) * np.abs(w[:, 2]) ** 10",
+                              "12 / (2 * np.pi) * np.abs(w[:, 2]) ** 11"}) {
+    std::ofstream(dir / "pdf.py")
+        << "import sys\nimport numpy as np\n"
+           "w = np.array(sys.stdin.read().split(), dtype=np.float64).reshape(-1, 3)\n"
+           "p = np.where(w[:, 2] > 0, "
+        << formula << ", 0.0)\nsys.stdout.write(''.join(f'{v!r}\\n' for v in p.tolist()))\n";
+    const std::string cmd = std::string(kChi2) + " check --domain hemisphere --dims 3 --samples " +
+                            (dir / "samples.f32").string() +
+                            " --res 25 --json --pdf-cmd \"/usr/bin/python3 " +
+                            (dir / "pdf.py").string() + "\"";
+    EXPECT_EQ(RunShell(cmd, dir / "out.json"), 1) << formula << "\n" << ReadFile(dir / "out.json");
+    EXPECT_NE(ReadFile(dir / "out.json").find("\"passed\": false"), std::string::npos);
+  }
 }
 
 // A pdf tabulated on a 3 x 513 grid of (phi, cos theta) passes; the wrong exponent fails.
@@ -134,7 +163,9 @@ class Chi2CheckBadInput : public ::testing::Test {
     EXPECT_NE(log.find(message), std::string::npos) << cmd << "\n" << log;
   }
 
-  std::string Good() const { return "--domain hemisphere --samples " + (dir_ / "good.csv").string(); }
+  std::string Good() const {
+    return "--domain hemisphere --samples " + (dir_ / "good.csv").string();
+  }
   std::string Write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name, std::ios::binary) << text;
     return (dir_ / name).string();

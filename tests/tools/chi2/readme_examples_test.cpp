@@ -37,8 +37,9 @@ TEST(Chi2Readme, ExamplesAreIncludedVerbatim) {
 // The file-based route exactly as the README shows it (with the built chi2 as $CHI2).
 TEST(StatChi2Readme, CliRouteRunsAsWritten) {
   const auto dir = TempDir("chi2_readme_cli");
-  const std::string cmd = "cd " + dir.string() + " && CHI2=" PTLAB_BINARY_DIR
-                          "/bin/chi2 " PTLAB_SOURCE_DIR "/examples/chi2_cli/check.sh";
+  const std::string cmd = "cd " + dir.string() +
+                          " && CHI2=" PTLAB_BINARY_DIR "/bin/chi2 " PTLAB_SOURCE_DIR
+                          "/examples/chi2_cli/check.sh";
   ASSERT_EQ(RunShell(cmd, dir / "log.txt"), 0) << ReadFile(dir / "log.txt");
   const std::string log = ReadFile(dir / "log.txt");
   EXPECT_NE(log.find("\"passed\": true"), std::string::npos) << log;

@@ -86,7 +86,8 @@ chi2::Status RunBatch(const std::string& command, int dims, double timeout_secon
   const std::string who = "the pdf program \"" + command + "\"";
   const std::string input = Points(p, n, dims);
   int to_child[2], from_child[2];
-  if (pipe2(to_child, O_CLOEXEC) != 0) return chi2::Status::Error("pipe: " + std::string(strerror(errno)));
+  if (pipe2(to_child, O_CLOEXEC) != 0)
+    return chi2::Status::Error("pipe: " + std::string(strerror(errno)));
   if (pipe2(from_child, O_CLOEXEC) != 0) {
     close(to_child[0]), close(to_child[1]);
     return chi2::Status::Error("pipe: " + std::string(strerror(errno)));
@@ -114,8 +115,8 @@ chi2::Status RunBatch(const std::string& command, int dims, double timeout_secon
   const Clock::time_point deadline =
       Clock::now() + std::chrono::milliseconds(int64_t(timeout_seconds * 1000.0));
   auto remaining_ms = [&] {
-    return int(std::max<int64_t>(0, std::chrono::duration_cast<std::chrono::milliseconds>(
-                                        deadline - Clock::now()).count()));
+    return int(std::max<int64_t>(
+        0, std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count()));
   };
   std::string output;
   size_t written = 0;
@@ -170,8 +171,7 @@ chi2::Status RunBatch(const std::string& command, int dims, double timeout_secon
     return chi2::Status::Error(who + " was killed by signal " + std::to_string(WTERMSIG(status)) +
                                " (" + strsignal(WTERMSIG(status)) + ")");
   if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
-    return chi2::Status::Error(who + " exited with status " +
-                               std::to_string(WEXITSTATUS(status)) +
+    return chi2::Status::Error(who + " exited with status " + std::to_string(WEXITSTATUS(status)) +
                                (WEXITSTATUS(status) == 127 ? " (command not found?)" : ""));
   if (written != input.size())
     return chi2::Status::Error(who + " exited before reading all " + std::to_string(n) +

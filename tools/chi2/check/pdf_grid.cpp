@@ -87,8 +87,8 @@ chi2::Status ReadPdfGrid(const std::string& path, const chi2::Domain& domain, ch
         return chi2::Status::Error(path + ":" + std::to_string(number) + ": density " + token +
                                    ", expected a finite number >= 0");
       if (grid->values.size() == want)
-        return chi2::Status::Error(path + ":" + std::to_string(number) + ": more than NX*NY = " +
-                                   std::to_string(want) + " densities");
+        return chi2::Status::Error(path + ":" + std::to_string(number) +
+                                   ": more than NX*NY = " + std::to_string(want) + " densities");
       grid->values.push_back(v);
     }
   }

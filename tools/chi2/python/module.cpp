@@ -81,8 +81,8 @@ chi2::PdfFn WrapPdf(const py::function& pdf, int dims, PythonError* python_error
       }
       if (d.size() != n || d.ndim() > 2 || (d.ndim() == 2 && d.shape(1) != 1))
         return chi2::Status::Error("pdf(points) returned shape " + Shape(d) + " for " +
-                                   std::to_string(n) + " points, expected (" +
-                                   std::to_string(n) + ",)");
+                                   std::to_string(n) + " points, expected (" + std::to_string(n) +
+                                   ",)");
       std::copy(d.data(), d.data() + n, densities);
       return chi2::Status::Ok();
     } catch (py::error_already_set& e) {
@@ -93,8 +93,8 @@ chi2::PdfFn WrapPdf(const py::function& pdf, int dims, PythonError* python_error
 
 chi2::Result Chi2Test(const std::string& domain_text, const py::object& sample,
                       const py::function& pdf, int64_t samples, int res, double alpha,
-                      std::optional<std::string> images, const std::string& name,
-                      int uniform_dims, uint64_t seed, int test_count) {
+                      std::optional<std::string> images, const std::string& name, int uniform_dims,
+                      uint64_t seed, int test_count) {
   const chi2::Domain domain = ParseDomain(domain_text);
   const int dims = domain.dims();
   chi2::Options options;
@@ -144,13 +144,15 @@ chi2::TTestResult TTest(const DoubleArray& values, std::optional<double> referen
                         std::optional<DoubleArray> other, double alpha, int test_count) {
   if (reference.has_value() == other.has_value())
     throw py::value_error("t_test needs either reference= (one-sample) or other= (Welch)");
-  if (values.ndim() != 1) throw py::value_error("values has shape " + Shape(values) + ", expected (N,)");
+  if (values.ndim() != 1)
+    throw py::value_error("values has shape " + Shape(values) + ", expected (N,)");
   chi2::TTestResult r;
   chi2::Status st;
   if (reference) {
     st = chi2::OneSampleTTest(values.data(), values.size(), *reference, alpha, test_count, &r);
   } else {
-    if (other->ndim() != 1) throw py::value_error("other has shape " + Shape(*other) + ", expected (N,)");
+    if (other->ndim() != 1)
+      throw py::value_error("other has shape " + Shape(*other) + ", expected (N,)");
     st = chi2::WelchTTest(values.data(), values.size(), other->data(), other->size(), alpha,
                           test_count, &r);
   }
@@ -173,12 +175,14 @@ PYBIND11_MODULE(ptlab, m) {
       .def_readonly("pdf_evals", &chi2::Result::pdf_evals)
       .def_readonly("failures", &chi2::Result::failures)
       .def_readonly("notes", &chi2::Result::notes)
-      .def_property_readonly("observed", [](const chi2::Result& r) {
-        return DoubleArray({r.yres, r.xres}, r.observed.data());
-      })
-      .def_property_readonly("expected", [](const chi2::Result& r) {
-        return DoubleArray({r.yres, r.xres}, r.expected.data());
-      })
+      .def_property_readonly("observed",
+                             [](const chi2::Result& r) {
+                               return DoubleArray({r.yres, r.xres}, r.observed.data());
+                             })
+      .def_property_readonly("expected",
+                             [](const chi2::Result& r) {
+                               return DoubleArray({r.yres, r.xres}, r.expected.data());
+                             })
       .def("__bool__", [](const chi2::Result& r) { return r.passed; })
       .def("__repr__", [](const chi2::Result& r) { return chi2::FormatResult("chi2_test", r); });
   py::class_<chi2::TTestResult>(m, "TTestResult")

@@ -55,7 +55,9 @@ struct Domain {
   static Domain Sphere() { return {DomainKind::kSphere}; }
   static Domain Hemisphere() { return {DomainKind::kHemisphere}; }
   /// Coordinates per point: 2 on the square, box and disk, 3 on the sphere and hemisphere.
-  int dims() const { return kind == DomainKind::kSphere || kind == DomainKind::kHemisphere ? 3 : 2; }
+  int dims() const {
+    return kind == DomainKind::kSphere || kind == DomainKind::kHemisphere ? 3 : 2;
+  }
 };
 
 /// Parses "square", "disk", "sphere", "hemisphere" or "box:x0,y0,x1,y1" (x0 < x1, y0 < y1).
@@ -128,9 +130,9 @@ struct Result {
 PTLAB_CHI2_API Status Test(const Subject& subject, const Options& options, Result* result);
 
 /// The same test on points drawn elsewhere (n points; the file-based route of `chi2 check`).
-PTLAB_CHI2_API Status TestPoints(const std::string& name, const Domain& domain,
-                                 const Point* points, int64_t n, const PdfFn& pdf,
-                                 const Options& options, Result* result);
+PTLAB_CHI2_API Status TestPoints(const std::string& name, const Domain& domain, const Point* points,
+                                 int64_t n, const PdfFn& pdf, const Options& options,
+                                 Result* result);
 
 /// Writes <dir>/<name>.png (observed | expected | residual (o−e)/√e heat maps) and <dir>/<name>.csv
 /// (the cells), creating dir; name has characters outside [A-Za-z0-9._-] replaced by '_'.
