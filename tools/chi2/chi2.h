@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/core/vec.h"
@@ -27,6 +28,13 @@ using Chi2BatchSampleFn =
 /// finite and >= 0 wherever it is evaluated (the test fails otherwise).
 using Chi2PdfFn = std::function<double(const Chi2Point& p)>;
 
+/// The same for n points at once: writes density[i] for p[i]. For pdfs that are expensive to
+/// call once per point (another process, a Python function over NumPy arrays). If a subject sets
+/// it, it is used instead of Chi2PdfFn, and the result equals what Chi2PdfFn returning the same
+/// values would give (the adaptive integration is replayed until it needs no new point).
+/// Returns false when it cannot answer (a pdf program died): the test then stops and fails.
+using Chi2BatchPdfFn = std::function<bool(const Chi2Point* p, int64_t n, double* density)>;
+
 /// What a run of the subject must show: real subjects pass, deliberately broken ones fail.
 enum class Chi2Expect { kPass, kFail };
 
@@ -42,14 +50,18 @@ struct Chi2Subject {
   Chi2SampleFn sample;
   Chi2BatchSampleFn sample_batch;  // optional
   Chi2PdfFn pdf;
-  int uniform_dims = 2;  // 2, or 3 to also draw u1
-  double albedo = 1.0;   // total mass of the distribution; < 1 (or unknown) = defective
+  Chi2BatchPdfFn pdf_batch;  // optional
+  int uniform_dims = 2;      // 2, or 3 to also draw u1
+  double albedo = 1.0;       // total mass of the distribution; < 1 (or unknown) = defective
   Chi2Expect expect = Chi2Expect::kPass;
 
   bool defective() const { return !(albedo == 1.0); }
 };
 
 inline constexpr uint64_t kChi2DefaultSeed = 0x9e3779b97f4a7c15ULL;
+
+/// The PCG32 stream of a subject's samples: a hash of its name (FNV-1a, mixed).
+uint64_t Chi2StreamFromName(std::string_view name);
 
 /// How a test is run. res is the number of cells along y; x gets Chi2GridWidth(domain, res).
 struct Chi2Options {

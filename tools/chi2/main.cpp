@@ -7,11 +7,12 @@
 #include <system_error>
 #include <vector>
 
+#include "tools/chi2/check/check_command.h"
 #include "tools/chi2/chi2.h"
 #include "tools/chi2/report.h"
 #include "tools/chi2/subjects.h"
-#include "tools/mpi/mpi_session.h"
 #include "tools/cli_checks.h"
+#include "tools/mpi/mpi_session.h"
 
 namespace {
 
@@ -29,7 +30,8 @@ Significance: alpha for the whole run, Sidak-corrected per test: alpha' = 1 - (1
 Verdicts: PASS / FAIL for real subjects; XFAIL (rejected as expected) / XPASS for "broken/..."
 subjects, which exist to prove the test can fail.
 Exit codes: 0 every subject as expected (real ones pass, broken ones fail), 1 otherwise,
-  3 bad usage, unknown subject or unwritable image directory.)";
+  3 bad usage, unknown subject or unwritable image directory.
+`chi2 check --help`: test samples from a file against a pdf program or grid (any language).)";
 
 // One subject's verdict line (and notes): what a rank sends to rank 0.
 std::string RunOne(const ptlab::Chi2Subject& s, const ptlab::Chi2Options& options,
@@ -82,6 +84,9 @@ int RunOverRanks(const ptlab::mpi::Session& mpi,
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `chi2 check ...` tests samples from a file (any language's sampler); see check_command.h.
+  if (argc >= 2 && std::string(argv[1]) == "check")
+    return ptlab::RunCheckCommand(argc - 1, argv + 1);
   // Under mpirun the subjects are shared among the ranks; rank 0 prints them in order.
   const ptlab::mpi::Session mpi(&argc, &argv);
   CLI::App app{"chi2: chi-square goodness-of-fit tests of sampling routines against their pdfs"};

@@ -49,6 +49,10 @@ double SimpsonRecurse(F& f, double a, double fa, double m, double fm, double b, 
   const double lm = 0.5 * (a + m), rm = 0.5 * (m + b);
   const double flm = f(lm), frm = f(rm);
   budget->used += 2;
+  // A NaN integrand value makes the integral NaN however far this recursed: stop here. (The
+  // chi-square lab's batch replay reads a pdf value it has not evaluated yet as NaN, so this
+  // also defers the refinement that depends on it to the next pass.)
+  if (std::isnan(fa + fm + fb + flm + frm)) return std::numeric_limits<double>::quiet_NaN();
   const double left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
   const double right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
   const double sum = left + right;
@@ -68,7 +72,8 @@ double SimpsonRecurse(F& f, double a, double fa, double m, double fm, double b, 
 }  // namespace internal
 
 /// ∫_a^b f(x) dx by adaptive Simpson quadrature (Kuncir 1962 / Lyness 1969, without the
-/// Richardson step). Returns 0 when b <= a. `budget` may be null (no limit).
+/// Richardson step). Returns 0 when b <= a, NaN when f is NaN at a point it evaluates.
+/// `budget` may be null (no limit).
 template <typename F>
 double AdaptiveSimpson(F&& f, double a, double b, const SimpsonOptions& options = {},
                        SimpsonBudget* budget = nullptr) {
