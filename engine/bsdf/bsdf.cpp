@@ -59,7 +59,8 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
       const float eta = m.dielectric.int_ior[i] / m.dielectric.ext_ior[i];
       if (!DielectricSample(eta, wo, u1, sample, m.dielectric.Flags(i))) return false;
       if (m.dielectric.tinted())
-        sample->weight *= sample->wi.z * wo.z > 0 ? m.dielectric.Reflectance(i)
+        // Reflection keeps the side of wo (wi.z wo.z >= 0); refraction changes it (< 0).
+        sample->weight *= sample->wi.z * wo.z >= 0 ? m.dielectric.Reflectance(i)
                                                  : m.dielectric.Transmittance(i);
       return true;
     }

@@ -717,11 +717,11 @@ class SceneParser {
 
   // Mitsuba emitter types we recognise but do not render yet (a clear "not supported yet").
   static bool IsUnsupportedEmitter(const std::string& type) {
-    return type == "spot" || type == "directional" || type == "constant";
+    return type == "spot" || type == "directional";
   }
   // Emitters that stand on their own, directly inside <scene>.
   static bool IsSceneEmitter(const std::string& type) {
-    return type == "envmap" || type == "distantdisk" || type == "point";
+    return type == "envmap" || type == "distantdisk" || type == "point" || type == "constant";
   }
 
   Status ParseAreaEmitter(const pugi::xml_node& node, Color3f* radiance) {
@@ -752,9 +752,27 @@ class SceneParser {
     if (type == "envmap") return ParseEnvironmentEmitter(node);
     if (type == "distantdisk") return ParseDistantDiskEmitter(node);
     if (type == "point") return ParsePointEmitter(node);
+    if (type == "constant") return ParseConstantEmitter(node);
     return at_.Error(node, "unknown emitter type '" + type +
-                               "'; expected envmap, distantdisk or point (area goes inside a "
-                               "shape)");
+                               "'; expected envmap, distantdisk, constant or point (area goes "
+                               "inside a shape)");
+  }
+
+  // Mitsuba `constant`: uniform radiance from every direction (color radiance, required), a
+  // distant disk of half-angle 180°: sampled uniformly over the sphere, with MIS as envmaps.
+  Status ParseConstantEmitter(const pugi::xml_node& node) {
+    PropertyList props(&at_, node);
+    PTLAB_RETURN_IF_ERROR(CollectLeafObject(node, &props));
+    PTLAB_RETURN_IF_ERROR(props.Expect({"radiance"}));
+    PTLAB_RETURN_IF_ERROR(props.Require("radiance", "color"));
+    Color3f radiance;
+    PTLAB_RETURN_IF_ERROR(props.Color("radiance", &radiance));
+    PTLAB_RETURN_IF_ERROR(CheckColor(props, "radiance", radiance, Range::kNonNegative));
+    StatusOr<uint32_t> row =
+        AddDistantDisk(radiance, 180.0f, Frame(), at_.At(node), &scene_.distant_disks);
+    if (!row.ok()) return row.status();
+    scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kDistantDisk, *row));
+    return Status::Ok();
   }
 
   // Nori's `point`: point position and color power (W), both required; power >= 0.
@@ -873,7 +891,10 @@ class SceneParser {
       PTLAB_RETURN_IF_ERROR(props.Require("focusDistance", "float"));
       PTLAB_RETURN_IF_ERROR(props.Float("apertureRadius", &camera.aperture_radius));
       PTLAB_RETURN_IF_ERROR(props.Float("focusDistance", &camera.focus_distance));
-      PTLAB_RETURN_IF_ERROR(CheckPositive(props, "apertureRadius", camera.aperture_radius));
+      if (!(camera.aperture_radius >= 0))  // 0 is a pinhole
+        return props.Error("apertureRadius", "'apertureRadius' = " +
+                                                 FormatNumber(camera.aperture_radius) +
+                                                 " is out of range; expected a value >= 0");
       PTLAB_RETURN_IF_ERROR(CheckPositive(props, "focusDistance", camera.focus_distance));
     } else {
       return at_.Error(node,

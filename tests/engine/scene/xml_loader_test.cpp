@@ -584,7 +584,7 @@ TEST(SceneLoader, UnknownObjectType) {
 }
 
 TEST(SceneLoader, UnsupportedFeatures) {
-  for (const char* type : {"spot", "directional", "constant"}) {
+  for (const char* type : {"spot", "directional"}) {
     SCOPED_TRACE(type);
     ExpectParseError("\n<emitter type=\"" + std::string(type) + "\"/>\n", 5,
                      {"emitter type '" + std::string(type) + "' is not supported yet"});
