@@ -382,6 +382,17 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
       {"ptlab:traversal", traversal},
       {"ptlab:threads", std::to_string(options.threads)},
       {"ptlab:ranks", std::to_string(mpi.size())},
+      // The estimator and camera settings the CS184 flags can change.
+      {"ptlab:integrator", IntegratorTypeName(scene.integrator.type)},
+      {"ptlab:max_depth", std::to_string(scene.integrator.max_depth)},
+      {"ptlab:light_samples", std::to_string(scene.integrator.light_samples)},
+      {"ptlab:lens_radius", std::to_string(scene.camera.aperture_radius)},
+      {"ptlab:focal_distance", std::to_string(scene.camera.focus_distance)},
+      {"ptlab:environment_maps", std::to_string(scene.environment_maps.size())},
+      {"ptlab:adaptive", adaptive.batch > 0 ? std::to_string(adaptive.batch) + " " +
+                                                  std::to_string(adaptive.tolerance)
+                                            : "off"},
+      {"ptlab:samples_taken", std::to_string(result.samples_taken)},
   };
   if (result.spp_done == 0) {
     std::fprintf(stderr, "interrupted before the first pass completed: nothing written\n");
