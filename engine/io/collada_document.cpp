@@ -6,7 +6,7 @@
 #include <string>
 
 #include "engine/scene/scene_limits.h"
-#include "engine/scene/text_parsing.h"
+#include "engine/io/text_parsing.h"
 
 namespace ptlab::collada {
 namespace {

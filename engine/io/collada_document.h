@@ -10,7 +10,7 @@
 
 #include "engine/core/status.h"
 #include "engine/core/vec.h"
-#include "engine/scene/xml_locator.h"
+#include "engine/io/xml_locator.h"
 
 namespace ptlab::collada {
 

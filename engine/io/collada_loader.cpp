@@ -12,11 +12,11 @@
 #include "engine/io/collada_effect.h"
 #include "engine/io/collada_mesh.h"
 #include "engine/light/distant_disk.h"
-#include "engine/scene/mesh_builder.h"
+#include "engine/io/mesh_builder.h"
 #include "engine/scene/scene_limits.h"
-#include "engine/scene/shapes.h"
-#include "engine/scene/text_parsing.h"
-#include "engine/scene/xml_locator.h"
+#include "engine/io/shapes.h"
+#include "engine/io/text_parsing.h"
+#include "engine/io/xml_locator.h"
 
 namespace ptlab {
 namespace {

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <unordered_map>
 
-#include "engine/scene/text_parsing.h"
+#include "engine/io/text_parsing.h"
 
 namespace ptlab::collada {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "engine/core/status.h"
 #include "engine/io/collada_document.h"
-#include "engine/scene/mesh_builder.h"
+#include "engine/io/mesh_builder.h"
 
 namespace ptlab::collada {
 

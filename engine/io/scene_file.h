@@ -5,7 +5,7 @@
 
 #include "engine/core/status.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 
 namespace ptlab {
 
@@ -15,7 +15,7 @@ enum class SceneFormat { kNoriXml, kCollada };
 /// case); for other names, COLLADA when the document's root element is <COLLADA>, else XML.
 SceneFormat SceneFormatOf(const std::string& path);
 
-/// Loads `path` with the loader of SceneFormatOf(path): LoadScene (engine/scene/xml_loader.h,
+/// Loads `path` with the loader of SceneFormatOf(path): LoadScene (engine/io/xml_loader.h,
 /// with `options`) or LoadColladaScene (engine/io/collada_loader.h).
 StatusOr<Scene> LoadSceneFile(const std::string& path, const LoadOptions& options = {});
 

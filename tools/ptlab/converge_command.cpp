@@ -13,7 +13,7 @@
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
 #include "engine/io/scene_file.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8_backend.h"
 #include "tools/converge/convergence.h"

@@ -12,7 +12,7 @@
 
 #include "engine/io/scene_file.h"
 #include "engine/light/distant_disk.h"
-#include "engine/scene/shapes.h"
+#include "engine/io/shapes.h"
 
 namespace ptlab {
 namespace {

@@ -9,7 +9,7 @@
 #include "engine/image/image_io.h"
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 
 namespace ptlab {
 namespace {

@@ -1,5 +1,5 @@
 // Tests of the XML scene loader: the Nori scenes, transforms, and one test per malformed input.
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 
 #include "engine/bsdf/conductor_presets.h"
 
