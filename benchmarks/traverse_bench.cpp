@@ -26,7 +26,7 @@
 #include "engine/render/packet_render.h"
 #include "engine/sampling/warp.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8.h"
 #include "simd/traverse8_backend.h"

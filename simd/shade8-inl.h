@@ -434,6 +434,7 @@ inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t 
     V8 cos_t;
     V8 f = FresnelDielectric(d, s.oz, eta, &cos_t);
     M8 scale = hn::FirstN(d, 0);
+    M8 tir_only = hn::FirstN(d, 0);  // refraction-only lanes under total internal reflection
     if (has_flags) {
       HWY_ALIGN int32_t flags[8];
       for (size_t j = 0; j < hn::Lanes(d); ++j) flags[j] = t.flags[b.index[i + j]];
@@ -441,6 +442,10 @@ inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t 
       const M8 schlick = hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricSchlick)));
       scale = hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricScaleRadiance)));
       f = hn::IfThenElse(hn::And(schlick, hn::Lt(f, one)), FresnelSchlick(d, s.oz, eta), f);
+      const M8 refract_only =
+          hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricRefractOnly)));
+      tir_only = hn::And(refract_only, hn::Ge(f, one));
+      f = hn::IfThenElse(refract_only, zero, f);
     }
     const M8 reflect = hn::Lt(s.u_lobe, f);
     const M8 outside = hn::Gt(s.oz, zero);
@@ -452,8 +457,18 @@ inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t 
     const V8 eta_out = hn::IfThenElse(reflect, one, hn::Div(one, rel));
     const V8 w = hn::IfThenElse(hn::AndNot(reflect, scale), hn::Mul(rel, rel), one);
     // A smooth interface always scatters (only a huge non-unit wo can overflow).
-    const M8 ok = hn::And(hn::IsFinite(ix), hn::IsFinite(iy));
-    StoreSample(d, b, i, ok, ix, iy, iz, w, w, w, pdf, eta_out);
+    const M8 ok = hn::AndNot(tir_only, hn::And(hn::IsFinite(ix), hn::IsFinite(iy)));
+    V8 wr = w, wg = w, wb = w;
+    if (t.tinted()) {
+      // CS184 glass colors: the reflectance tints reflection, the transmittance refraction.
+      wr = hn::Mul(w, hn::IfThenElse(reflect, Gather(d, t.reflectance_r, b.index, i),
+                                     Gather(d, t.transmittance_r, b.index, i)));
+      wg = hn::Mul(w, hn::IfThenElse(reflect, Gather(d, t.reflectance_g, b.index, i),
+                                     Gather(d, t.transmittance_g, b.index, i)));
+      wb = hn::Mul(w, hn::IfThenElse(reflect, Gather(d, t.reflectance_b, b.index, i),
+                                     Gather(d, t.transmittance_b, b.index, i)));
+    }
+    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, eta_out);
   });
 }
 

@@ -57,7 +57,12 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
     case MaterialTag::kDielectric: {
       const uint32_t i = ref.index();
       const float eta = m.dielectric.int_ior[i] / m.dielectric.ext_ior[i];
-      return DielectricSample(eta, wo, u1, sample, m.dielectric.Flags(i));
+      if (!DielectricSample(eta, wo, u1, sample, m.dielectric.Flags(i))) return false;
+      if (m.dielectric.tinted())
+        // Reflection keeps the side of wo (wi.z wo.z >= 0); refraction changes it (< 0).
+        sample->weight *= sample->wi.z * wo.z >= 0 ? m.dielectric.Reflectance(i)
+                                                 : m.dielectric.Transmittance(i);
+      return true;
     }
     case MaterialTag::kConductor:
       return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);

@@ -22,6 +22,9 @@ namespace ptlab {
 /// - kDielectricScaleRadiance: refraction multiplies the weight by (η_o/η_i)², the squared ratio
 ///   of the IOR on wo's side to the one on wi's side (pbrt's TransportMode::Radiance), because
 ///   radiance L/η² is what is conserved across the interface.
+/// - kDielectricRefractOnly: the reflection lobe is dropped (CS184 RefractionBSDF): refraction
+///   has probability 1 and weight 1 (or the radiance scale); under total internal reflection
+///   nothing is sampled (false).
 /// pdf is the discrete probability of the chosen lobe; s->eta is η_i/η_o (η on wi's side over
 /// η on wo's side) for refraction, 1 for reflection. Eval and Pdf of this model are 0.
 inline bool DielectricSample(float eta, const Vec3f& wo, float u, BsdfSample* s,
@@ -31,6 +34,10 @@ inline bool DielectricSample(float eta, const Vec3f& wo, float u, BsdfSample* s,
   const float cos_o = CosTheta(wo);
   float f = FresnelDielectric(cos_o, eta, &cos_t);
   if ((flags & kDielectricSchlick) && f < 1.0f) f = FresnelSchlick(cos_o, eta);
+  if (flags & kDielectricRefractOnly) {
+    if (f >= 1.0f) return false;  // total internal reflection: no refracted direction
+    f = 0.0f;
+  }
   s->delta = true;
   s->weight = {1, 1, 1};
   if (u < f) {

@@ -7,6 +7,17 @@
 
 namespace ptlab {
 
+void ResizeFilm(CameraDesc* camera, int width, int height) {
+  if (camera->keep_vertical_fov) {
+    // tan(v/2) = tan(h/2) · height / width at the old size; h' from v at the new size.
+    const double tan_v = std::tan(double(camera->fov_deg) * kPi / 360.0) * camera->height /
+                         camera->width;
+    camera->fov_deg = float(2.0 * std::atan(tan_v * width / height) * 180.0 / kPi);
+  }
+  camera->width = width;
+  camera->height = height;
+}
+
 Camera::Camera(const CameraDesc& desc)
     : desc_(desc),
       tan_half_fov_(std::tan(Radians(desc.fov_deg) * 0.5f)),

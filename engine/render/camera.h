@@ -6,6 +6,10 @@
 
 namespace ptlab {
 
+/// Sets the film to width × height pixels. fov_deg (horizontal) is kept, or, when
+/// keep_vertical_fov, recomputed so that the vertical field of view stays the same.
+void ResizeFilm(CameraDesc* camera, int width, int height);
+
 /// Precomputed per-render camera state.
 class Camera {
  public:

@@ -27,15 +27,29 @@ struct MirrorTable {
 enum DielectricFlags : uint8_t {
   kDielectricSchlick = 1u << 0,        // Schlick's Fresnel approximation (CS184 scenes)
   kDielectricScaleRadiance = 1u << 1,  // scale radiance by (η_o/η_i)² on refraction
+  kDielectricRefractOnly = 1u << 2,    // always refract, never reflect (CS184 RefractionBSDF)
 };
 
 /// Smooth dielectric interface (Nori defaults intIOR 1.5046, extIOR 1.000277). `flags` stays
 /// empty until some row has a non-zero DielectricFlags value (then it holds one per row).
+/// `reflectance_*` and `transmittance_*` (CS184 GlassBSDF's colors, multiplying the weight of
+/// the reflected and the refracted sample) likewise stay empty until a row is tinted.
 struct DielectricTable {
   AlignedVector<float> int_ior, ext_ior;
   AlignedVector<uint8_t> flags;
+  AlignedVector<float> reflectance_r, reflectance_g, reflectance_b;
+  AlignedVector<float> transmittance_r, transmittance_g, transmittance_b;
   size_t size() const { return int_ior.size(); }
   uint8_t Flags(size_t i) const { return i < flags.size() ? flags[i] : uint8_t{0}; }
+  bool tinted() const { return !reflectance_r.empty(); }
+  Color3f Reflectance(size_t i) const {
+    return tinted() ? Color3f{reflectance_r[i], reflectance_g[i], reflectance_b[i]}
+                    : Color3f{1, 1, 1};
+  }
+  Color3f Transmittance(size_t i) const {
+    return tinted() ? Color3f{transmittance_r[i], transmittance_g[i], transmittance_b[i]}
+                    : Color3f{1, 1, 1};
+  }
 };
 
 /// Rough conductor, Beckmann (Mitsuba `roughconductor`): per-RGB eta and k.
@@ -72,7 +86,27 @@ struct MaterialTables {
       t.flags.push_back(flags);
     }
     t.int_ior.push_back(int_ior), t.ext_ior.push_back(ext_ior);
+    if (t.tinted()) {
+      for (auto* c : {&t.reflectance_r, &t.reflectance_g, &t.reflectance_b, &t.transmittance_r,
+                      &t.transmittance_g, &t.transmittance_b})
+        c->push_back(1.0f);
+    }
     return MaterialRef::Make(MaterialTag::kDielectric, uint32_t(t.size() - 1));
+  }
+  /// A dielectric whose reflected and refracted samples are tinted (CS184 glass colors).
+  MaterialRef AddTintedDielectric(float int_ior, float ext_ior, uint8_t flags,
+                                  const Color3f& reflectance, const Color3f& transmittance) {
+    auto& t = dielectric;
+    const MaterialRef ref = AddDielectric(int_ior, ext_ior, flags);
+    for (auto* c : {&t.reflectance_r, &t.reflectance_g, &t.reflectance_b, &t.transmittance_r,
+                    &t.transmittance_g, &t.transmittance_b})
+      c->resize(t.int_ior.size(), 1.0f);
+    const size_t i = ref.index();
+    t.reflectance_r[i] = reflectance.r, t.reflectance_g[i] = reflectance.g,
+    t.reflectance_b[i] = reflectance.b;
+    t.transmittance_r[i] = transmittance.r, t.transmittance_g[i] = transmittance.g,
+    t.transmittance_b[i] = transmittance.b;
+    return ref;
   }
   /// Beckmann rough conductor; eta/k per RGB channel (see engine/bsdf/conductor_presets.h).
   MaterialRef AddConductor(float alpha, const Color3f& eta, const Color3f& k) {

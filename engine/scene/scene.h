@@ -23,6 +23,9 @@ struct CameraDesc {
   float near_clip = 1e-4f, far_clip = 1e4f;
   float aperture_radius = 0.0f;  // 0 = pinhole
   float focus_distance = 1.0f;
+  /// Which field of view a new film size keeps (ResizeFilm, engine/render/camera.h): the
+  /// horizontal one (Nori) or the vertical one (CS184's pathtracer -r).
+  bool keep_vertical_fov = false;
 };
 
 /// Pixel reconstruction filter; Nori's default is Gaussian, radius 2 px, stddev 0.5 px.
@@ -88,6 +91,8 @@ struct Scene {
   /// Every file the loader read (scene, meshes, images), so that processes rendering one scene
   /// can check they all read the same bytes.
   std::vector<std::string> input_files;
+  /// What a loader accepted although the file is not quite right (printed by `ptlab render`).
+  std::vector<std::string> load_warnings;
 };
 
 /// The XML name of an integrator type ("path_mis", ...).

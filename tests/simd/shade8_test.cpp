@@ -285,7 +285,12 @@ void AddMaterialRows(MaterialTables* m, Pcg32& rng) {
     m->AddRoughPlastic(bsdf_test::RandomAlpha(rng), 1.0f + rng.NextFloat(), 1.0f,
                        {kd, kd * rng.NextFloat(), kd * 0.5f});
   }
-  for (float eta : bsdf_test::HardEtas()) m->AddDielectric(eta, 1.0f, kDielectricSchlick);
+  for (float eta : bsdf_test::HardEtas()) {
+    m->AddDielectric(eta, 1.0f, kDielectricSchlick);
+    m->AddDielectric(eta, 1.0f, kDielectricRefractOnly | kDielectricScaleRadiance);
+    m->AddTintedDielectric(eta, 1.0f, kDielectricSchlick, {1.0f, 0.9f, 0.8f},
+                           {0.75f, 0.75f, 1.0f});
+  }
   for (float alpha : bsdf_test::HardAlphas()) {
     Color3f e, k;
     LookupConductorPreset("Cu", &e, &k);

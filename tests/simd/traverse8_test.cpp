@@ -24,7 +24,7 @@
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/packet_render.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 #include "hwy/targets.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8_backend.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/core/status.h"
-#include "engine/scene/nori_test_loader.h"
+#include "engine/io/nori_test_loader.h"
 
 namespace ptlab {
 

@@ -12,7 +12,8 @@
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/scene_file.h"
+#include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8_backend.h"
 #include "tools/converge/convergence.h"
@@ -203,7 +204,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     ls->stem = fs::path(ls->path).stem().string();
     LoadOptions load_options;
     if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
-    StatusOr<Scene> loaded = LoadScene(ls->path, load_options);
+    StatusOr<Scene> loaded = LoadSceneFile(ls->path, load_options);
     if (!loaded.ok()) {
       std::fprintf(stderr, "error: %s\n", loaded.status().message().c_str());
       return kExitUsage;

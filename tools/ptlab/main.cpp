@@ -15,16 +15,21 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
 #include "engine/light/environment_map.h"
+#include "engine/light/light_selection.h"
 #include "engine/render/integrator.h"
+#include "engine/render/camera.h"
 #include "engine/render/render.h"
+#include "engine/io/text_parsing.h"
 #include "engine/scene/scene_limits.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/scene_file.h"
+#include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/targets.h"
 #include "simd/traverse8.h"
@@ -122,6 +127,13 @@ struct RenderArgs {
   std::string scene;
   std::string output;
   int spp = 0, threads = 0, width = 0, height = 0;
+  // CS184 pathtracer flags (0 / negative / empty: not given, the scene's value stays).
+  int light_samples = 0, max_depth = -2;
+  std::string envmap;
+  float lens_radius = -1, focal_distance = -1;
+  std::vector<int> resolution;           // -r W H
+  std::string image;                     // -f out.png (or .exr)
+  std::vector<std::string> adaptive;     // -a batch tolerance
   uint64_t seed = 0;
   bool quiet = false;
   std::string lookat = "nori";
@@ -163,10 +175,43 @@ void PrintStats(const RenderResult& r, int threads, bool packets) {
                t.traversal > 0 ? double(r.rays) / t.traversal * 1e-6 : 0.0);
 }
 
+// The CS184 flags that change the scene: -l, -m, -b, -d and -e (an environment-map light,
+// added to whatever the scene has; world +y is its zenith).
+Status ApplySceneFlags(const RenderArgs& args, Scene* scene) {
+  if (args.light_samples > 0) scene->integrator.light_samples = args.light_samples;
+  if (args.max_depth >= -1) scene->integrator.max_depth = args.max_depth;
+  if (args.lens_radius >= 0) scene->camera.aperture_radius = args.lens_radius;
+  if (args.focal_distance > 0) scene->camera.focus_distance = args.focal_distance;
+  if (!args.envmap.empty()) {
+    StatusOr<Image> image = ReadImage(args.envmap);
+    if (!image.ok()) return Status::Error("-e: " + image.status().message());
+    StatusOr<uint32_t> row =
+        AddEnvironmentMap(*image, EnvironmentMapDesc{}, args.envmap, &scene->environment_maps);
+    if (!row.ok()) return Status::Error("-e: " + row.status().message());
+    scene->emitters.push_back(EmitterRef::Make(EmitterTag::kEnvironment, *row));
+    BuildEmitterSelection(scene);  // the new emitter joins the power-based selection
+    scene->input_files.push_back(args.envmap);
+  }
+  return Status::Ok();
+}
+
+// -a batch tolerance: samples per batch (an integer >= 1) and a tolerance (a finite number > 0).
+Status ParseAdaptiveFlag(const std::vector<std::string>& values, AdaptiveSampling* adaptive) {
+  int batch = 0;
+  if (!ParseInt(values[0], &batch) || batch < 1)
+    return Status::Error("-a: batch '" + values[0] + "' is not an integer >= 1");
+  float tolerance = 0;
+  if (!ParseFloat(values[1], &tolerance) || !(tolerance > 0))
+    return Status::Error("-a: tolerance '" + values[1] + "' is not a finite number > 0");
+  adaptive->batch = uint32_t(batch);
+  adaptive->tolerance = tolerance;
+  return Status::Ok();
+}
+
 int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   LoadOptions load_options;
   if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
-  StatusOr<Scene> loaded = LoadScene(args.scene, load_options);
+  StatusOr<Scene> loaded = LoadSceneFile(args.scene, load_options);
   // Under mpirun every rank loads the scene; all stop if one cannot, or reads other bytes.
   Status agreed = mpi.Agree(loaded.status());
   if (agreed.ok()) agreed = mpi.CheckSameInputs(loaded->input_files);
@@ -175,12 +220,23 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     return 1;
   }
   Scene& scene = *loaded;
+  if (mpi.root())
+    for (const std::string& warning : scene.load_warnings)
+      std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const std::string unsupported = UnsupportedFeature(scene);
   if (!unsupported.empty()) {
     std::fprintf(stderr, "error: %s: %s\n", args.scene.c_str(), unsupported.c_str());
     return 1;
   }
   if (!args.sampler.empty()) SamplerTypeFromName(args.sampler, &scene.sampler.type);
+  if (!args.resolution.empty()) {
+    const std::string size = FilmSizeError(args.resolution[0], args.resolution[1]);
+    if (!size.empty()) {
+      std::fprintf(stderr, "error: -r: %s\n", size.c_str());
+      return 2;
+    }
+    ResizeFilm(&scene.camera, args.resolution[0], args.resolution[1]);
+  }
   if (args.width > 0 || args.height > 0) {
     const double aspect = double(scene.camera.width) / double(scene.camera.height);
     const double width = args.width > 0 ? args.width : std::round(args.height * aspect);
@@ -191,14 +247,43 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
       std::fprintf(stderr, "error: --width/--height: %s\n", size.c_str());
       return 2;
     }
-    scene.camera.width = int(width);
-    scene.camera.height = int(height);
+    ResizeFilm(&scene.camera, int(width), int(height));
   }
+  const Status overridden = ApplySceneFlags(args, &scene);
+  if (!overridden.ok()) {
+    if (mpi.root()) std::fprintf(stderr, "error: %s\n", overridden.message().c_str());
+    return 1;
+  }
+  AdaptiveSampling adaptive;
+  if (!args.adaptive.empty()) {
+    const Status parsed = ParseAdaptiveFlag(args.adaptive, &adaptive);
+    if (!parsed.ok()) {
+      if (mpi.root()) std::fprintf(stderr, "error: %s\n", parsed.message().c_str());
+      return 2;
+    }
+    if (mpi.active()) {
+      if (mpi.root())
+        std::fprintf(stderr, "error: -a (adaptive sampling) does not run under mpirun yet\n");
+      return 2;
+    }
+  }
+  // -f names the PNG (the EXR goes beside it) or the EXR; -o names the EXR.
   std::string out = args.output;
+  std::string png;
+  const bool image_is_png = std::filesystem::path(args.image).extension() == ".png";
+  if (!args.image.empty()) {
+    out = image_is_png ? std::filesystem::path(args.image).replace_extension(".exr").string()
+                       : args.image;
+    if (image_is_png) png = args.image;
+  }
   if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".exr";
+  if (png.empty()) png = std::filesystem::path(out).replace_extension(".png").string();
   const std::filesystem::path out_path(out);
   Status output_ok;  // checked where the image is written: by rank 0 under mpirun
   if (!mpi.root()) {
+  } else if (!args.image.empty() && !image_is_png && out_path.extension() != ".exr") {
+    output_ok = Status::Error("-f: output '" + args.image +
+                              "' must end in .png (the .exr is written beside it) or .exr");
   } else if (out_path.extension() != ".exr") {
     output_ok = Status::Error("output '" + out + "' must end in .exr (a .png is written beside it)");
   } else if (out_path.has_parent_path() &&
@@ -206,7 +291,6 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     output_ok = Status::Error("output directory '" + out_path.parent_path().string() +
                               "' does not exist");
   }
-  const std::string png = std::filesystem::path(out).replace_extension(".png").string();
   for (const std::string& file : {out, png}) {
     if (!output_ok.ok() || !mpi.root()) break;
     output_ok = PrepareOutputFile(file);
@@ -230,6 +314,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                  "with --bind-to none or --map-by slot:PE=%d\n",
                  options.threads, UsableCores(), options.threads);
   options.seed = args.seed;
+  options.adaptive = adaptive;
   options.cancel = &g_interrupted;
   ProgressReporter reporter;
   const bool quiet = args.quiet || !mpi.root();
@@ -302,6 +387,17 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
       {"ptlab:traversal", traversal},
       {"ptlab:threads", std::to_string(options.threads)},
       {"ptlab:ranks", std::to_string(mpi.size())},
+      // The estimator and camera settings the CS184 flags can change.
+      {"ptlab:integrator", IntegratorTypeName(scene.integrator.type)},
+      {"ptlab:max_depth", std::to_string(scene.integrator.max_depth)},
+      {"ptlab:light_samples", std::to_string(scene.integrator.light_samples)},
+      {"ptlab:lens_radius", std::to_string(scene.camera.aperture_radius)},
+      {"ptlab:focal_distance", std::to_string(scene.camera.focus_distance)},
+      {"ptlab:environment_maps", std::to_string(scene.environment_maps.size())},
+      {"ptlab:adaptive", adaptive.batch > 0 ? std::to_string(adaptive.batch) + " " +
+                                                  std::to_string(adaptive.tolerance)
+                                            : "off"},
+      {"ptlab:samples_taken", std::to_string(result.samples_taken)},
   };
   if (result.spp_done == 0) {
     std::fprintf(stderr, "interrupted before the first pass completed: nothing written\n");
@@ -333,24 +429,62 @@ int main(int argc, char** argv) {
 
   ptlab::RenderArgs render;
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (Nori XML) to EXR + PNG");
-  cmd->add_option("scene", render.scene, "Scene file (.xml)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)")
-      ->check(CLI::Validator(
-          [](std::string& path) { return path.empty() ? "the output path is empty" : ""; },
-          "PATH"));
-  cmd->add_option("--spp", render.spp, "Samples per pixel (default: the scene's sampleCount)")
+  cmd->add_option("scene", render.scene, "Scene file (.xml: Nori/Mitsuba; .dae: COLLADA, CS184)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  const CLI::Validator non_empty_path(
+      [](std::string& path) { return path.empty() ? "the output path is empty" : ""; }, "PATH");
+  CLI::Option* output_opt =
+      cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)")
+          ->check(non_empty_path);
+  cmd->add_option("-f,--image", render.image,
+                  "CS184 -f: output PNG (the EXR is written beside it), or an .exr")
+      ->check(non_empty_path)
+      ->excludes(output_opt);
+  cmd->add_option("-s,--spp", render.spp,
+                  "Samples per pixel (CS184 -s; default: the scene's sampleCount, 1 for .dae)")
       ->check(CLI::Range(1, 1 << 20));
-  cmd->add_option("--threads", render.threads, "Worker threads (default: all cores)")
+  cmd->add_option("-t,--threads", render.threads,
+                  "Worker threads (CS184 -t; default: all cores)")
       ->check(CLI::Range(1, 1024));
+  cmd->add_option("-l,--light-samples", render.light_samples,
+                  "Emitter samples per shading point (CS184 -l; default: the integrator's "
+                  "lightSamples, 1 for .dae)")
+      ->check(CLI::Range(1, 1 << 16));
+  cmd->add_option("-m,--max-depth", render.max_depth,
+                  "Maximum ray depth, 0 = emitted light only, 1 = direct light, -1 = unbounded "
+                  "(CS184 -m; default: the integrator's maxDepth, 1 for .dae)")
+      ->check(CLI::Range(-1, 1 << 20));
+  cmd->add_option("-e,--envmap", render.envmap,
+                  "Add an environment-map light (EXR/HDR lat-long, +y up; CS184 -e)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-b,--lens-radius", render.lens_radius,
+                  "Thin-lens aperture radius, 0 = pinhole (CS184 -b; default: the scene's)")
+      ->check(ptlab::FiniteRange(0, 1e6));
+  cmd->add_option("-d,--focal-distance", render.focal_distance,
+                  "Thin-lens focus distance (CS184 -d; default: the scene's, 4.7 for .dae)")
+      ->check(ptlab::FinitePositive());
+  CLI::Option* resolution_opt =
+      cmd->add_option("-r,--resolution", render.resolution,
+                      "Film width and height in pixels (CS184 -r W H; a .dae keeps its vertical "
+                      "field of view)")
+          ->expected(2)
+          ->check(CLI::Range(1, 65536));
+  cmd->add_option("-a,--adaptive", render.adaptive,
+                  "Adaptive sampling: samples per batch and tolerance (CS184 -a 64 0.05)")
+      ->expected(2);
   cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams")
       ->check(ptlab::UnsignedDecimal());
   cmd->add_option("--sampler", render.sampler,
                   "Sampler, overriding the scene's: independent (PCG32) or sobol (Owen-scrambled "
                   "Sobol'; the default of scenes that name none)")
       ->check(CLI::IsMember({"independent", "sobol"}));
-  cmd->add_option("--width", render.width, "Override the image width")->check(CLI::Range(1, 65536));
+  cmd->add_option("--width", render.width, "Override the image width")
+      ->check(CLI::Range(1, 65536))
+      ->excludes(resolution_opt);
   cmd->add_option("--height", render.height, "Override the image height")
-      ->check(CLI::Range(1, 65536));
+      ->check(CLI::Range(1, 65536))
+      ->excludes(resolution_opt);
   cmd->add_flag("-q,--quiet", render.quiet, "No progress output");
   cmd->add_option("--lookat", render.lookat,
                   "lookat convention: nori (current) or nori2015 (the mirrored, unnormalised "

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "engine/scene/nori_test_loader.h"
+#include "engine/io/nori_test_loader.h"
 #include "tools/chi2/nori_tests.h"
 
 namespace ptlab {

@@ -17,7 +17,8 @@ std::vector<MaterialRef> HardMaterials(MaterialTables* m) {
   for (float a : {0.0f, 0.5f, 1.0f, 1e30f}) refs.push_back(m->AddDiffuse({a, a, a}));
   refs.push_back(m->AddMirror());
   for (float eta : bsdf_test::HardEtas())
-    for (uint8_t flags : {0, int(kDielectricSchlick), int(kDielectricScaleRadiance)})
+    for (uint8_t flags : {0, int(kDielectricSchlick), int(kDielectricScaleRadiance),
+                          int(kDielectricRefractOnly | kDielectricSchlick)})
       refs.push_back(m->AddDielectric(eta, 1.0f, flags));
   refs.push_back(m->AddDielectric(1.5f, 0.0f));
   for (float alpha : bsdf_test::HardAlphas()) {

@@ -181,5 +181,25 @@ TEST(Dielectric, SchlickAndRadianceScalingOptions) {
   EXPECT_EQ(BsdfPdf(m, plain, wo, s.wi), 0.0f);
 }
 
+// CS184 RefractionBSDF: every sample refracts (whatever u), TIR samples nothing.
+TEST(Dielectric, RefractOnlyNeverReflects) {
+  const float eta = 1.45f;
+  BsdfSample s;
+  for (float u : {0.0f, 0.5f, kOneMinusEpsilon}) {
+    ASSERT_TRUE(DielectricSample(eta, bsdf_test::DirectionWithCos(0.6f, 0.0f), u, &s,
+                                 kDielectricRefractOnly));
+    EXPECT_LT(s.wi.z, 0.0f);
+    EXPECT_EQ(s.pdf, 1.0f);
+    EXPECT_EQ(s.weight.r, 1.0f);
+    EXPECT_FLOAT_EQ(s.eta, eta);
+  }
+  ASSERT_TRUE(DielectricSample(eta, bsdf_test::DirectionWithCos(0.6f, 0.0f), 0.0f, &s,
+                               kDielectricRefractOnly | kDielectricScaleRadiance));
+  EXPECT_FLOAT_EQ(s.weight.r, 1.0f / (eta * eta));
+  // Inside, beyond the critical angle (cos 0.1): nothing refracts, nothing is sampled.
+  EXPECT_FALSE(DielectricSample(eta, bsdf_test::DirectionWithCos(-0.1f, 0.0f), 0.0f, &s,
+                                kDielectricRefractOnly));
+}
+
 }  // namespace
 }  // namespace ptlab

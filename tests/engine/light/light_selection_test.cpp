@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 
 namespace ptlab {
 namespace {

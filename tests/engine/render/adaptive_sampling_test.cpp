@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/render/render.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 #include "tests/engine/render/packet_render_for_test.h"
 
 namespace ptlab {

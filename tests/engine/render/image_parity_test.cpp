@@ -10,7 +10,7 @@
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 #include "tests/engine/render/packet_render_for_test.h"
 #include "tools/imgdiff/imgdiff.h"
 

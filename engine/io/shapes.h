@@ -2,7 +2,7 @@
 #pragma once
 
 #include "engine/core/vec.h"
-#include "engine/scene/mesh_builder.h"
+#include "engine/io/mesh_builder.h"
 
 namespace ptlab {
 

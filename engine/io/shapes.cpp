@@ -1,5 +1,5 @@
 // Tessellation of the procedural shapes: UV sphere, rectangle, cube, disk.
-#include "engine/scene/shapes.h"
+#include "engine/io/shapes.h"
 
 #include <cmath>
 

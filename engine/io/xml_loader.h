@@ -35,20 +35,23 @@ struct LoadOptions {
 ///   `<emitter type="area">` (color `radiance`, required);
 ///   exactly one `<camera>`: perspective (float `fov` = 30, horizontal, degrees, in (0, 180);
 ///   integer `width` = 1280, `height` = 720; float `nearClip` = 1e-4, `farClip` = 1e4;
-///   transform `toWorld`) or thinlens (the same plus required floats `apertureRadius`,
-///   `focusDistance`), optionally with an `<rfilter>` child;
-///   at most one `<sampler type="independent">` (integer `sampleCount` = 1);
+///   transform `toWorld`) or thinlens (the same plus required floats `apertureRadius` >= 0,
+///   0 being a pinhole, and `focusDistance` > 0), optionally with an `<rfilter>` child;
+///   at most one `<sampler type="independent|sobol">` (integer `sampleCount` = 1; without one,
+///   the default sampler, SamplerDesc::kDefaultSampler);
 ///   exactly one `<integrator>`: normals, direct_ems, direct_mats, direct_mis, whitted,
 ///   path_mats, path_ems, path_mis (integer `maxDepth` for whitted/path_*, integer
 ///   `lightSamples` for direct_ems/direct_mis/path_ems/path_mis, string `heuristic` =
-///   balance|power for direct_mis/path_mis);
+///   balance|power for direct_mis/path_mis; strings `lightSelection` = power|uniform and
+///   `triangleSampling` = area|solidAngle wherever `lightSamples` is accepted);
 ///   at most one `<rfilter>` (here or in the camera): gaussian (float `radius` = 2, `stddev` =
 ///   0.5), box (`radius` = 0.5), tent (`radius` = 1);
 ///   any number of infinite `<emitter>`s directly in the scene: envmap (Mitsuba: string
 ///   `filename` required, an EXR/HDR/PFM/PNG lat-long image resolved like OBJ names; float
 ///   `scale` = 1, >= 0; string `sampling` = importance|uniform; transform `toWorld`, a rotation)
-///   and distantdisk (Nori ETH: color `radiance` and float `thetaA` in (0, 180] degrees, both
-///   required; transform `toWorld`, a rotation, the cone around its local +z). Environment-map
+///   distantdisk (Nori ETH: color `radiance` and float `thetaA` in (0, 180] degrees, both
+///   required; transform `toWorld`, a rotation, the cone around its local +z) and constant
+///   (Mitsuba: color `radiance`, required; a distant disk of 180°). Environment-map
 ///   pixels must be finite and >= 0 (NaN, Inf or negative values are an error, not clamped);
 ///   see engine/light/environment_map.h for the lat-long convention.
 /// - `<bsdf>`: diffuse (color `albedo` = 0.5 in [0,1]), mirror, dielectric (float `intIOR` =
@@ -73,8 +76,8 @@ struct LoadOptions {
 /// a second camera/sampler/integrator/rfilter, a missing camera or integrator, unreadable or
 /// faceless OBJ files (the message then also carries the OBJ file:line), unreadable or invalid
 /// environment maps, a toWorld of an infinite emitter that is not a rotation, and the features
-/// not supported yet: `<test>` roots, `<bsdf>` outside a shape, Mitsuba's spot, directional and
-/// constant emitters. Area lights get their CDFs from FinalizeAreaLights before the scene is
+/// not supported yet: `<test>` roots, `<bsdf>` outside a shape, Mitsuba's spot and
+/// directional emitters. Area lights get their CDFs from FinalizeAreaLights before the scene is
 /// returned.
 StatusOr<Scene> LoadScene(const std::string& path, const LoadOptions& options = {});
 

@@ -1,5 +1,5 @@
 // AddMesh: appends an object-space MeshData to the scene's geometry tables in world space.
-#include "engine/scene/mesh_builder.h"
+#include "engine/io/mesh_builder.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Tests of the Nori test-file loader: the shipped files, defaults, and each malformed input.
-#include "engine/scene/nori_test_loader.h"
+#include "engine/io/nori_test_loader.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include "engine/image/image_io.h"
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 
 namespace ptlab {
 namespace {
@@ -233,7 +233,7 @@ TEST(SceneLoaderInfiniteLights, DistantDiskErrors) {
   ExpectParseError("\n<emitter type=\"spot\"/>\n", 5,
                    {"emitter type 'spot' is not supported yet"});
   ExpectParseError("\n<emitter type=\"laser\"/>\n", 5,
-                   {"unknown emitter type 'laser'", "envmap, distantdisk or point"});
+                   {"unknown emitter type 'laser'", "envmap, distantdisk, constant or point"});
   // Point lights: position and power are required, power is non-negative.
   ExpectParseError("\n<emitter type=\"point\"><color name=\"power\" value=\"1,1,1\"/></emitter>\n",
                    5, {"position"});

@@ -1,5 +1,5 @@
 // Tests of AddMesh: world-space transform of positions and normals, winding, vertex rows.
-#include "engine/scene/mesh_builder.h"
+#include "engine/io/mesh_builder.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "engine/core/status.h"
-#include "engine/scene/mesh_builder.h"
+#include "engine/io/mesh_builder.h"
 
 namespace ptlab {
 

@@ -1,6 +1,6 @@
 // OBJ loading: a validation pass with exact line numbers, tinyobjloader, then fan triangulation
 // and vertex deduplication into MeshData.
-#include "engine/scene/obj_loader.h"
+#include "engine/io/obj_loader.h"
 
 #include <tiny_obj_loader.h>
 
@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "engine/scene/text_parsing.h"
+#include "engine/io/text_parsing.h"
 
 namespace ptlab {
 namespace {

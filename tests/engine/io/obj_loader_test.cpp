@@ -1,5 +1,5 @@
 // Tests of LoadObj: fan triangulation, vertex deduplication, and one test per malformed input.
-#include "engine/scene/obj_loader.h"
+#include "engine/io/obj_loader.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/core/status.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 
 namespace ptlab::internal {
 

@@ -8,7 +8,7 @@
 #include "engine/core/status.h"
 #include "engine/scene/material_tables.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/xml_loader.h"
+#include "engine/io/xml_loader.h"
 
 namespace ptlab {
 

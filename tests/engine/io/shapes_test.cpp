@@ -1,5 +1,5 @@
 // Tests of the procedural shapes: counts, orientation, watertightness, area.
-#include "engine/scene/shapes.h"
+#include "engine/io/shapes.h"
 
 #include <gtest/gtest.h>
 

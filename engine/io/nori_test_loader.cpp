@@ -1,5 +1,5 @@
 // Nori test file loader: strict `<test>` properties; scenes and BSDFs go through the XML parser.
-#include "engine/scene/nori_test_loader.h"
+#include "engine/io/nori_test_loader.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,9 +7,9 @@
 #include <string_view>
 #include <utility>
 
-#include "engine/scene/text_parsing.h"
-#include "engine/scene/xml_loader_internal.h"
-#include "engine/scene/xml_locator.h"
+#include "engine/io/text_parsing.h"
+#include "engine/io/xml_loader_internal.h"
+#include "engine/io/xml_locator.h"
 
 namespace ptlab {
 namespace {

@@ -1,0 +1,111 @@
+// The CS184 scenes render: finite images, and BSDF sampling agrees with emitter sampling
+// (PARITY.md's criterion, as ImageParityStrategies checks for the Nori scenes).
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "engine/image/image_io.h"
+#include "engine/io/scene_file.h"
+#include "engine/light/environment_map.h"
+#include "engine/light/light_selection.h"
+#include "engine/render/camera.h"
+#include "engine/render/render.h"
+#include "tests/engine/render/packet_render_for_test.h"
+#include "tools/imgdiff/imgdiff.h"
+
+namespace ptlab {
+namespace {
+
+const std::string kData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kSky = kData + "cs184/dae/sky/";
+
+bool FullQuality() {
+  const char* v = std::getenv("PTLAB_FULL");
+  return v != nullptr && std::string(v) == "1";
+}
+
+// The scene as `ptlab render scene.dae -e venice_sunset_1k.exr` loads it for the unlit ones.
+Scene LoadCs184(const std::string& name) {
+  StatusOr<Scene> scene = LoadSceneFile(kSky + name);
+  EXPECT_TRUE(scene.ok()) << scene.status().message();
+  if (!scene.ok()) return Scene();
+  if (name.find("unlit") != std::string::npos) {
+    StatusOr<Image> map = ReadImage(kData + "envmaps/venice_sunset_1k.exr");
+    EXPECT_TRUE(map.ok()) << map.status().message();
+    if (!map.ok()) return Scene();
+    StatusOr<uint32_t> row =
+        AddEnvironmentMap(*map, EnvironmentMapDesc{}, "venice", &scene->environment_maps);
+    EXPECT_TRUE(row.ok());
+    scene->emitters.push_back(EmitterRef::Make(EmitterTag::kEnvironment, *row));
+    BuildEmitterSelection(&*scene);  // as ptlab render does after -e
+  }
+  return std::move(*scene);
+}
+
+RenderResult RenderCs184(Scene scene, IntegratorDesc::Type type, int width, uint32_t spp,
+                         int max_depth) {
+  scene.integrator.type = type;
+  scene.integrator.max_depth = max_depth;
+  ResizeFilm(&scene.camera, width, width * 3 / 4);
+  RenderOptions options;
+  options.spp = spp;
+  options.threads = std::max(1u, std::thread::hardware_concurrency());
+  options.seed = 5;
+  return RenderWithPackets(scene, options);
+}
+
+const char* const kScenes[] = {
+    "CBbunny_microfacet_cu.dae", "CBempty.dae",           "CBgems.dae",
+    "CBspheres.dae",             "CBspheres_lambertian.dae", "CBspheres_microfacet_al_ag.dae",
+    "CBspheres_refract.dae",     "bunny_microfacet_cu_unlit.dae", "bunny_unlit.dae"};
+
+// Every scene, path traced with light sampling and 6 bounces (pathtracer -m 6): no NaN/Inf
+// sample, no NaN/Inf pixel, and light reaches the image.
+TEST(Cs184Scenes, RenderWithoutNanOrInf) {
+  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  for (const char* name : kScenes) {
+    SCOPED_TRACE(name);
+    const RenderResult r = RenderCs184(LoadCs184(name), IntegratorDesc::Type::kPathEms, 64, 8, 6);
+    EXPECT_EQ(r.nonfinite_samples, 0u);
+    double sum = 0;
+    for (float v : r.image.rgb) {
+      ASSERT_TRUE(std::isfinite(v));
+      sum += v;
+    }
+    EXPECT_GT(sum / double(r.image.rgb.size()), 0.01);
+  }
+}
+
+void ExpectAgree(const Image& a, const Image& b, const std::string& what) {
+  const ParityResult p = CheckParity(a, b, 0.97, false);
+  EXPECT_TRUE(p.pass) << what << ": " << p.summary;
+  std::printf("%s: %s\n", what.c_str(), p.summary.c_str());
+}
+
+// BSDF sampling alone (path_mats) and emitter sampling (path_ems, CS184's estimator) converge to
+// the same image. CBempty is left out: its only light is a point light, which BSDF sampling
+// cannot reach. `./lab test` runs two scenes; PTLAB_FULL=1 runs all eight.
+TEST(ImageParityStrategies, Cs184ScenesMatsAgreeWithEms) {
+  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  std::vector<std::string> names = {"CBspheres_lambertian.dae", "bunny_unlit.dae"};
+  if (FullQuality())
+    names = {"CBbunny_microfacet_cu.dae", "CBgems.dae", "CBspheres.dae",
+             "CBspheres_lambertian.dae", "CBspheres_microfacet_al_ag.dae",
+             "CBspheres_refract.dae", "bunny_microfacet_cu_unlit.dae", "bunny_unlit.dae"};
+  using T = IntegratorDesc::Type;
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    const Scene scene = LoadCs184(name);
+    const uint32_t spp = FullQuality() ? 1024 : 512;
+    const Image ems = RenderCs184(scene, T::kPathEms, 128, spp, 6).image;
+    const Image mats = RenderCs184(scene, T::kPathMats, 128, 4 * spp, 6).image;
+    ExpectAgree(mats, ems, name + " path_mats vs path_ems");
+  }
+}
+
+}  // namespace
+}  // namespace ptlab
