@@ -12,6 +12,7 @@
 
 #include "engine/io/scene_file.h"
 #include "engine/light/distant_disk.h"
+#include "engine/render/camera.h"
 #include "engine/io/shapes.h"
 
 namespace ptlab {
@@ -190,6 +191,13 @@ TEST(ColladaLoader, CameraFieldOfViewAndCs184Placement) {
   EXPECT_EQ(s.camera.width, 480);
   EXPECT_EQ(s.camera.height, 240);
   EXPECT_TRUE(s.camera.keep_vertical_fov);
+  EXPECT_FLOAT_EQ(s.camera.near_clip, 0.1f);
+  EXPECT_FLOAT_EQ(s.camera.far_clip, 100.0f);
+  // A new film size keeps the vertical field of view (CS184's -r).
+  CameraDesc square = s.camera;
+  ResizeFilm(&square, 300, 300);
+  const double tan_v = std::tan(30.0 * kPi / 180.0) * 240.0 / 480.0;
+  EXPECT_NEAR(std::tan(square.fov_deg * kPi / 360.0), tan_v, 1e-6);
   // CS184 aims along the file camera's direction (-z) at the centre of the geometry's bounds,
   // from 1.5 times their diagonal.
   const Vec3f centre{0.5f, 0.5f, 0};
@@ -364,6 +372,17 @@ TEST(ColladaLoader, MalformedFilesNameFileAndLine) {
     p.lights = "<light id=\"sp\"><technique_common><spot><color>1 1 1</color></spot>"
                "</technique_common></light>";
     ExpectError(p, "<spot>", {"not supported yet: <spot>"});
+  }
+  {
+    Parts p;
+    p.lights = "<light id=\"sun\"><technique_common><directional><color>1 1 1</color>"
+               "</directional></technique_common></light>";
+    ExpectError(p, "<directional>", {"not supported yet: <directional>"});
+  }
+  {
+    Parts p;
+    p.geometries.replace(p.geometries.find("<p>0 1 2</p>"), 12, "<p>0 1</p>");
+    ExpectError(p, "<triangles", {"has 2 indices", "need 3"});
   }
   {
     Parts p;
