@@ -369,7 +369,10 @@ class Wavefront {
     }
     if (!rules_.bsdf_sampling) return;
     roulette_.resize(m), bsdf_lobe_.resize(m), bsdf_direction_.resize(m);
-    if (rules_.roulette != VertexRules::Roulette::kNone)
+    // Roulette numbers only where Sample reads them (Nori's from depth 3, Whitted's always).
+    const bool roulette = rules_.roulette == VertexRules::Roulette::kWhitted ||
+                          (rules_.roulette == VertexRules::Roulette::kNori && depth >= 3);
+    if (roulette)
       DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kRoulette), 0, 1,
                   roulette_.data());
     DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kBsdfLobe), 0, 1,

@@ -12,22 +12,14 @@
 
 #include "engine/core/rng.h"
 #include "engine/sampling/sobol.h"
-#include "hwy/targets.h"
+#include "tests/simd/for_each_target.h"
 
 namespace ptlab {
 namespace {
 
 template <class Fn>
 void ForEachTarget(Fn&& fn) {
-  const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  ASSERT_FALSE(targets.empty());
-  for (int64_t t : targets) {
-    hwy::SetSupportedTargetsForTest(t);
-    SCOPED_TRACE(hwy::TargetName(t));
-    ASSERT_STREQ(simd::SamplerTargetName(), hwy::TargetName(t));
-    fn();
-  }
-  hwy::SetSupportedTargetsForTest(0);
+  test::ForEachTarget(simd::SamplerTargetName, [&](const char*) { fn(); });
 }
 
 TEST(Sampler8, BitIdenticalToTheOracleOnEveryTarget) {

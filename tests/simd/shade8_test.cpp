@@ -17,6 +17,7 @@
 #include "engine/bsdf/fresnel.h"
 #include "engine/core/rng.h"
 #include "hwy/targets.h"
+#include "tests/simd/for_each_target.h"
 #include "tests/engine/bsdf/bsdf_test_inputs.h"
 
 namespace ptlab {
@@ -27,15 +28,7 @@ using bsdf_test::DirectionWithCos;
 // Runs fn once per compiled target supported by this CPU, with dispatch pinned to it.
 template <class Fn>
 void ForEachTarget(Fn&& fn) {
-  const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  ASSERT_FALSE(targets.empty());
-  for (int64_t t : targets) {
-    hwy::SetSupportedTargetsForTest(t);
-    SCOPED_TRACE(hwy::TargetName(t));
-    ASSERT_STREQ(simd::ShadeTargetName(), hwy::TargetName(t));
-    fn(hwy::TargetName(t));
-  }
-  hwy::SetSupportedTargetsForTest(0);
+  test::ForEachTarget(simd::ShadeTargetName, fn);
 }
 
 // |simd − oracle| ≤ rel |oracle| + abs, with the worst violation (or closest call) kept.
