@@ -33,6 +33,10 @@ ImageFormat DetectImageFormat(const unsigned char* bytes, size_t size);
 /// Errors name the file and what was wrong (missing, empty, truncated, unknown format, bad header).
 StatusOr<Image> ReadImage(const std::string& path);
 
+/// ReadImage of bytes already in memory; `path` only names them in errors (the fuzz
+/// harnesses of tests/fuzz/ call this).
+StatusOr<Image> DecodeImage(const std::string& path, const std::string& bytes);
+
 /// The string attributes of an EXR file's header, as (name, value), sorted by name.
 StatusOr<std::vector<std::pair<std::string, std::string>>> ReadExrStringAttributes(
     const std::string& path);
