@@ -248,19 +248,23 @@ Image EnvironmentPdfDebugImage(const EnvironmentMapTable& t, uint32_t row) {
   return image;
 }
 
-Status WriteEnvironmentPdfImage(const std::string& map_path, const std::string& out_path) {
+bool IsPngPath(const std::string& path) {
+  std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".png";
+}
+
+StatusOr<Image> EnvironmentPdfImage(const std::string& map_path, bool for_png) {
   StatusOr<Image> map = ReadImage(map_path);
   if (!map.ok()) return map.status();
   EnvironmentMapTable table;
   StatusOr<uint32_t> row = AddEnvironmentMap(*map, EnvironmentMapDesc{}, map_path, &table);
   if (!row.ok()) return row.status();
   Image image = EnvironmentPdfDebugImage(table, *row);
-  std::string extension = out_path.size() >= 4 ? out_path.substr(out_path.size() - 4) : "";
-  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
   // WritePng applies the sRGB curve; pre-apply its inverse so the bytes are round(255 · value).
-  if (extension == ".png")
+  if (for_png)
     for (float& v : image.rgb) v = SrgbToLinear(v);
-  return WriteImage(out_path, image);
+  return image;
 }
 
 }  // namespace ptlab

@@ -75,9 +75,12 @@ float EnvironmentPdf(const EnvironmentMapTable& table, uint32_t row, const Vec3f
 Image EnvironmentPdfDebugImage(const EnvironmentMapTable& table, uint32_t row);
 
 /// `ptlab envmap-pdf`: reads the map at map_path (EXR, HDR, ...; pixel policy as in
-/// AddEnvironmentMap), builds its importance distribution and writes EnvironmentPdfDebugImage to
-/// out_path, atomically. For a .png each channel byte is round(255 · value) (no sRGB curve, as
-/// CS184 writes it); .exr and .pfm store the values as they are.
-Status WriteEnvironmentPdfImage(const std::string& map_path, const std::string& out_path);
+/// AddEnvironmentMap), builds its importance distribution and returns EnvironmentPdfDebugImage.
+/// `for_png`: the values are pre-curved so a PNG stores each channel byte as round(255 · value)
+/// (no sRGB curve, as CS184 writes it); otherwise (.exr, .pfm) they are as they are.
+StatusOr<Image> EnvironmentPdfImage(const std::string& map_path, bool for_png);
+
+/// True when `path` ends in .png (any case).
+bool IsPngPath(const std::string& path);
 
 }  // namespace ptlab

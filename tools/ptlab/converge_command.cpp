@@ -133,39 +133,6 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
 
 }  // namespace
 
-CLI::App* AddConvergeCommand(CLI::App* app, ConvergeArgs* a) {
-  CLI::App* cmd = app->add_subcommand(
-      "converge",
-      "Error against time: render variants of scenes progressively, measure relMSE (and "
-      "more) after every pass against a reference; CSV, JSON, summary and plots");
-  cmd->add_option("scenes", a->scenes, "Scene files (.xml)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--ref", a->refs,
-                  "Reference EXR per scene (in order), or 'auto': rendered by ptlab with the "
-                  "first variant at 16x the budget")
-      ->required();
-  cmd->add_option("--variant", a->variants,
-                  "Overrides key=value[,key=value] (keys: " + VariantKeys() +
-                      "); repeat for each variant; none: the scene as it is");
-  cmd->add_option("--spp", a->spp, "Samples per pixel of each run (default: the scene's)")
-      ->check(CLI::Range(1, 1 << 20));
-  cmd->add_option("--time", a->time, "Seconds of rendering per run (instead of --spp)")
-      ->check(CLI::Range(1e-3, 1e6));
-  cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  cmd->add_option("--seeds", a->seeds, "Runs per variant, with seeds seed, seed+1, ...")
-      ->check(CLI::Range(1, 1000));
-  cmd->add_option("--seed", a->seed, "First seed");
-  cmd->add_option("-o,--output", a->out_dir, "Output folder")->required();
-  cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot plots");
-  cmd->add_option("--width", a->width,
-                  "Image width of every scene (height keeps its aspect ratio); with --ref auto, "
-                  "or references of that size")
-      ->check(CLI::Range(1, 16384));
-  cmd->add_option("--lookat", a->lookat, "lookat convention, as for render: nori or nori2015")
-      ->check(CLI::IsMember({"nori", "nori2015"}));
-  return cmd;
-}
-
 int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) {
   namespace fs = std::filesystem;
   if (args.time > 0 && args.spp > 0) {

@@ -24,7 +24,7 @@ struct ConvergeArgs {
   bool no_plots = false;
 };
 
-/// Registers the `converge` subcommand on app, filling *args.
+/// Registers the `converge` subcommand on app, filling *args (in command_line.cpp).
 CLI::App* AddConvergeCommand(CLI::App* app, ConvergeArgs* args);
 
 /// Runs it. Exit status: 0 done, 1 a render or an output failed, 2 bad arguments or inputs

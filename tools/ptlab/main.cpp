@@ -37,9 +37,9 @@
 #include "tools/chi2/nori_tests.h"
 #include "tools/mpi/mpi_render.h"
 #include "tools/mpi/mpi_session.h"
+#include "tools/ptlab/command_line.h"
 #include "tools/ptlab/converge_command.h"
 #include "tools/ptlab/test_over_ranks.h"
-#include "tools/cli_checks.h"
 
 namespace ptlab {
 namespace {
@@ -123,26 +123,6 @@ class ProgressReporter {
   int last_decile_ = 0;
 };
 
-struct RenderArgs {
-  std::string scene;
-  std::string output;
-  int spp = 0, threads = 0, width = 0, height = 0;
-  // CS184 pathtracer flags (0 / negative / empty: not given, the scene's value stays).
-  int light_samples = 0, max_depth = -2;
-  std::string envmap;
-  float lens_radius = -1, focal_distance = -1;
-  std::vector<int> resolution;           // -r W H
-  std::string image;                     // -f out.png (or .exr)
-  std::vector<std::string> adaptive;     // -a batch tolerance
-  uint64_t seed = 0;
-  bool quiet = false;
-  std::string lookat = "nori";
-  bool scalar = false;
-  bool stats = false;
-  std::string tile_times;
-  std::string sampler;  // empty: the scene's
-};
-
 // --tile-times: pass, tile and wall seconds of every tile (input of benchmarks/mpi_model).
 Status WriteTileTimes(const std::string& path, const RenderResult& r) {
   std::ostringstream out;
@@ -215,9 +195,9 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   // Under mpirun every rank loads the scene; all stop if one cannot, or reads other bytes.
   Status agreed = mpi.Agree(loaded.status());
   if (agreed.ok()) agreed = mpi.CheckSameInputs(loaded->input_files);
-  if (!agreed.ok()) {
+  if (!agreed.ok()) {  // bad input: exit 2
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", agreed.message().c_str());
-    return 1;
+    return 2;
   }
   Scene& scene = *loaded;
   if (mpi.root())
@@ -226,7 +206,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   const std::string unsupported = UnsupportedFeature(scene);
   if (!unsupported.empty()) {
     std::fprintf(stderr, "error: %s: %s\n", args.scene.c_str(), unsupported.c_str());
-    return 1;
+    return 2;
   }
   if (!args.sampler.empty()) SamplerTypeFromName(args.sampler, &scene.sampler.type);
   if (!args.resolution.empty()) {
@@ -250,9 +230,9 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     ResizeFilm(&scene.camera, int(width), int(height));
   }
   const Status overridden = ApplySceneFlags(args, &scene);
-  if (!overridden.ok()) {
+  if (!overridden.ok()) {  // e.g. an -e map that cannot be read
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", overridden.message().c_str());
-    return 1;
+    return 2;
   }
   AdaptiveSampling adaptive;
   if (!args.adaptive.empty()) {
@@ -422,102 +402,20 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
 
 int main(int argc, char** argv) {
   const ptlab::mpi::Session mpi(&argc, &argv);
-  CLI::App app{"ptlab: a CPU path tracer and rendering test lab"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("ptlab 0.1 (traversal: Highway ") +
-                                       ptlab::simd::Traverse8TargetName() + ")");
-
-  ptlab::RenderArgs render;
-  CLI::App* cmd = app.add_subcommand("render", "Render a scene (Nori XML) to EXR + PNG");
-  cmd->add_option("scene", render.scene, "Scene file (.xml: Nori/Mitsuba; .dae: COLLADA, CS184)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  const CLI::Validator non_empty_path(
-      [](std::string& path) { return path.empty() ? "the output path is empty" : ""; }, "PATH");
-  CLI::Option* output_opt =
-      cmd->add_option("-o,--output", render.output, "Output EXR (default: <scene stem>.exr)")
-          ->check(non_empty_path);
-  cmd->add_option("-f,--image", render.image,
-                  "CS184 -f: output PNG (the EXR is written beside it), or an .exr")
-      ->check(non_empty_path)
-      ->excludes(output_opt);
-  cmd->add_option("-s,--spp", render.spp,
-                  "Samples per pixel (CS184 -s; default: the scene's sampleCount, 1 for .dae)")
-      ->check(CLI::Range(1, 1 << 20));
-  cmd->add_option("-t,--threads", render.threads,
-                  "Worker threads (CS184 -t; default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  cmd->add_option("-l,--light-samples", render.light_samples,
-                  "Emitter samples per shading point (CS184 -l; default: the integrator's "
-                  "lightSamples, 1 for .dae)")
-      ->check(CLI::Range(1, 1 << 16));
-  cmd->add_option("-m,--max-depth", render.max_depth,
-                  "Maximum ray depth, 0 = emitted light only, 1 = direct light, -1 = unbounded "
-                  "(CS184 -m; default: the integrator's maxDepth, 1 for .dae)")
-      ->check(CLI::Range(-1, 1 << 20));
-  cmd->add_option("-e,--envmap", render.envmap,
-                  "Add an environment-map light (EXR/HDR lat-long, +y up; CS184 -e)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("-b,--lens-radius", render.lens_radius,
-                  "Thin-lens aperture radius, 0 = pinhole (CS184 -b; default: the scene's)")
-      ->check(ptlab::FiniteRange(0, 1e6));
-  cmd->add_option("-d,--focal-distance", render.focal_distance,
-                  "Thin-lens focus distance (CS184 -d; default: the scene's, 4.7 for .dae)")
-      ->check(ptlab::FinitePositive());
-  CLI::Option* resolution_opt =
-      cmd->add_option("-r,--resolution", render.resolution,
-                      "Film width and height in pixels (CS184 -r W H; a .dae keeps its vertical "
-                      "field of view)")
-          ->expected(2)
-          ->check(CLI::Range(1, 65536));
-  cmd->add_option("-a,--adaptive", render.adaptive,
-                  "Adaptive sampling: samples per batch and tolerance (CS184 -a 64 0.05)")
-      ->expected(2);
-  cmd->add_option("--seed", render.seed, "Seed of the per-pixel random streams")
-      ->check(ptlab::UnsignedDecimal());
-  cmd->add_option("--sampler", render.sampler,
-                  "Sampler, overriding the scene's: independent (PCG32) or sobol (Owen-scrambled "
-                  "Sobol'; the default of scenes that name none)")
-      ->check(CLI::IsMember({"independent", "sobol"}));
-  cmd->add_option("--width", render.width, "Override the image width")
-      ->check(CLI::Range(1, 65536))
-      ->excludes(resolution_opt);
-  cmd->add_option("--height", render.height, "Override the image height")
-      ->check(CLI::Range(1, 65536))
-      ->excludes(resolution_opt);
-  cmd->add_flag("-q,--quiet", render.quiet, "No progress output");
-  cmd->add_option("--lookat", render.lookat,
-                  "lookat convention: nori (current) or nori2015 (the mirrored, unnormalised "
-                  "frame of the 2015-16 Nori that rendered the eth2015 references)")
-      ->check(CLI::IsMember({"nori", "nori2015"}));
-  cmd->add_flag("--scalar", render.scalar,
-                "Trace one ray at a time with the scalar oracle (same as PTLAB_FORCE_SCALAR=1)");
-  cmd->add_flag("--stats", render.stats,
-                "Print the fraction of time in traversal, shading and sampling, and packet "
-                "occupancy");
-  cmd->add_option("--tile-times", render.tile_times,
-                  "Write the wall time of every tile of every pass to this CSV "
-                  "(pass,tile,seconds)");
-
-  std::string test_file;
-  bool test_verbose = false;
-  CLI::App* test_cmd = app.add_subcommand(
-      "test", "Run a Nori statistical test file (<test type=\"ttest|chi2test\">)");
-  test_cmd->add_option("file", test_file, "Nori test file (.xml)")->required();
-  test_cmd->add_flag("-v,--verbose", test_verbose, "Also print variances and chi-square notes");
-
-  std::string envmap_in, envmap_out;
-  CLI::App* envmap_cmd = app.add_subcommand(
-      "envmap-pdf", "Write the importance-sampling probability image of an environment map "
-                    "(R: row marginal CDF, G: conditional CDF, B: pixel probability / max)");
-  envmap_cmd->add_option("map", envmap_in, "Lat-long map (.exr or .hdr)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  envmap_cmd->add_option("-o,--output", envmap_out, "Output image (.png, .exr or .pfm)")
-      ->required();
-
-  ptlab::ConvergeArgs converge;
-  CLI::App* converge_cmd = ptlab::AddConvergeCommand(&app, &converge);
+  ptlab::CommandLine cl;
+  CLI::App& app = cl.app;
+  ptlab::DefineCommandLine(&cl, std::string("ptlab 0.1 (traversal: Highway ") +
+                                    ptlab::simd::Traverse8TargetName() + ")");
+  const ptlab::RenderArgs& render = cl.render;
+  CLI::App* cmd = cl.render_cmd;
+  CLI::App* converge_cmd = cl.converge_cmd;
+  CLI::App* test_cmd = cl.test_cmd;
+  CLI::App* envmap_cmd = cl.envmap_cmd;
+  const std::string& test_file = cl.test_file;
+  const bool test_verbose = cl.test_verbose;
+  const std::string& envmap_in = cl.envmap_in;
+  const std::string& envmap_out = cl.envmap_out;
+  const ptlab::ConvergeArgs& converge = cl.converge;
 
   bool known = false;
   for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
@@ -542,7 +440,13 @@ int main(int argc, char** argv) {
     return mpi.active() ? ptlab::RunNoriTestOverRanks(test_file, test_verbose, mpi)
                         : ptlab::RunNoriTestCommand(test_file, test_verbose);
   if (envmap_cmd->parsed()) {
-    const ptlab::Status st = ptlab::WriteEnvironmentPdfImage(envmap_in, envmap_out);
+    const ptlab::StatusOr<ptlab::Image> pdf =
+        ptlab::EnvironmentPdfImage(envmap_in, ptlab::IsPngPath(envmap_out));
+    if (!pdf.ok()) {  // the map cannot be read or used: bad input
+      std::fprintf(stderr, "error: %s\n", pdf.status().message().c_str());
+      return 2;
+    }
+    const ptlab::Status st = ptlab::WriteImage(envmap_out, *pdf);
     if (!st.ok()) {
       std::fprintf(stderr, "error: %s\n", st.message().c_str());
       return 1;

@@ -436,7 +436,9 @@ TEST(EnvironmentMapDebugImage, WritesThePngOfAMapFile) {
   const Image source = RandomMap(16, 8, 21);
   ASSERT_TRUE(WriteExr(map, source).ok());
   std::filesystem::remove(png);
-  const Status written = WriteEnvironmentPdfImage(map, png);
+  const StatusOr<Image> pdf = EnvironmentPdfImage(map, IsPngPath(png));
+  ASSERT_TRUE(pdf.ok()) << pdf.status().message();
+  const Status written = WriteImage(png, *pdf);
   ASSERT_TRUE(written.ok()) << written.message();
   const StatusOr<Image> read = ReadImage(png);
   ASSERT_TRUE(read.ok()) << read.status().message();
@@ -451,18 +453,19 @@ TEST(EnvironmentMapDebugImage, WritesThePngOfAMapFile) {
 TEST(EnvironmentMapDebugImage, FailsClearlyOnBadInput) {
   const std::string png = TempDir() + "/never_written.png";
   std::filesystem::remove(png);
-  Status s = WriteEnvironmentPdfImage(TempDir() + "/no_such_map.exr", png);
-  ASSERT_FALSE(s.ok());
+  StatusOr<Image> pdf = EnvironmentPdfImage(TempDir() + "/no_such_map.exr", true);
+  ASSERT_FALSE(pdf.ok());
+  Status s = pdf.status();
   EXPECT_NE(s.message().find("no_such_map.exr"), std::string::npos) << s.message();
   Image bad = RandomMap(4, 2, 22);
   bad.rgb[4] = std::nanf("");
   const std::string map = TempDir() + "/nan_map.exr";
   ASSERT_TRUE(WriteExr(map, bad).ok());
-  s = WriteEnvironmentPdfImage(map, png);
-  ASSERT_FALSE(s.ok());
+  pdf = EnvironmentPdfImage(map, true);
+  ASSERT_FALSE(pdf.ok());
+  s = pdf.status();
   EXPECT_NE(s.message().find("NaN"), std::string::npos) << s.message();
   EXPECT_NE(s.message().find("nan_map.exr"), std::string::npos) << s.message();
-  EXPECT_FALSE(std::filesystem::exists(png));
 }
 
 TEST(EnvironmentMapRealData, VeniceSunsetLoadsAndSamplesFinitely) {

