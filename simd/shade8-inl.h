@@ -137,7 +137,11 @@ HWY_INLINE V8 BeckmannD(D8 d, V8 alpha, V8 hx, V8 hy, V8 hz) {
   // Rounded products: exp(−s2/(z2 α²)) amplifies an ulp of its argument up to ~100 times.
   const V8 s2 = hn::Add(RoundedMul(d, hx, hx), RoundedMul(d, hy, hy));
   const V8 z2 = RoundedMul(d, hz, hz);
-  const V8 e = hn::Exp(d, hn::Div(hn::Neg(s2), hn::Mul(z2, a2)));
+  // hwy::Exp converts its argument to int before it range-checks it: −∞ (h.z = 0) and NaN
+  // (h = 0) would be undefined behaviour on the EMU128 target (UBSan found it). Below −104
+  // Exp is 0 anyway, which is what the oracle's exp gives there (NaN lanes end at 0 below).
+  const V8 arg = hn::Div(hn::Neg(s2), hn::Mul(z2, a2)), low = hn::Set(d, -200.0f);
+  const V8 e = hn::Exp(d, hn::IfThenElse(hn::Ge(arg, low), arg, low));
   const V8 cos2 = hn::Div(z2, hn::Add(s2, z2));
   const V8 dv = hn::Div(e, hn::Mul(hn::Mul(hn::Set(d, kPi), a2), hn::Mul(cos2, cos2)));
   const V8 zero = hn::Zero(d);
