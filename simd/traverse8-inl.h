@@ -595,8 +595,12 @@ HWY_INLINE void PacketChildren(DF d, const PacketState& s, const Bvh8Node& node,
       const VF t1 = hn::Min(fz, hn::Min(fy, hn::Min(fx, t_far)));
       const uint32_t bits = MaskBits(d, hn::And(act, hn::Le(t0, hn::Mul(t1, scale))));
       if (bits == 0) continue;
-      hn::Store(t0, d, t_near[c] + i);
-      if (cbits[c] == 0) key[c] = t_near[c][i + std::countr_zero(bits)];
+      if constexpr (!kAnyHit) {
+        // Any hit needs neither entry distances (pops test only the lanes still open) nor
+        // an order: any hit ends a lane, wherever it is.
+        hn::Store(t0, d, t_near[c] + i);
+        if (cbits[c] == 0) key[c] = t_near[c][i + std::countr_zero(bits)];
+      }
       cbits[c] |= bits << i;
     }
   }
@@ -756,13 +760,15 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
         alignas(32) float t_near[8][8];
         float key[8];
         PacketChildren<kAnyHit>(d, *s, node, m, candidates, cbits, t_near, key);
-        // The children hit by any lane, farthest (by the key) first.
+        // The children hit by any lane, farthest (by the key) first; any hit keeps the
+        // children's order.
         int order[8], n = 0;
         for (uint32_t todo = candidates; todo != 0; todo &= todo - 1) {
           const int c = std::countr_zero(todo);
           if (cbits[c] == 0) continue;
           int k = n++;
-          for (; k > 0 && key[order[k - 1]] < key[c]; --k) order[k] = order[k - 1];
+          if constexpr (!kAnyHit)
+            for (; k > 0 && key[order[k - 1]] < key[c]; --k) order[k] = order[k - 1];
           order[k] = c;
         }
         if (n > 0) {
@@ -774,7 +780,8 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
             out.mask = cbits[c];
             // Large scenes wait on memory: start loading the subtrees visited later.
             PrefetchChild(bvh, out.ref);
-            for (int j = 0; j < 8; ++j) out.t_entry[j] = t_near[c][j];
+            if constexpr (!kAnyHit)
+              for (int j = 0; j < 8; ++j) out.t_entry[j] = t_near[c][j];
           }
           ref = node.child[order[n - 1]];
           m = cbits[order[n - 1]];
