@@ -280,10 +280,21 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
         const VF t0 = hn::Max(nz, hn::Max(ny, hn::Max(nx, t_min)));
         const VF t1 = hn::Min(fz, hn::Min(fy, hn::Min(fx, t_max)));
         bits |= MaskBits(d, hn::Le(t0, hn::Mul(t1, scale))) << i;
-        hn::Store(t0, d, dist + i);
+        if constexpr (!kAnyHit) hn::Store(t0, d, dist + i);
       }
       if (bits != 0) {
         if ((bits & (bits - 1)) == 0) {
+          cur = node.child[std::countr_zero(bits)];
+          continue;
+        }
+        if constexpr (kAnyHit) {
+          // Any hit ends the ray wherever it is found, so the children are not sorted: the
+          // last one is visited next, the others pushed in the node's order.
+          for (; (bits & (bits - 1)) != 0; bits &= bits - 1) {
+            const Bvh8Ref ref = node.child[std::countr_zero(bits)];
+            PrefetchChild(bvh, ref);
+            stack[sp++] = {ref, 0.0f};
+          }
           cur = node.child[std::countr_zero(bits)];
           continue;
         }
@@ -753,7 +764,7 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
       uint32_t candidates = (1u << node.num_children) - 1;
       if (s->frustum) {
         candidates =
-            FrustumChildren(d, *s, node, kAnyHit ? MaxBestT(d, *s, live) : MaxBestT(d, *s, m));
+            FrustumChildren(d, *s, node, MaxBestT(d, *s, m));
       }
       if (candidates != 0) {
         uint32_t cbits[8];
