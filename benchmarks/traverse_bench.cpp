@@ -155,11 +155,8 @@ void Pack(RaySet* set) {
     RayPacket8 p{};
     Mask8 m = 0;
     for (int j = 0; j < 8 && base + j < n; ++j) {
-      const Ray& r = set->rays[base + j];
-      p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
-      p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
-      p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
-      m |= 1u << j;
+      SetLaneRay(&p, j, set->rays[base + j]);
+      m |= LaneBit(j);
     }
     set->packets.push_back(p);
     set->masks.push_back(m);
@@ -444,7 +441,7 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
           const RayPacket8& p = set.packets[k];
           alignas(32) int valid[8];
           alignas(32) RTCRayHit8 rh;
-          for (int j = 0; j < 8; ++j) valid[j] = ((set.masks[k] >> j) & 1) ? -1 : 0;
+          for (int j = 0; j < 8; ++j) valid[j] = LaneActive(set.masks[k], j) ? -1 : 0;
           std::memcpy(rh.ray.org_x, p.org_x, sizeof(float) * 8 * 3);
           std::memcpy(rh.ray.dir_x, p.dir_x, sizeof(float) * 8 * 3);
           std::memcpy(rh.ray.tnear, p.t_min, sizeof(float) * 8);

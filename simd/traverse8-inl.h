@@ -352,13 +352,13 @@ struct PacketState {
 
 // Lane j as a single ray (for the single-ray switch and per-lane leaf tests); the same values
 // MakeSingleRay computes from the lane's ray.
-HWY_INLINE SingleRay LaneRay(const PacketState& s, int j) {
+HWY_INLINE SingleRay LaneSingleRay(const PacketState& s, int j) {
   SingleRay r;
   r.o[0] = s.o_x[j], r.o[1] = s.o_y[j], r.o[2] = s.o_z[j];
   r.inv_d[0] = s.inv_x[j], r.inv_d[1] = s.inv_y[j], r.inv_d[2] = s.inv_z[j];
   const uint32_t lo[3] = {kLoX, kLoY, kLoZ}, hi[3] = {kHiX, kHiY, kHiZ};
   for (int a = 0; a < 3; ++a) {
-    const bool neg = (s.neg_bits[a] >> j) & 1;
+    const bool neg = LaneActive(s.neg_bits[a], j);
     r.near[a] = neg ? hi[a] : lo[a];
     r.far[a] = neg ? lo[a] : hi[a];
   }
@@ -445,12 +445,12 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
     finite_bits |= MaskBits(d, fin_inv) << i;
   }
   for (int j = 0; j < 8; ++j) {
-    const int kz = ((kz0_bits >> j) & 1) ? 0 : (((kz1_bits >> j) & 1) ? 1 : 2);
+    const int kz = LaneActive(kz0_bits, j) ? 0 : (LaneActive(kz1_bits, j) ? 1 : 2);
     int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
-    if ((swap_bits >> j) & 1) std::swap(kx, ky);
+    if (LaneActive(swap_bits, j)) std::swap(kx, ky);
     s->k_x[j] = static_cast<int8_t>(kx), s->k_y[j] = static_cast<int8_t>(ky);
     s->k_z[j] = static_cast<int8_t>(kz);
-    s->best_prim[j] = ((live >> j) & 1) ? static_cast<int32_t>(kNoHit) : -1;
+    s->best_prim[j] = LaneActive(live, j) ? static_cast<int32_t>(kNoHit) : -1;
   }
   bool uniform = true;
   for (int a = 0; a < 3; ++a) {
@@ -679,11 +679,11 @@ HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState*
   uint32_t hit_lanes = 0;
   for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
     const int j = std::countr_zero(bits);
-    const SingleRay r = LaneRay(*s, j);
+    const SingleRay r = LaneSingleRay(*s, j);
     const WatertightRayV rv = BroadcastWatertight(d, r);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
-    if (LeafSingle<kAnyHit>(d, bvh, leaf, r, rv, &best)) hit_lanes |= 1u << j;
+    if (LeafSingle<kAnyHit>(d, bvh, leaf, r, rv, &best)) hit_lanes |= LaneBit(j);
     if constexpr (!kAnyHit) {
       s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
       s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
@@ -708,7 +708,9 @@ HWY_INLINE uint32_t SingleRayLanes(const Bvh8& bvh, Bvh8Ref ref, PacketState* s,
     const int j = std::countr_zero(m);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
-    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, LaneRay(*s, j), &best)) hit_lanes |= 1u << j;
+    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, LaneSingleRay(*s, j), &best)) {
+      hit_lanes |= LaneBit(j);
+    }
     if constexpr (!kAnyHit) {
       s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
       s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
@@ -839,7 +841,7 @@ HWY_INLINE Mask8 Intersect8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8
   for (uint32_t bits = live; bits != 0; bits &= bits - 1) {
     const int j = std::countr_zero(bits);
     if (static_cast<uint32_t>(s.best_prim[j]) == kNoHit) continue;
-    result |= 1u << j;
+    result |= LaneBit(j);
     hits->t[j] = s.best_t[j];
     hits->b1[j] = s.best_b1[j];
     hits->b2[j] = s.best_b2[j];

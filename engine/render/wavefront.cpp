@@ -105,11 +105,7 @@ struct RayQueue {
   void Push(const Ray& r, uint32_t who) {
     const size_t q = owner.size();
     if (q % kLanes == 0) packets.emplace_back();
-    RayPacket8& p = packets.back();
-    const size_t j = q % kLanes;
-    p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
-    p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
-    p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
+    SetLaneRay(&packets.back(), int(q % kLanes), r);
     owner.push_back(who);
   }
   Vec3f Direction(size_t q) const {
@@ -246,7 +242,7 @@ class Wavefront {
       const uint32_t i = rays_.owner[q];
       const size_t k = q / kLanes, j = q % kLanes;
       const Vec3f d = rays_.Direction(q);
-      if (((hit_mask_[k] >> j) & 1u) == 0) {
+      if (!LaneActive(hit_mask_[k], int(j))) {
         // Escaped: environment light, counted unless emitter sampling already did (after a
         // non-specular bounce), MIS-weighted when mis is on.
         if (rules_.normals) continue;

@@ -243,7 +243,7 @@ void CheckHit(const char* what, const Ray& r, const Expected& e, bool got, const
 RayPacket8 Pack(const std::vector<Ray>& rays, size_t base, Mask8 active) {
   RayPacket8 p;
   for (int j = 0; j < 8; ++j) {
-    const bool on = (active >> j) & 1;
+    const bool on = LaneActive(active, j);
     const Ray& r = rays[base + j];
     p.org_x[j] = on ? r.o.x : kNaN, p.org_y[j] = on ? r.o.y : kNaN;
     p.org_z[j] = on ? r.o.z : kNaN, p.dir_x[j] = on ? r.d.x : kNaN;
@@ -281,8 +281,8 @@ void CompareAll(const Bvh8& bvh8, const std::vector<Ray>& rays,
     for (int j = 0; j < 8; ++j) {
       const Ray& r = rays[base + j];
       const Expected& e = expected[base + j];
-      const bool on = (active >> j) & 1;
-      const bool lane_hit = (got >> j) & 1;
+      const bool on = LaneActive(active, j);
+      const bool lane_hit = LaneActive(got, j);
       if (!lane_hit) {
         // Lanes that are inactive or miss come back bit-identical.
         if (Bits(hits.t[j]) != kSentinel || Bits(hits.b1[j]) != kSentinel ||
@@ -293,7 +293,7 @@ void CompareAll(const Bvh8& bvh8, const std::vector<Ray>& rays,
       if (!on) continue;
       const Hit h{hits.t[j], hits.b1[j], hits.b2[j], hits.prim[j]};
       CheckHit(config.name, r, e, lane_hit, h, mm);
-      if ((((occ >> j) & 1) != 0) != e.occluded) {
+      if (LaneActive(occ, j) != e.occluded) {
         mm->Report(config.name, r, "Occluded8 differs from Occluded1");
       }
       if (single_ray) {
