@@ -24,12 +24,13 @@
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
 #include "engine/render/packet_render.h"
+#include "engine/render/wavefront.h"
 #include "engine/sampling/warp.h"
 #include "engine/scene/scene.h"
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8.h"
-#include "simd/traverse8_backend.h"
+#include "simd/wavefront_kernels.h"
 
 #ifdef PTLAB_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -154,11 +155,8 @@ void Pack(RaySet* set) {
     RayPacket8 p{};
     Mask8 m = 0;
     for (int j = 0; j < 8 && base + j < n; ++j) {
-      const Ray& r = set->rays[base + j];
-      p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
-      p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
-      p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
-      m |= 1u << j;
+      SetLaneRay(&p, j, set->rays[base + j]);
+      m |= LaneBit(j);
     }
     set->packets.push_back(p);
     set->masks.push_back(m);
@@ -443,7 +441,7 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
           const RayPacket8& p = set.packets[k];
           alignas(32) int valid[8];
           alignas(32) RTCRayHit8 rh;
-          for (int j = 0; j < 8; ++j) valid[j] = ((set.masks[k] >> j) & 1) ? -1 : 0;
+          for (int j = 0; j < 8; ++j) valid[j] = LaneActive(set.masks[k], j) ? -1 : 0;
           std::memcpy(rh.ray.org_x, p.org_x, sizeof(float) * 8 * 3);
           std::memcpy(rh.ray.dir_x, p.dir_x, sizeof(float) * 8 * 3);
           std::memcpy(rh.ray.tnear, p.t_min, sizeof(float) * 8);
@@ -510,7 +508,7 @@ void RunBuild(benchmark::State& state, const std::string& scene_name, bool embre
 
 // Rendering throughput, single thread: the Nori table scene with a direct-lighting (or path)
 // integrator at 200 x 150 pixels, 4 samples per pixel, rendered tile by tile (32 x 32) with
-// render.cpp's scalar loop (what PTLAB_FORCE_SCALAR=1 runs) or the 8-wide packet path.
+// the scalar loop (RenderTileScalar, one Li per sample) or the wavefront on simd/'s kernels.
 struct RenderBench {
   std::string error;
   std::unique_ptr<Scene> scene;
@@ -550,7 +548,7 @@ void RunRender(benchmark::State& state, IntegratorDesc::Type type, bool packets)
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
   const RenderContext ctx{scene, r->bvh};
-  const TraversalBackend8 backend = simd::PacketTraversalBackend(r->bvh8);
+  const WavefrontKernels kernels = simd::SimdWavefrontKernels(r->bvh8);
   const int w = camera.width(), h = camera.height();
   constexpr uint32_t kSpp = 4;
   constexpr int kTile = 32;
@@ -563,7 +561,7 @@ void RunRender(benchmark::State& state, IntegratorDesc::Type type, bool packets)
       for (int x = 0; x < w; x += kTile) {
         const int x1 = std::min(w, x + kTile), y1 = std::min(h, y + kTile);
         if (packets) {
-          RenderTilePacket8(ctx, backend, camera, filter, x, y, x1, y1, 0, kSpp, 0, &block, &stats);
+          RenderTilePacket8(ctx, kernels, camera, filter, x, y, x1, y1, 0, kSpp, 0, &block, &stats);
         } else {
           RenderTileScalar(ctx, camera, filter, x, y, x1, y1, 0, kSpp, 0, &block, &stats);
         }

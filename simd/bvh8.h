@@ -56,9 +56,6 @@ struct Bvh8 {
   AlignedVector<Bvh8Node> nodes;  // nodes[0] is the root (empty: nothing can be hit)
   AlignedVector<float> tris;
   AlignedVector<uint32_t> prim;
-  /// The binary tree this was built from (the oracle; used when simd::ForceScalar() is set).
-  /// Must outlive the Bvh8.
-  const Bvh* source = nullptr;
   uint32_t num_triangles = 0;
   uint32_t depth = 0;  // nodes on the longest root-to-leaf path
 
@@ -69,7 +66,7 @@ struct Bvh8 {
 /// opening the inner child of largest surface area first (Wald et al. 2008, "Getting rid of
 /// packets"). Child boxes are the binary nodes' boxes bit for bit, and the binary leaves (or
 /// merged subtrees) keep their triangles, so traversal visits the same triangles the oracle
-/// would. O(nodes); keeps a pointer to `bvh`.
+/// would. O(nodes); keeps no reference to `bvh`.
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options = {});
 
 }  // namespace ptlab::simd

@@ -36,18 +36,15 @@ HWY_EXPORT(SamplerTargetNameTarget);
 
 void ScrambledSobol2DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
                            size_t n, float* x, float* y) {
-  if (ForceScalar()) return ptlab::ScrambledSobol2DBatch(pixel_seed, index, dim, n, x, y);
   HWY_DYNAMIC_DISPATCH(Sobol2DTarget)(pixel_seed, index, dim, n, x, y);
 }
 
 void ScrambledSobol1DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
                            size_t n, float* x) {
-  if (ForceScalar()) return ptlab::ScrambledSobol1DBatch(pixel_seed, index, dim, n, x);
   HWY_DYNAMIC_DISPATCH(Sobol1DTarget)(pixel_seed, index, dim, n, x);
 }
 
 const char* SamplerTargetName() {
-  if (ForceScalar()) return "scalar oracle";
   return HWY_DYNAMIC_DISPATCH(SamplerTargetNameTarget)();
 }
 

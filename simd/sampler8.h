@@ -7,8 +7,7 @@
 namespace ptlab::simd {
 
 // 8-wide Highway kernels (hn::CappedTag<uint32_t, 8>) of the batch oracles in
-// engine/sampling/sobol.h, chosen at run time among the compiled targets; PTLAB_FORCE_SCALAR=1
-// runs the oracles. The sampler is integer arithmetic (hashes, bit reversal, the Laine-Karras
+// engine/sampling/sobol.h, chosen at run time among the compiled targets. The sampler is integer arithmetic (hashes, bit reversal, the Laine-Karras
 // permutation, dimension 1 from byte tables) and one exact conversion to float, so the
 // results are bit-identical to the oracle's on every target (tests/simd/sampler8_test.cpp).
 // Arrays hold n rows (any n); outputs may not alias inputs.
@@ -21,7 +20,7 @@ void ScrambledSobol2DBatch(const uint32_t* pixel_seed, const uint32_t* index, ui
 void ScrambledSobol1DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
                            size_t n, float* x);
 
-/// The target the kernels dispatch to ("scalar oracle" under PTLAB_FORCE_SCALAR=1).
+/// The target the kernels dispatch to.
 const char* SamplerTargetName();
 
 }  // namespace ptlab::simd

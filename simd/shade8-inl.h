@@ -349,19 +349,8 @@ enum ShadeIn { kWoX, kWoY, kWoZ, kWlX, kWlY, kWlZ, kULobe, kUX, kUY, kShadeInCou
 enum ShadeOut { kFR, kFG, kFB, kPdfL, kWiX, kWiY, kWiZ, kWR, kWG, kWB, kPdf, kEta, kShadeOutCount };
 using ShadeIo = BlockIo<kShadeInCount, kShadeOutCount>;
 
-/// Loaded per-block inputs of the shade step.
-struct ShadeLanes {
-  V8 ox, oy, oz, lx, ly, lz, u_lobe, ux, uy;
-};
-
-HWY_INLINE void LoadShadeLanes(D8 d, const ShadeIo& b, size_t i, bool eval, ShadeLanes* s) {
-  s->ox = Load(d, b.in[kWoX], i), s->oy = Load(d, b.in[kWoY], i), s->oz = Load(d, b.in[kWoZ], i);
-  if (eval) {
-    s->lx = Load(d, b.in[kWlX], i), s->ly = Load(d, b.in[kWlY], i), s->lz = Load(d, b.in[kWlZ], i);
-  }
-  s->u_lobe = Load(d, b.in[kULobe], i), s->ux = Load(d, b.in[kUX], i),
-  s->uy = Load(d, b.in[kUY], i);
-}
+/// Column c of the shade step's inputs, rows [i, i + Lanes(d)).
+HWY_INLINE V8 In(D8 d, const ShadeIo& b, ShadeIn c, size_t i) { return Load(d, b.in[c], i); }
 
 HWY_INLINE void StoreEval(D8 d, const ShadeIo& b, size_t i, V8 fr, V8 fg, V8 fb, V8 pdf_l) {
   Store(d, fr, b.out[kFR], i), Store(d, fg, b.out[kFG], i), Store(d, fb, b.out[kFB], i);
@@ -395,17 +384,17 @@ inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, boo
     const V8 zero = hn::Zero(d), inv_pi = hn::Set(d, kInvPi);
     const V8 ar = Gather(d, t.albedo_r, b.index, i), ag = Gather(d, t.albedo_g, b.index, i),
              ab = Gather(d, t.albedo_b, b.index, i);
-    ShadeLanes s;
-    LoadShadeLanes(d, b, i, eval, &s);
+    const V8 oz = In(d, b, kWoZ, i), ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
     if (eval) {
-      const M8 both = hn::And(hn::Gt(s.oz, zero), hn::Gt(s.lz, zero));
+      const V8 lz = In(d, b, kWlZ, i);
+      const M8 both = hn::And(hn::Gt(oz, zero), hn::Gt(lz, zero));
       StoreEval(d, b, i, hn::IfThenElseZero(both, hn::Mul(ar, inv_pi)),
                 hn::IfThenElseZero(both, hn::Mul(ag, inv_pi)),
-                hn::IfThenElseZero(both, hn::Mul(ab, inv_pi)), CosinePdf(d, s.oz, s.lz));
+                hn::IfThenElseZero(both, hn::Mul(ab, inv_pi)), CosinePdf(d, oz, lz));
     }
     V8 ix, iy, iz;
-    SampleCosineHemisphere(d, s.ux, s.uy, &ix, &iy, &iz);
-    const V8 pdf = CosinePdf(d, s.oz, iz);
+    SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
+    const V8 pdf = CosinePdf(d, oz, iz);
     StoreSample(d, b, i, hn::Gt(pdf, zero), ix, iy, iz, ar, ag, ab, pdf, hn::Set(d, 1.0f));
   });
 }
@@ -415,10 +404,9 @@ inline void ShadeMirror(const ShadeIo& io, size_t n, bool eval) {
   ForEachBlock(io, n, [eval](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    ShadeLanes s;
-    LoadShadeLanes(d, b, i, false, &s);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
     if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
-    StoreSample(d, b, i, hn::Gt(s.oz, zero), hn::Neg(s.ox), hn::Neg(s.oy), s.oz, one, one, one, one,
+    StoreSample(d, b, i, hn::Gt(oz, zero), hn::Neg(ox), hn::Neg(oy), oz, one, one, one, one,
                 one);
   });
 }
@@ -430,13 +418,13 @@ inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t 
     const D8 d;
     const hn::RebindToSigned<D8> di;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    ShadeLanes s;
-    LoadShadeLanes(d, b, i, false, &s);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i),
+             u_lobe = In(d, b, kULobe, i);
     if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
     const V8 eta =
         ClampRelIor(d, hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i)));
     V8 cos_t;
-    V8 f = FresnelDielectric(d, s.oz, eta, &cos_t);
+    V8 f = FresnelDielectric(d, oz, eta, &cos_t);
     M8 scale = hn::FirstN(d, 0);
     M8 tir_only = hn::FirstN(d, 0);  // refraction-only lanes under total internal reflection
     if (has_flags) {
@@ -445,18 +433,18 @@ inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t 
       const auto fl = hn::LoadU(di, flags);
       const M8 schlick = hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricSchlick)));
       scale = hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricScaleRadiance)));
-      f = hn::IfThenElse(hn::And(schlick, hn::Lt(f, one)), FresnelSchlick(d, s.oz, eta), f);
+      f = hn::IfThenElse(hn::And(schlick, hn::Lt(f, one)), FresnelSchlick(d, oz, eta), f);
       const M8 refract_only =
           hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricRefractOnly)));
       tir_only = hn::And(refract_only, hn::Ge(f, one));
       f = hn::IfThenElse(refract_only, zero, f);
     }
-    const M8 reflect = hn::Lt(s.u_lobe, f);
-    const M8 outside = hn::Gt(s.oz, zero);
+    const M8 reflect = hn::Lt(u_lobe, f);
+    const M8 outside = hn::Gt(oz, zero);
     const V8 rel = hn::IfThenElse(outside, hn::Div(one, eta), eta);
-    const V8 ix = hn::IfThenElse(reflect, hn::Neg(s.ox), hn::Mul(hn::Neg(s.ox), rel));
-    const V8 iy = hn::IfThenElse(reflect, hn::Neg(s.oy), hn::Mul(hn::Neg(s.oy), rel));
-    const V8 iz = hn::IfThenElse(reflect, s.oz, hn::IfThenElse(outside, hn::Neg(cos_t), cos_t));
+    const V8 ix = hn::IfThenElse(reflect, hn::Neg(ox), hn::Mul(hn::Neg(ox), rel));
+    const V8 iy = hn::IfThenElse(reflect, hn::Neg(oy), hn::Mul(hn::Neg(oy), rel));
+    const V8 iz = hn::IfThenElse(reflect, oz, hn::IfThenElse(outside, hn::Neg(cos_t), cos_t));
     const V8 pdf = hn::IfThenElse(reflect, f, hn::Sub(one, f));
     const V8 eta_out = hn::IfThenElse(reflect, one, hn::Div(one, rel));
     const V8 w = hn::IfThenElse(hn::AndNot(reflect, scale), hn::Mul(rel, rel), one);
@@ -476,26 +464,26 @@ inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t 
   });
 }
 
-/// Conductor parameters of one block, gathered from ConductorTable.
+/// Conductor parameters of one block, gathered from ConductorTable (lanes [0, Lanes(d))).
 struct ConductorLanes {
-  V8 alpha, eta_r, eta_g, eta_b, k_r, k_g, k_b;
+  HWY_ALIGN float alpha[8], eta_r[8], eta_g[8], eta_b[8], k_r[8], k_g[8], k_b[8];
 };
 
 /// ConductorEval (engine/bsdf/conductor.h) at (wo, wi); the Fresnel factor is evaluated
 /// per channel.
 HWY_INLINE void ConductorEval(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy,
                               V8 iz, V8* fr, V8* fg, V8* fb) {
-  const V8 zero = hn::Zero(d);
+  const V8 zero = hn::Zero(d), alpha = hn::Load(d, c.alpha);
   const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
-  const V8 dv = BeckmannD(d, c.alpha, hx, hy, hz);
+  const V8 dv = BeckmannD(d, alpha, hx, hy, hz);
   const V8 n2 = hn::Add(hn::Add(hn::Mul(hx, hx), hn::Mul(hy, hy)), hn::Mul(hz, hz));
   const V8 wi_h = hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2));
   const V8 g =
-      hn::Mul(BeckmannG1OverCos(d, c.alpha, ox, oy, oz), BeckmannG1OverCos(d, c.alpha, ix, iy, iz));
+      hn::Mul(BeckmannG1OverCos(d, alpha, ox, oy, oz), BeckmannG1OverCos(d, alpha, ix, iy, iz));
   const V8 scale = hn::Mul(hn::Mul(hn::Set(d, 0.25f), dv), g);
-  const V8 r = hn::Mul(FresnelConductor(d, wi_h, c.eta_r, c.k_r), scale);
-  const V8 gg = hn::Mul(FresnelConductor(d, wi_h, c.eta_g, c.k_g), scale);
-  const V8 bb = hn::Mul(FresnelConductor(d, wi_h, c.eta_b, c.k_b), scale);
+  const V8 r = hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_r), hn::Load(d, c.k_r)), scale);
+  const V8 gg = hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_g), hn::Load(d, c.k_g)), scale);
+  const V8 bb = hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_b), hn::Load(d, c.k_b)), scale);
   const M8 ok = hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)),
                         hn::And(hn::Gt(dv, zero), AllFinite3(d, r, gg, bb)));
   *fr = hn::IfThenElseZero(ok, r);
@@ -509,74 +497,84 @@ inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n,
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     ConductorLanes c;
-    c.alpha = ClampAlpha(d, Gather(d, t.alpha, b.index, i));
-    c.eta_r = Gather(d, t.eta_r, b.index, i), c.eta_g = Gather(d, t.eta_g, b.index, i);
-    c.eta_b = Gather(d, t.eta_b, b.index, i);
-    c.k_r = Gather(d, t.k_r, b.index, i), c.k_g = Gather(d, t.k_g, b.index, i);
-    c.k_b = Gather(d, t.k_b, b.index, i);
-    ShadeLanes s;
-    LoadShadeLanes(d, b, i, eval, &s);
+    hn::Store(ClampAlpha(d, Gather(d, t.alpha, b.index, i)), d, c.alpha);
+    hn::Store(Gather(d, t.eta_r, b.index, i), d, c.eta_r);
+    hn::Store(Gather(d, t.eta_g, b.index, i), d, c.eta_g);
+    hn::Store(Gather(d, t.eta_b, b.index, i), d, c.eta_b);
+    hn::Store(Gather(d, t.k_r, b.index, i), d, c.k_r);
+    hn::Store(Gather(d, t.k_g, b.index, i), d, c.k_g);
+    hn::Store(Gather(d, t.k_b, b.index, i), d, c.k_b);
+    const V8 alpha = hn::Load(d, c.alpha);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i),
+             ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
     if (eval) {
+      const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
       V8 fr, fg, fb, pdf_l;
-      ConductorEval(d, c, s.ox, s.oy, s.oz, s.lx, s.ly, s.lz, &fr, &fg, &fb);
-      BeckmannEvalPdf(d, c.alpha, s.ox, s.oy, s.oz, s.lx, s.ly, s.lz, &pdf_l);
+      ConductorEval(d, c, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      BeckmannEvalPdf(d, alpha, ox, oy, oz, lx, ly, lz, &pdf_l);
       StoreEval(d, b, i, fr, fg, fb, pdf_l);
     }
     V8 hx, hy, hz, ix, iy, iz, pdf;
-    SampleBeckmannNormal(d, c.alpha, s.ux, s.uy, &hx, &hy, &hz);
-    Reflect(d, s.ox, s.oy, s.oz, hx, hy, hz, &ix, &iy, &iz);
-    BeckmannEvalPdf(d, c.alpha, s.ox, s.oy, s.oz, ix, iy, iz, &pdf);
+    SampleBeckmannNormal(d, alpha, ux, uy, &hx, &hy, &hz);
+    Reflect(d, ox, oy, oz, hx, hy, hz, &ix, &iy, &iz);
+    BeckmannEvalPdf(d, alpha, ox, oy, oz, ix, iy, iz, &pdf);
     // weight = F G1(wi) (G1(wo)/cos θo) (wo·H) / H.z, H = wo + wi (ConductorSample).
-    const V8 sx = hn::Add(s.ox, ix), sy = hn::Add(s.oy, iy), sz = hn::Add(s.oz, iz);
+    const V8 sx = hn::Add(ox, ix), sy = hn::Add(oy, iy), sz = hn::Add(oz, iz);
     const V8 n2 = hn::Add(hn::Add(hn::Mul(sx, sx), hn::Mul(sy, sy)), hn::Mul(sz, sz));
-    const V8 g = hn::Mul(BeckmannG1(d, c.alpha, ix, iy, iz),
-                         BeckmannG1OverCos(d, c.alpha, s.ox, s.oy, s.oz));
+    const V8 g = hn::Mul(BeckmannG1(d, alpha, ix, iy, iz),
+                         BeckmannG1OverCos(d, alpha, ox, oy, oz));
     const V8 wi_h = hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2));
-    const V8 wo_h = RoundedDot(d, s.ox, s.oy, s.oz, sx, sy, sz);
+    const V8 wo_h = RoundedDot(d, ox, oy, oz, sx, sy, sz);
     const V8 scale = hn::Div(hn::Mul(g, wo_h), sz);
-    const V8 wr = hn::Mul(FresnelConductor(d, wi_h, c.eta_r, c.k_r), scale);
-    const V8 wg = hn::Mul(FresnelConductor(d, wi_h, c.eta_g, c.k_g), scale);
-    const V8 wb = hn::Mul(FresnelConductor(d, wi_h, c.eta_b, c.k_b), scale);
-    const M8 ok = hn::And(hn::And(hn::Gt(s.oz, zero), hn::Gt(iz, zero)),
+    const V8 wr =
+        hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_r), hn::Load(d, c.k_r)), scale);
+    const V8 wg =
+        hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_g), hn::Load(d, c.k_g)), scale);
+    const V8 wb =
+        hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_b), hn::Load(d, c.k_b)), scale);
+    const M8 ok = hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)),
                           hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
     StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
   });
 }
 
 /// Rough plastic parameters of one block, gathered from RoughPlasticTable
-/// (MakeRoughPlasticParams).
+/// (MakeRoughPlasticParams; lanes [0, Lanes(d))).
 struct RoughPlasticLanes {
-  V8 alpha, eta, kd_r, kd_g, kd_b, ks;
+  HWY_ALIGN float alpha[8], eta[8], kd_r[8], kd_g[8], kd_b[8], ks[8];
 };
 
 /// RoughPlasticEval (engine/bsdf/rough_plastic.h).
 HWY_INLINE void RoughPlasticEval(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy, V8 oz, V8 ix,
                                  V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
+  const V8 alpha = hn::Load(d, p.alpha), eta = hn::Load(d, p.eta), kd_r = hn::Load(d, p.kd_r),
+           kd_g = hn::Load(d, p.kd_g), kd_b = hn::Load(d, p.kd_b), ks = hn::Load(d, p.ks);
   const V8 zero = hn::Zero(d), inv_pi = hn::Set(d, kInvPi);
   const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
-  const V8 dv = BeckmannD(d, p.alpha, hx, hy, hz);
+  const V8 dv = BeckmannD(d, alpha, hx, hy, hz);
   const V8 n2 = hn::Add(hn::Add(hn::Mul(hx, hx), hn::Mul(hy, hy)), hn::Mul(hz, hz));
   V8 cos_t;
-  const V8 fres = FresnelDielectric(d, hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2)), p.eta, &cos_t);
+  const V8 fres = FresnelDielectric(d, hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2)), eta, &cos_t);
   const V8 g =
-      hn::Mul(BeckmannG1OverCos(d, p.alpha, ox, oy, oz), BeckmannG1OverCos(d, p.alpha, ix, iy, iz));
-  V8 spec = hn::Mul(hn::Mul(p.ks, fres), hn::Mul(hn::Mul(hn::Set(d, 0.25f), dv), g));
-  const M8 spec_ok = hn::And(hn::And(hn::Gt(dv, zero), hn::Gt(p.ks, zero)), hn::IsFinite(spec));
+      hn::Mul(BeckmannG1OverCos(d, alpha, ox, oy, oz), BeckmannG1OverCos(d, alpha, ix, iy, iz));
+  V8 spec = hn::Mul(hn::Mul(ks, fres), hn::Mul(hn::Mul(hn::Set(d, 0.25f), dv), g));
+  const M8 spec_ok = hn::And(hn::And(hn::Gt(dv, zero), hn::Gt(ks, zero)), hn::IsFinite(spec));
   spec = hn::IfThenElseZero(spec_ok, spec);
   const M8 both = hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero));
-  *fr = hn::IfThenElseZero(both, hn::Add(hn::Mul(p.kd_r, inv_pi), spec));
-  *fg = hn::IfThenElseZero(both, hn::Add(hn::Mul(p.kd_g, inv_pi), spec));
-  *fb = hn::IfThenElseZero(both, hn::Add(hn::Mul(p.kd_b, inv_pi), spec));
+  *fr = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_r, inv_pi), spec));
+  *fg = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_g, inv_pi), spec));
+  *fb = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_b, inv_pi), spec));
 }
 
 /// RoughPlasticPdf (engine/bsdf/rough_plastic.h).
 HWY_INLINE V8 RoughPlasticPdf(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy,
                               V8 iz) {
+  const V8 alpha = hn::Load(d, p.alpha), ks = hn::Load(d, p.ks);
   const V8 zero = hn::Zero(d);
   V8 spec_pdf;
-  BeckmannEvalPdf(d, p.alpha, ox, oy, oz, ix, iy, iz, &spec_pdf);
-  const V8 pdf = hn::Add(hn::Mul(p.ks, spec_pdf),
-                         hn::Mul(hn::Sub(hn::Set(d, 1.0f), p.ks), hn::Mul(iz, hn::Set(d, kInvPi))));
+  BeckmannEvalPdf(d, alpha, ox, oy, oz, ix, iy, iz, &spec_pdf);
+  const V8 pdf = hn::Add(hn::Mul(ks, spec_pdf),
+                         hn::Mul(hn::Sub(hn::Set(d, 1.0f), ks), hn::Mul(iz, hn::Set(d, kInvPi))));
   return hn::IfThenElseZero(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)), pdf);
 }
 
@@ -585,42 +583,46 @@ inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, siz
   ForEachBlock(io, n, [&t, eval](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const V8 kd_r = Gather(d, t.kd_r, b.index, i), kd_g = Gather(d, t.kd_g, b.index, i),
+             kd_b = Gather(d, t.kd_b, b.index, i);
+    const V8 max_kd = hn::Max(kd_r, hn::Max(kd_g, kd_b));
+    const V8 alpha = ClampAlpha(d, Gather(d, t.alpha, b.index, i));
+    const V8 ks = hn::Min(hn::Max(hn::Sub(one, max_kd), zero), one);
     RoughPlasticLanes p;
-    p.alpha = ClampAlpha(d, Gather(d, t.alpha, b.index, i));
-    p.eta = hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i));
-    p.kd_r = Gather(d, t.kd_r, b.index, i), p.kd_g = Gather(d, t.kd_g, b.index, i);
-    p.kd_b = Gather(d, t.kd_b, b.index, i);
-    const V8 max_kd = hn::Max(p.kd_r, hn::Max(p.kd_g, p.kd_b));
-    p.ks = hn::Min(hn::Max(hn::Sub(one, max_kd), zero), one);
-    ShadeLanes s;
-    LoadShadeLanes(d, b, i, eval, &s);
+    hn::Store(alpha, d, p.alpha), hn::Store(ks, d, p.ks);
+    hn::Store(hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i)), d,
+              p.eta);
+    hn::Store(kd_r, d, p.kd_r), hn::Store(kd_g, d, p.kd_g), hn::Store(kd_b, d, p.kd_b);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i),
+             u_lobe = In(d, b, kULobe, i), ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
     if (eval) {
+      const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
       V8 fr, fg, fb;
-      RoughPlasticEval(d, p, s.ox, s.oy, s.oz, s.lx, s.ly, s.lz, &fr, &fg, &fb);
-      StoreEval(d, b, i, fr, fg, fb, RoughPlasticPdf(d, p, s.ox, s.oy, s.oz, s.lx, s.ly, s.lz));
+      RoughPlasticEval(d, p, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      StoreEval(d, b, i, fr, fg, fb, RoughPlasticPdf(d, p, ox, oy, oz, lx, ly, lz));
     }
     // Both candidate directions, unless every lane picked the same lobe.
-    const M8 spec = hn::Lt(s.u_lobe, p.ks);
+    const M8 spec = hn::Lt(u_lobe, ks);
     V8 ix = zero, iy = zero, iz = zero;
     if (!hn::AllFalse(d, spec)) {
       V8 hx, hy, hz;
-      SampleBeckmannNormal(d, p.alpha, s.ux, s.uy, &hx, &hy, &hz);
-      Reflect(d, s.ox, s.oy, s.oz, hx, hy, hz, &ix, &iy, &iz);
+      SampleBeckmannNormal(d, alpha, ux, uy, &hx, &hy, &hz);
+      Reflect(d, ox, oy, oz, hx, hy, hz, &ix, &iy, &iz);
     }
     if (!hn::AllTrue(d, spec)) {
       V8 cx, cy, cz;
-      SampleCosineHemisphere(d, s.ux, s.uy, &cx, &cy, &cz);
+      SampleCosineHemisphere(d, ux, uy, &cx, &cy, &cz);
       ix = hn::IfThenElse(spec, ix, cx), iy = hn::IfThenElse(spec, iy, cy);
       iz = hn::IfThenElse(spec, iz, cz);
     }
-    const V8 pdf = RoughPlasticPdf(d, p, s.ox, s.oy, s.oz, ix, iy, iz);
+    const V8 pdf = RoughPlasticPdf(d, p, ox, oy, oz, ix, iy, iz);
     V8 fr, fg, fb;
-    RoughPlasticEval(d, p, s.ox, s.oy, s.oz, ix, iy, iz, &fr, &fg, &fb);
+    RoughPlasticEval(d, p, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
     const V8 cos_over_pdf = hn::Div(iz, pdf);
     const V8 wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
              wb = hn::Mul(fb, cos_over_pdf);
     const M8 ok =
-        hn::And(hn::And(hn::Gt(s.oz, zero), hn::Gt(iz, zero)),
+        hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)),
                 hn::And(hn::And(hn::Gt(pdf, zero), hn::IsFinite(pdf)), AllFinite3(d, wr, wg, wb)));
     StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
   });

@@ -51,32 +51,27 @@ HWY_EXPORT(TargetNameTarget);
 
 void BeckmannEvalPdfBatch(const float* alpha, DirectionArrays wo, DirectionArrays wi, size_t n,
                           float* d, float* pdf) {
-  if (ForceScalar()) return ptlab::BeckmannEvalPdfBatch(alpha, wo, wi, n, d, pdf);
   HWY_DYNAMIC_DISPATCH(BeckmannEvalPdfTarget)(alpha, wo, wi, n, d, pdf);
 }
 
 void SampleBeckmannReflectionBatch(const float* alpha, DirectionArrays wo, const float* u_x,
                                    const float* u_y, size_t n, DirectionOutArrays wi, float* pdf) {
-  if (ForceScalar()) return ptlab::SampleBeckmannReflectionBatch(alpha, wo, u_x, u_y, n, wi, pdf);
   HWY_DYNAMIC_DISPATCH(SampleBeckmannReflectionTarget)(alpha, wo, u_x, u_y, n, wi, pdf);
 }
 
 void ConductorFresnelBatch(const float* cos_i, const float* eta, const float* k, size_t n,
                            float* f) {
-  if (ForceScalar()) return ptlab::ConductorFresnelBatch(cos_i, eta, k, n, f);
   HWY_DYNAMIC_DISPATCH(ConductorFresnelTarget)(cos_i, eta, k, n, f);
 }
 
 void DielectricFresnelBatch(const float* cos_i, const float* eta, size_t n, float* f,
                             float* cos_t) {
-  if (ForceScalar()) return ptlab::DielectricFresnelBatch(cos_i, eta, n, f, cos_t);
   HWY_DYNAMIC_DISPATCH(DielectricFresnelTarget)(cos_i, eta, n, f, cos_t);
 }
 
 void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
                 const ShadeInputs& in, const ShadeOutputs& out) {
   if (n == 0) return;
-  if (ForceScalar()) return ptlab::ShadeBatch(m, tag, material_index, n, in, out);
   HWY_DYNAMIC_DISPATCH(ShadeBatchTarget)(m, tag, material_index, n, in, out);
 }
 
@@ -90,7 +85,6 @@ void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const
 }
 
 const char* ShadeTargetName() {
-  if (ForceScalar()) return "scalar oracle";
   return HWY_DYNAMIC_DISPATCH(TargetNameTarget)();
 }
 

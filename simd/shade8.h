@@ -11,10 +11,9 @@ namespace ptlab::simd {
 
 // Every function here runs an 8-wide Highway kernel (hn::CappedTag<float, 8>: one iteration
 // per 8 rows on AVX2/AVX-512, two on SSE4) chosen at run time among the compiled targets, and
-// has a scalar oracle of the same name in namespace ptlab (engine/bsdf/shade_batch.h). With
-// PTLAB_FORCE_SCALAR=1 (simd::ForceScalar) every call runs the oracle instead. Arrays hold n
-// entries (any n; no padding or alignment needed); outputs may not alias inputs. Directions
-// are unit vectors in the local shading frame (the "non-unit" guarantee is only: finite out).
+// has a scalar oracle of the same name in namespace ptlab (engine/bsdf/shade_batch.h). Arrays
+// hold n entries (any n; no padding or alignment needed); outputs may not alias inputs.
+// Directions are unit vectors in the local shading frame (the "non-unit" guarantee is only: finite out).
 // The kernels repeat the oracle's operations in order. They differ from it only through
 // hwy/contrib/math (Exp ≤ 1 ulp, Log1p ≤ 2 ulp, Sin/Cos ≤ 3 ulp) and FMA contraction, which is
 // blocked where a sum cancels, so the differences stay at a few ulp except where the math is
@@ -68,8 +67,8 @@ void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* materi
 void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const ShadeInputs& in,
                const ShadeOutputs& out, ShadeScratch* scratch);
 
-/// Name of the Highway target the kernels above dispatch to now (e.g. "AVX3", "AVX2"), or
-/// "scalar oracle" when ForceScalar() is set; for logs and benchmark context.
+/// Name of the Highway target the kernels above dispatch to now (e.g. "AVX3", "AVX2"); for
+/// logs and benchmark context.
 const char* ShadeTargetName();
 
 }  // namespace ptlab::simd

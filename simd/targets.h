@@ -7,17 +7,3 @@
 #ifndef HWY_DISABLED_TARGETS
 #define HWY_DISABLED_TARGETS (HWY_SSSE3 | HWY_AVX3_DL)
 #endif
-
-#include <cstdlib>
-#include <cstring>
-
-namespace ptlab::simd {
-
-/// True when PTLAB_FORCE_SCALAR=1 is set: every packet entry point routes through the scalar
-/// oracle in engine/ (for A/B runs).
-inline bool ForceScalar() {
-  const char* v = std::getenv("PTLAB_FORCE_SCALAR");
-  return v != nullptr && std::strcmp(v, "0") != 0 && v[0] != '\0';
-}
-
-}  // namespace ptlab::simd

@@ -58,12 +58,12 @@ HWY_INLINE MF MaskFromBits(DF d, uint32_t bits) {
   return hn::LoadMaskBits(d, b);
 }
 
-// The per-ray constants of the watertight test as vectors: broadcast for a single ray, one
-// lane per ray for a packet.
-struct WatertightRayV {
-  VF ox, oy, oz;  // origin permuted to (kx, ky, kz)
-  VF sx, sy, sz;  // shear constants
-  VF t_min, t_max;
+// The per-ray constants of the watertight test, one lane per ray of a packet (a single ray
+// fills every lane with its own); kernels load them as vectors where they need them.
+struct WatertightLanes {
+  alignas(32) float ox[8], oy[8], oz[8];  // origin permuted to the lane's (kx, ky, kz)
+  alignas(32) float sx[8], sy[8], sz[8];  // shear constants
+  alignas(32) float t_min[8], t_max[8];
 };
 
 // 2-D edge function px * qy - py * qx, lane-wise. WatertightEdgeFunction (engine/bvh/
@@ -104,16 +104,19 @@ HWY_NOINLINE void EdgeFallback(DF d, MF on_edge, VF a_x, VF a_y, VF b_x, VF b_y,
 // IntersectTriangleWatertightPermuted, lane-wise: the same float operations in the same
 // order (the including .cpp disables FMA contraction), so every lane's decision and t, b1, b2
 // equal the scalar test's bit for bit. Vertices are permuted to (kx, ky, kz) already. Returns
-// the lanes of `valid` that hit; *t, *b1, *b2 are meaningful in those lanes only.
-HWY_INLINE MF WatertightTest(DF d, const WatertightRayV& r, VF ax, VF ay, VF az, VF bx, VF by,
-                             VF bz, VF cx, VF cy, VF cz, MF valid, VF* t_out, VF* b1_out,
+// the lanes of `valid` that hit; *t, *b1, *b2 are meaningful in those lanes only. The rays
+// are lanes [i, i + Lanes(d)) of `r`.
+HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF ay, VF az, VF bx,
+                             VF by, VF bz, VF cx, VF cy, VF cz, MF valid, VF* t_out, VF* b1_out,
                              VF* b2_out) {
-  const VF a_kx = hn::Sub(ax, r.ox), a_ky = hn::Sub(ay, r.oy), a_kz = hn::Sub(az, r.oz);
-  const VF b_kx = hn::Sub(bx, r.ox), b_ky = hn::Sub(by, r.oy), b_kz = hn::Sub(bz, r.oz);
-  const VF c_kx = hn::Sub(cx, r.ox), c_ky = hn::Sub(cy, r.oy), c_kz = hn::Sub(cz, r.oz);
-  const VF a_x = hn::Sub(a_kx, hn::Mul(r.sx, a_kz)), a_y = hn::Sub(a_ky, hn::Mul(r.sy, a_kz));
-  const VF b_x = hn::Sub(b_kx, hn::Mul(r.sx, b_kz)), b_y = hn::Sub(b_ky, hn::Mul(r.sy, b_kz));
-  const VF c_x = hn::Sub(c_kx, hn::Mul(r.sx, c_kz)), c_y = hn::Sub(c_ky, hn::Mul(r.sy, c_kz));
+  const VF ox = hn::Load(d, r.ox + i), oy = hn::Load(d, r.oy + i), oz = hn::Load(d, r.oz + i);
+  const VF sx = hn::Load(d, r.sx + i), sy = hn::Load(d, r.sy + i);
+  const VF a_kx = hn::Sub(ax, ox), a_ky = hn::Sub(ay, oy), a_kz = hn::Sub(az, oz);
+  const VF b_kx = hn::Sub(bx, ox), b_ky = hn::Sub(by, oy), b_kz = hn::Sub(bz, oz);
+  const VF c_kx = hn::Sub(cx, ox), c_ky = hn::Sub(cy, oy), c_kz = hn::Sub(cz, oz);
+  const VF a_x = hn::Sub(a_kx, hn::Mul(sx, a_kz)), a_y = hn::Sub(a_ky, hn::Mul(sy, a_kz));
+  const VF b_x = hn::Sub(b_kx, hn::Mul(sx, b_kz)), b_y = hn::Sub(b_ky, hn::Mul(sy, b_kz));
+  const VF c_x = hn::Sub(c_kx, hn::Mul(sx, c_kz)), c_y = hn::Sub(c_ky, hn::Mul(sy, c_kz));
   VF u = EdgeFunction(c_x, c_y, b_x, b_y);
   VF v = EdgeFunction(a_x, a_y, c_x, c_y);
   VF w = EdgeFunction(b_x, b_y, a_x, a_y);
@@ -132,16 +135,18 @@ HWY_INLINE MF WatertightTest(DF d, const WatertightRayV& r, VF ax, VF ay, VF az,
   const VF det = hn::Add(hn::Add(u, v), w);
   ok = hn::AndNot(hn::Eq(det, zero), ok);
   if (hn::AllFalse(d, ok)) return ok;
-  const VF s_az = hn::Mul(r.sz, a_kz), s_bz = hn::Mul(r.sz, b_kz), s_cz = hn::Mul(r.sz, c_kz);
+  const VF sz = hn::Load(d, r.sz + i);
+  const VF s_az = hn::Mul(sz, a_kz), s_bz = hn::Mul(sz, b_kz), s_cz = hn::Mul(sz, c_kz);
   const VF t_scaled = hn::Add(hn::Add(hn::Mul(u, s_az), hn::Mul(v, s_bz)), hn::Mul(w, s_cz));
   const VF abs_det = hn::Abs(det);
   const VF signed_t = hn::IfThenElse(hn::Lt(det, zero), hn::Neg(t_scaled), t_scaled);
-  ok = hn::And(ok, hn::And(hn::Gt(signed_t, hn::Mul(r.t_min, abs_det)),
-                           hn::Lt(signed_t, hn::Mul(r.t_max, abs_det))));
+  const VF t_min = hn::Load(d, r.t_min + i), t_max = hn::Load(d, r.t_max + i);
+  ok = hn::And(ok, hn::And(hn::Gt(signed_t, hn::Mul(t_min, abs_det)),
+                           hn::Lt(signed_t, hn::Mul(t_max, abs_det))));
   if (hn::AllFalse(d, ok)) return ok;
   const VF rcp_det = hn::Div(hn::Set(d, 1.0f), det);
   const VF t = hn::Mul(t_scaled, rcp_det);
-  ok = hn::And(ok, hn::And(hn::Gt(t, r.t_min), hn::Lt(t, r.t_max)));
+  ok = hn::And(ok, hn::And(hn::Gt(t, t_min), hn::Lt(t, t_max)));
   *t_out = t;
   *b1_out = hn::Mul(v, rcp_det);
   *b2_out = hn::Mul(w, rcp_det);
@@ -180,9 +185,12 @@ HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, 
   return r;
 }
 
-HWY_INLINE WatertightRayV BroadcastWatertight(DF d, const SingleRay& r) {
-  return {hn::Set(d, r.wt.ox), hn::Set(d, r.wt.oy), hn::Set(d, r.wt.oz), hn::Set(d, r.wt.sx),
-          hn::Set(d, r.wt.sy), hn::Set(d, r.wt.sz), hn::Set(d, r.t_min), hn::Set(d, r.t_max)};
+// The single ray's watertight constants in every lane.
+HWY_INLINE void BroadcastWatertight(const SingleRay& r, WatertightLanes* out) {
+  std::fill_n(out->ox, 8, r.wt.ox), std::fill_n(out->oy, 8, r.wt.oy);
+  std::fill_n(out->oz, 8, r.wt.oz), std::fill_n(out->sx, 8, r.wt.sx);
+  std::fill_n(out->sy, 8, r.wt.sy), std::fill_n(out->sz, 8, r.wt.sz);
+  std::fill_n(out->t_min, 8, r.t_min), std::fill_n(out->t_max, 8, r.t_max);
 }
 
 // Starts loading a child before it is visited: traversal of large scenes waits on memory.
@@ -203,7 +211,7 @@ HWY_INLINE void PrefetchChild(const Bvh8& bvh, Bvh8Ref ref) {
 // row). Any hit: returns true at the first hit.
 template <bool kAnyHit>
 HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const SingleRay& r,
-                           const WatertightRayV& rv, LaneBest* best) {
+                           const WatertightLanes& rv, LaneBest* best) {
   const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
   const float* base = bvh.tris.data() + size_t{9} * first;
   const float* ax = base + r.wt.kx * n;
@@ -218,7 +226,7 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const SingleRay&
   const uint32_t lanes = static_cast<uint32_t>(hn::Lanes(d));
   for (uint32_t i = 0; i < n; i += lanes) {
     VF t = hn::Zero(d), b1 = t, b2 = t;
-    const MF hit = WatertightTest(d, rv, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i),
+    const MF hit = WatertightTest(d, rv, 0, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i),
                                   hn::LoadU(d, az + i), hn::LoadU(d, bx + i), hn::LoadU(d, by + i),
                                   hn::LoadU(d, bz + i), hn::LoadU(d, cx + i), hn::LoadU(d, cy + i),
                                   hn::LoadU(d, cz + i), hn::FirstN(d, n - i), &t, &b1, &b2);
@@ -249,7 +257,8 @@ template <bool kAnyHit>
 HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& r, LaneBest* best) {
   const DF d;
   const size_t lanes = hn::Lanes(d);
-  const WatertightRayV rv = BroadcastWatertight(d, r);
+  WatertightLanes rv;
+  BroadcastWatertight(r, &rv);
   const VF ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
   const VF ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
   const VF t_min = hn::Set(d, r.t_min), scale = hn::Set(d, kRobustFarScale);
@@ -280,10 +289,21 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
         const VF t0 = hn::Max(nz, hn::Max(ny, hn::Max(nx, t_min)));
         const VF t1 = hn::Min(fz, hn::Min(fy, hn::Min(fx, t_max)));
         bits |= MaskBits(d, hn::Le(t0, hn::Mul(t1, scale))) << i;
-        hn::Store(t0, d, dist + i);
+        if constexpr (!kAnyHit) hn::Store(t0, d, dist + i);
       }
       if (bits != 0) {
         if ((bits & (bits - 1)) == 0) {
+          cur = node.child[std::countr_zero(bits)];
+          continue;
+        }
+        if constexpr (kAnyHit) {
+          // Any hit ends the ray wherever it is found, so the children are not sorted: the
+          // last one is visited next, the others pushed in the node's order.
+          for (; (bits & (bits - 1)) != 0; bits &= bits - 1) {
+            const Bvh8Ref ref = node.child[std::countr_zero(bits)];
+            PrefetchChild(bvh, ref);
+            stack[sp++] = {ref, 0.0f};
+          }
           cur = node.child[std::countr_zero(bits)];
           continue;
         }
@@ -324,9 +344,7 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
 struct PacketState {
   alignas(32) float o_x[8], o_y[8], o_z[8];
   alignas(32) float inv_x[8], inv_y[8], inv_z[8];
-  alignas(32) float t_min[8], t_max[8];
-  alignas(32) float wo_x[8], wo_y[8], wo_z[8];  // origin permuted to the lane's (kx, ky, kz)
-  alignas(32) float s_x[8], s_y[8], s_z[8];
+  WatertightLanes wt;  // and the lanes' t_min, t_max
   alignas(32) float best_t[8], best_b1[8], best_b2[8];
   alignas(32) int32_t best_prim[8];
   int8_t k_x[8], k_y[8], k_z[8];  // the lane's watertight axes
@@ -341,21 +359,21 @@ struct PacketState {
 
 // Lane j as a single ray (for the single-ray switch and per-lane leaf tests); the same values
 // MakeSingleRay computes from the lane's ray.
-HWY_INLINE SingleRay LaneRay(const PacketState& s, int j) {
+HWY_INLINE SingleRay LaneSingleRay(const PacketState& s, int j) {
   SingleRay r;
   r.o[0] = s.o_x[j], r.o[1] = s.o_y[j], r.o[2] = s.o_z[j];
   r.inv_d[0] = s.inv_x[j], r.inv_d[1] = s.inv_y[j], r.inv_d[2] = s.inv_z[j];
   const uint32_t lo[3] = {kLoX, kLoY, kLoZ}, hi[3] = {kHiX, kHiY, kHiZ};
   for (int a = 0; a < 3; ++a) {
-    const bool neg = (s.neg_bits[a] >> j) & 1;
+    const bool neg = LaneActive(s.neg_bits[a], j);
     r.near[a] = neg ? hi[a] : lo[a];
     r.far[a] = neg ? lo[a] : hi[a];
   }
   r.wt.kx = s.k_x[j], r.wt.ky = s.k_y[j], r.wt.kz = s.k_z[j];
-  r.wt.sx = s.s_x[j], r.wt.sy = s.s_y[j], r.wt.sz = s.s_z[j];
-  r.wt.ox = s.wo_x[j], r.wt.oy = s.wo_y[j], r.wt.oz = s.wo_z[j];
-  r.t_min = s.t_min[j];
-  r.t_max = s.t_max[j];
+  r.wt.sx = s.wt.sx[j], r.wt.sy = s.wt.sy[j], r.wt.sz = s.wt.sz[j];
+  r.wt.ox = s.wt.ox[j], r.wt.oy = s.wt.oy[j], r.wt.oz = s.wt.oz[j];
+  r.t_min = s.wt.t_min[j];
+  r.t_max = s.wt.t_max[j];
   return r;
 }
 
@@ -398,7 +416,8 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
     const VF tn = hn::IfThenElseZero(on, t_min), tx = hn::IfThenElseZero(on, t_max);
     hn::Store(ox, d, s->o_x + i), hn::Store(oy, d, s->o_y + i), hn::Store(oz, d, s->o_z + i);
     hn::Store(ix, d, s->inv_x + i), hn::Store(iy, d, s->inv_y + i), hn::Store(iz, d, s->inv_z + i);
-    hn::Store(tn, d, s->t_min + i), hn::Store(tx, d, s->t_max + i), hn::Store(tx, d, s->best_t + i);
+    hn::Store(tn, d, s->wt.t_min + i), hn::Store(tx, d, s->wt.t_max + i);
+    hn::Store(tx, d, s->best_t + i);
     hn::Store(zero, d, s->best_b1 + i), hn::Store(zero, d, s->best_b2 + i);
     s->neg_bits[0] |= MaskBits(d, hn::Lt(ix, zero)) << i;
     s->neg_bits[1] |= MaskBits(d, hn::Lt(iy, zero)) << i;
@@ -418,12 +437,12 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
     const VF o_b = hn::IfThenElse(kz0, oz, hn::IfThenElse(kz1, ox, oy));
     const VF o_kz = hn::IfThenElse(kz0, ox, hn::IfThenElse(kz1, oy, oz));
     const VF d_kx = hn::IfThenElse(swap, d_b, d_a), d_ky = hn::IfThenElse(swap, d_a, d_b);
-    hn::Store(hn::Div(d_kx, d_kz), d, s->s_x + i);
-    hn::Store(hn::Div(d_ky, d_kz), d, s->s_y + i);
-    hn::Store(hn::Div(one, d_kz), d, s->s_z + i);
-    hn::Store(hn::IfThenElse(swap, o_b, o_a), d, s->wo_x + i);
-    hn::Store(hn::IfThenElse(swap, o_a, o_b), d, s->wo_y + i);
-    hn::Store(o_kz, d, s->wo_z + i);
+    hn::Store(hn::Div(d_kx, d_kz), d, s->wt.sx + i);
+    hn::Store(hn::Div(d_ky, d_kz), d, s->wt.sy + i);
+    hn::Store(hn::Div(one, d_kz), d, s->wt.sz + i);
+    hn::Store(hn::IfThenElse(swap, o_b, o_a), d, s->wt.ox + i);
+    hn::Store(hn::IfThenElse(swap, o_a, o_b), d, s->wt.oy + i);
+    hn::Store(o_kz, d, s->wt.oz + i);
     kz0_bits |= MaskBits(d, kz0) << i;
     kz1_bits |= MaskBits(d, kz1) << i;
     swap_bits |= MaskBits(d, swap) << i;
@@ -434,12 +453,12 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
     finite_bits |= MaskBits(d, fin_inv) << i;
   }
   for (int j = 0; j < 8; ++j) {
-    const int kz = ((kz0_bits >> j) & 1) ? 0 : (((kz1_bits >> j) & 1) ? 1 : 2);
+    const int kz = LaneActive(kz0_bits, j) ? 0 : (LaneActive(kz1_bits, j) ? 1 : 2);
     int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
-    if ((swap_bits >> j) & 1) std::swap(kx, ky);
+    if (LaneActive(swap_bits, j)) std::swap(kx, ky);
     s->k_x[j] = static_cast<int8_t>(kx), s->k_y[j] = static_cast<int8_t>(ky);
     s->k_z[j] = static_cast<int8_t>(kz);
-    s->best_prim[j] = ((live >> j) & 1) ? static_cast<int32_t>(kNoHit) : -1;
+    s->best_prim[j] = LaneActive(live, j) ? static_cast<int32_t>(kNoHit) : -1;
   }
   bool uniform = true;
   for (int a = 0; a < 3; ++a) {
@@ -474,7 +493,7 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
         inv_lo[a] = std::min(inv_lo[a], ReduceLive<false>(d, iv, on));
         inv_hi[a] = std::max(inv_hi[a], ReduceLive<true>(d, iv, on));
       }
-      t_min_lo = std::min(t_min_lo, ReduceLive<false>(d, hn::Load(d, s->t_min + i), on));
+      t_min_lo = std::min(t_min_lo, ReduceLive<false>(d, hn::Load(d, s->wt.t_min + i), on));
     }
     for (int a = 0; a < 3; ++a) {
       s->o_lo[a] = o_lo[a], s->o_hi[a] = o_hi[a];
@@ -560,8 +579,8 @@ HWY_INLINE void PacketChildren(DF d, const PacketState& s, const Bvh8Node& node,
     const VF ox = hn::Load(d, s.o_x + i), oy = hn::Load(d, s.o_y + i), oz = hn::Load(d, s.o_z + i);
     const VF ix = hn::Load(d, s.inv_x + i), iy = hn::Load(d, s.inv_y + i),
              iz = hn::Load(d, s.inv_z + i);
-    const VF t_min = hn::Load(d, s.t_min + i);
-    const VF t_far = hn::Load(d, (kAnyHit ? s.t_max : s.best_t) + i);
+    const VF t_min = hn::Load(d, s.wt.t_min + i);
+    const VF t_far = hn::Load(d, (kAnyHit ? s.wt.t_max : s.best_t) + i);
     const MF neg_x = MaskFromBits(d, s.neg_bits[0] >> i);
     const MF neg_y = MaskFromBits(d, s.neg_bits[1] >> i);
     const MF neg_z = MaskFromBits(d, s.neg_bits[2] >> i);
@@ -595,8 +614,12 @@ HWY_INLINE void PacketChildren(DF d, const PacketState& s, const Bvh8Node& node,
       const VF t1 = hn::Min(fz, hn::Min(fy, hn::Min(fx, t_far)));
       const uint32_t bits = MaskBits(d, hn::And(act, hn::Le(t0, hn::Mul(t1, scale))));
       if (bits == 0) continue;
-      hn::Store(t0, d, t_near[c] + i);
-      if (cbits[c] == 0) key[c] = t_near[c][i + std::countr_zero(bits)];
+      if constexpr (!kAnyHit) {
+        // Any hit needs neither entry distances (pops test only the lanes still open) nor
+        // an order: any hit ends a lane, wherever it is.
+        hn::Store(t0, d, t_near[c] + i);
+        if (cbits[c] == 0) key[c] = t_near[c][i + std::countr_zero(bits)];
+      }
       cbits[c] |= bits << i;
     }
   }
@@ -616,15 +639,11 @@ HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketSta
   for (size_t i = 0; i < 8; i += lanes) {
     uint32_t half = (m >> i) & half_mask;
     if (half == 0) continue;
-    const WatertightRayV rv = {hn::Load(d, s->wo_x + i),  hn::Load(d, s->wo_y + i),
-                               hn::Load(d, s->wo_z + i),  hn::Load(d, s->s_x + i),
-                               hn::Load(d, s->s_y + i),   hn::Load(d, s->s_z + i),
-                               hn::Load(d, s->t_min + i), hn::Load(d, s->t_max + i)};
     for (uint32_t j = 0; j < n && half != 0; ++j) {
       const MF act = MaskFromBits(d, half);
       VF t = hn::Zero(d), b1 = t, b2 = t;
       const MF hit =
-          WatertightTest(d, rv, hn::Set(d, base[kx * n + j]), hn::Set(d, base[ky * n + j]),
+          WatertightTest(d, s->wt, i, hn::Set(d, base[kx * n + j]), hn::Set(d, base[ky * n + j]),
                          hn::Set(d, base[kz * n + j]), hn::Set(d, base[(3 + kx) * n + j]),
                          hn::Set(d, base[(3 + ky) * n + j]), hn::Set(d, base[(3 + kz) * n + j]),
                          hn::Set(d, base[(6 + kx) * n + j]), hn::Set(d, base[(6 + ky) * n + j]),
@@ -664,11 +683,12 @@ HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState*
   uint32_t hit_lanes = 0;
   for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
     const int j = std::countr_zero(bits);
-    const SingleRay r = LaneRay(*s, j);
-    const WatertightRayV rv = BroadcastWatertight(d, r);
+    const SingleRay r = LaneSingleRay(*s, j);
+    WatertightLanes rv;
+    BroadcastWatertight(r, &rv);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
-    if (LeafSingle<kAnyHit>(d, bvh, leaf, r, rv, &best)) hit_lanes |= 1u << j;
+    if (LeafSingle<kAnyHit>(d, bvh, leaf, r, rv, &best)) hit_lanes |= LaneBit(j);
     if constexpr (!kAnyHit) {
       s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
       s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
@@ -693,7 +713,9 @@ HWY_INLINE uint32_t SingleRayLanes(const Bvh8& bvh, Bvh8Ref ref, PacketState* s,
     const int j = std::countr_zero(m);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
-    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, LaneRay(*s, j), &best)) hit_lanes |= 1u << j;
+    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, LaneSingleRay(*s, j), &best)) {
+      hit_lanes |= LaneBit(j);
+    }
     if constexpr (!kAnyHit) {
       s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
       s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
@@ -748,21 +770,22 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
       const Bvh8Node& node = bvh.nodes[ref];
       uint32_t candidates = (1u << node.num_children) - 1;
       if (s->frustum) {
-        candidates =
-            FrustumChildren(d, *s, node, kAnyHit ? MaxBestT(d, *s, live) : MaxBestT(d, *s, m));
+        candidates = FrustumChildren(d, *s, node, MaxBestT(d, *s, m));
       }
       if (candidates != 0) {
         uint32_t cbits[8];
         alignas(32) float t_near[8][8];
         float key[8];
         PacketChildren<kAnyHit>(d, *s, node, m, candidates, cbits, t_near, key);
-        // The children hit by any lane, farthest (by the key) first.
+        // The children hit by any lane, farthest (by the key) first; any hit keeps the
+        // children's order.
         int order[8], n = 0;
         for (uint32_t todo = candidates; todo != 0; todo &= todo - 1) {
           const int c = std::countr_zero(todo);
           if (cbits[c] == 0) continue;
           int k = n++;
-          for (; k > 0 && key[order[k - 1]] < key[c]; --k) order[k] = order[k - 1];
+          if constexpr (!kAnyHit)
+            for (; k > 0 && key[order[k - 1]] < key[c]; --k) order[k] = order[k - 1];
           order[k] = c;
         }
         if (n > 0) {
@@ -774,7 +797,8 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
             out.mask = cbits[c];
             // Large scenes wait on memory: start loading the subtrees visited later.
             PrefetchChild(bvh, out.ref);
-            for (int j = 0; j < 8; ++j) out.t_entry[j] = t_near[c][j];
+            if constexpr (!kAnyHit)
+              for (int j = 0; j < 8; ++j) out.t_entry[j] = t_near[c][j];
           }
           ref = node.child[order[n - 1]];
           m = cbits[order[n - 1]];
@@ -821,7 +845,7 @@ HWY_INLINE Mask8 Intersect8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8
   for (uint32_t bits = live; bits != 0; bits &= bits - 1) {
     const int j = std::countr_zero(bits);
     if (static_cast<uint32_t>(s.best_prim[j]) == kNoHit) continue;
-    result |= 1u << j;
+    result |= LaneBit(j);
     hits->t[j] = s.best_t[j];
     hits->b1[j] = s.best_b1[j];
     hits->b2[j] = s.best_b2[j];

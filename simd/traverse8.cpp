@@ -1,5 +1,5 @@
 // Highway dynamic dispatch of simd/traverse8 (foreach_target over traverse8-inl.h) and the
-// plain C++ entry points, with the PTLAB_FORCE_SCALAR route to the oracle.
+// plain C++ entry points.
 
 // Bit-identity with the oracle needs every a * b + c evaluated as two rounded operations: GCC
 // contracts vector (and scalar) multiply-add into FMA on the AVX2/AVX-512 targets otherwise.
@@ -50,7 +50,6 @@ int64_t TargetImpl() { return HWY_TARGET; }
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include "engine/bvh/intersect1.h"
 #include "engine/core/check.h"
 
 namespace ptlab::simd {
@@ -62,21 +61,6 @@ HWY_EXPORT(Occluded1Impl);
 HWY_EXPORT(TargetImpl);
 
 namespace {
-
-// Read once: the environment does not change during a run.
-bool UseOracle() {
-  static const bool force = ForceScalar();
-  return force;
-}
-
-Ray LaneRay(const RayPacket8& rays, int j) {
-  Ray r;
-  r.o = {rays.org_x[j], rays.org_y[j], rays.org_z[j]};
-  r.d = {rays.dir_x[j], rays.dir_y[j], rays.dir_z[j]};
-  r.t_min = rays.t_min[j];
-  r.t_max = rays.t_max[j];
-  return r;
-}
 
 // Interleaves the low 10 bits of x, y, z (Morton order).
 uint32_t Morton3(uint32_t x, uint32_t y, uint32_t z) {
@@ -95,41 +79,19 @@ uint32_t Morton3(uint32_t x, uint32_t y, uint32_t z) {
 
 Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacket8* hits,
                  const Traverse8Options& options) {
-  if (UseOracle() && bvh.source != nullptr) {
-    Mask8 result = 0;
-    for (int j = 0; j < 8; ++j) {
-      if (!((active >> j) & 1)) continue;
-      Hit h;
-      if (!ptlab::Intersect1(*bvh.source, LaneRay(rays, j), &h)) continue;
-      result |= 1u << j;
-      hits->t[j] = h.t, hits->b1[j] = h.b1, hits->b2[j] = h.b2, hits->prim[j] = h.prim;
-    }
-    return result;
-  }
   return HWY_DYNAMIC_DISPATCH(Intersect8Impl)(bvh, rays, active, hits, options);
 }
 
 Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
                 const Traverse8Options& options) {
-  if (UseOracle() && bvh.source != nullptr) {
-    Mask8 result = 0;
-    for (int j = 0; j < 8; ++j) {
-      if (((active >> j) & 1) && ptlab::Occluded1(*bvh.source, LaneRay(rays, j))) {
-        result |= 1u << j;
-      }
-    }
-    return result;
-  }
   return HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);
 }
 
 bool Intersect1(const Bvh8& bvh, const Ray& ray, Hit* hit) {
-  if (UseOracle() && bvh.source != nullptr) return ptlab::Intersect1(*bvh.source, ray, hit);
   return HWY_DYNAMIC_DISPATCH(Intersect1Impl)(bvh, ray, hit);
 }
 
 bool Occluded1(const Bvh8& bvh, const Ray& ray) {
-  if (UseOracle() && bvh.source != nullptr) return ptlab::Occluded1(*bvh.source, ray);
   return HWY_DYNAMIC_DISPATCH(Occluded1Impl)(bvh, ray);
 }
 
@@ -167,16 +129,11 @@ void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint
   for (size_t base = 0; base < n; base += 8) {
     RayPacket8 p;
     const int count = static_cast<int>(std::min<size_t>(8, n - base));
-    for (int j = 0; j < count; ++j) {
-      const Ray& r = rays[scratch[base + j]];
-      p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
-      p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
-      p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
-    }
+    for (int j = 0; j < count; ++j) SetLaneRay(&p, j, rays[scratch[base + j]]);
     HitPacket8 h;
     const Mask8 got = Intersect8(bvh, p, (1u << count) - 1, &h, options);
     for (int j = 0; j < count; ++j) {
-      if (!((got >> j) & 1)) continue;
+      if (!LaneActive(got, j)) continue;
       const uint32_t i = scratch[base + j];
       hits[i] = {h.t[j], h.b1[j], h.b2[j], h.prim[j]};
       hit_mask[i] = 1;
@@ -184,10 +141,7 @@ void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint
   }
 }
 
-const char* Traverse8TargetName() {
-  if (UseOracle()) return "scalar-oracle";
-  return hwy::TargetName(HWY_DYNAMIC_DISPATCH(TargetImpl)());
-}
+const char* Traverse8TargetName() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(TargetImpl)()); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

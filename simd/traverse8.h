@@ -17,7 +17,8 @@ namespace ptlab::simd {
 // the binary Bvh the Bvh8 was built from. Contract, per ray: the same hit or miss, the same
 // primitive, and t, b1, b2 bit-identical (the kernel performs the oracle's float operations in
 // the oracle's order, with FMA contraction disabled, and the same double-precision fallback
-// on edges). With PTLAB_FORCE_SCALAR=1 (simd::ForceScalar) every call runs the oracle itself.
+// on edges). The oracle's own packet kernels are OracleWavefrontKernels'
+// (engine/render/wavefront.h), which `--scalar` / PTLAB_FORCE_SCALAR=1 render with.
 
 /// Tuning of packet traversal (defaults are the measured best; see benchmarks/).
 struct Traverse8Options {
@@ -63,8 +64,7 @@ bool Occluded1(const Bvh8& bvh, const Ray& ray);
 void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint8_t* hit_mask,
                      uint32_t* scratch, const Traverse8Options& options = {});
 
-/// Name of the Highway target the dispatched kernels run on (e.g. "AVX3", "AVX2", "SSE4"),
-/// or "scalar-oracle" when simd::ForceScalar() is set.
+/// Name of the Highway target the dispatched kernels run on (e.g. "AVX3", "AVX2", "SSE4").
 const char* Traverse8TargetName();
 
 }  // namespace ptlab::simd

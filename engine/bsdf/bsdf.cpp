@@ -29,9 +29,11 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEval(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
-    default:
-      return {};
+    case MaterialTag::kMirror:
+    case MaterialTag::kDielectric:
+      return {};  // delta models
   }
+  return {};  // an invalid ref
 }
 
 float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
@@ -42,9 +44,11 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
       return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
-    default:
-      return 0.0f;
+    case MaterialTag::kMirror:
+    case MaterialTag::kDielectric:
+      return 0.0f;  // delta models
   }
+  return 0.0f;  // an invalid ref
 }
 
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,

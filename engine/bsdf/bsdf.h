@@ -10,10 +10,6 @@ namespace ptlab {
 constexpr bool IsDeltaMaterial(MaterialTag tag) {
   return tag == MaterialTag::kMirror || tag == MaterialTag::kDielectric;
 }
-/// Models the scalar renderer can shade now: all of them.
-constexpr bool IsSupportedMaterial(MaterialTag tag) {
-  return static_cast<int>(tag) < kMaterialTagCount;
-}
 
 // The functions below are the scalar oracle of every model, addressed by MaterialRef (the
 // per-model free functions live in diffuse.h, mirror.h, dielectric.h, conductor.h and

@@ -17,6 +17,5 @@ struct BsdfSample {
 
 inline float CosTheta(const Vec3f& w) { return w.z; }
 inline float AbsCosTheta(const Vec3f& w) { return w.z < 0 ? -w.z : w.z; }
-inline bool SameHemisphere(const Vec3f& a, const Vec3f& b) { return a.z * b.z > 0; }
 
 }  // namespace ptlab

@@ -23,9 +23,11 @@ inline Color3f InfiniteLightRadiance(const Scene& scene, EmitterRef e, const Vec
       return EnvironmentRadiance(scene.environment_maps, e.index(), w);
     case EmitterTag::kDistantDisk:
       return DistantDiskRadiance(scene.distant_disks, e.index(), w);
-    default:
+    case EmitterTag::kArea:
+    case EmitterTag::kPoint:
       return {};
   }
+  return {};  // an invalid ref
 }
 
 /// Samples a direction towards infinite emitter e (solid-angle pdf in out->pdf). Returns false
@@ -37,9 +39,11 @@ inline bool SampleInfiniteLight(const Scene& scene, EmitterRef e, const Vec2f& u
       return SampleEnvironment(scene.environment_maps, e.index(), u, out);
     case EmitterTag::kDistantDisk:
       return SampleDistantDisk(scene.distant_disks, e.index(), u, out);
-    default:
+    case EmitterTag::kArea:
+    case EmitterTag::kPoint:
       return false;
   }
+  return false;  // an invalid ref
 }
 
 /// Solid-angle density with which SampleInfiniteLight(e) produces world direction w (unit);
@@ -50,9 +54,11 @@ inline float InfiniteLightPdf(const Scene& scene, EmitterRef e, const Vec3f& w) 
       return EnvironmentPdf(scene.environment_maps, e.index(), w);
     case EmitterTag::kDistantDisk:
       return DistantDiskPdf(scene.distant_disks, e.index(), w);
-    default:
+    case EmitterTag::kArea:
+    case EmitterTag::kPoint:
       return 0.0f;
   }
+  return 0.0f;  // an invalid ref
 }
 
 /// Radiance seen by a ray leaving the scene along w (unit): the sum over every environment map

@@ -196,7 +196,7 @@ Color3f Li(const RenderContext& ctx, const Ray& ray, PathSampler& sampler,
 std::string UnsupportedFeature(const Scene& scene) {
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const MaterialRef m = scene.meshes.material[i];
-    if (!m.valid() || !IsSupportedMaterial(m.tag()))
+    if (!m.valid())
       return "the material of '" + scene.meshes.name[i] + "' is not supported yet";
   }
   return "";

@@ -1,59 +1,7 @@
-// The scalar tile loop (Li per sample) and the oracle traversal backend of the packet path;
-// the packet path itself (the wavefront) is in wavefront.cpp.
+// The scalar tile loop (Li per sample); the packet path (the wavefront) is in wavefront.cpp.
 #include "engine/render/packet_render.h"
 
-#include "engine/bvh/intersect1.h"
-
 namespace ptlab {
-namespace {
-
-constexpr int kLanes = static_cast<int>(kPacketWidth);
-
-inline bool Lane(Mask8 m, int j) { return ((m >> j) & 1u) != 0; }
-
-// Lane j of a packet as a single ray.
-Ray LaneRay(const RayPacket8& rays, int j) {
-  return Ray{{rays.org_x[j], rays.org_y[j], rays.org_z[j]},
-             {rays.dir_x[j], rays.dir_y[j], rays.dir_z[j]},
-             rays.t_min[j],
-             rays.t_max[j]};
-}
-
-Mask8 ScalarIntersect8(const void* accel, const RayPacket8& rays, Mask8 active, HitPacket8* hits) {
-  const Bvh& bvh = *static_cast<const Bvh*>(accel);
-  Mask8 got = 0;
-  for (int j = 0; j < kLanes; ++j) {
-    if (!Lane(active, j)) continue;
-    const Ray r = LaneRay(rays, j);
-    Hit h;
-    if (!Intersect1(bvh, r, &h)) continue;
-    hits->t[j] = h.t, hits->b1[j] = h.b1, hits->b2[j] = h.b2, hits->prim[j] = h.prim;
-    got |= 1u << j;
-  }
-  return got;
-}
-
-Mask8 ScalarOccluded8(const void* accel, const RayPacket8& rays, Mask8 active) {
-  const Bvh& bvh = *static_cast<const Bvh*>(accel);
-  Mask8 got = 0;
-  for (int j = 0; j < kLanes; ++j) {
-    if (!Lane(active, j)) continue;
-    const Ray r = LaneRay(rays, j);
-    if (Occluded1(bvh, r)) got |= 1u << j;
-  }
-  return got;
-}
-
-}  // namespace
-
-TraversalBackend8 ScalarTraversalBackend(const Bvh& bvh) {
-  TraversalBackend8 b;
-  b.accel = &bvh;
-  b.intersect8 = ScalarIntersect8;
-  b.occluded8 = ScalarOccluded8;
-  b.name = "scalar-oracle";
-  return b;
-}
 
 void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const PixelFilter& filter,
                       int x0, int y0, int x1, int y1, uint32_t s_begin, uint32_t s_end,

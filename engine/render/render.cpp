@@ -15,6 +15,7 @@
 #include "engine/render/film.h"
 #include "engine/render/integrator.h"
 #include "engine/render/packet_render.h"
+#include "engine/render/wavefront.h"
 
 namespace ptlab {
 namespace {
@@ -119,8 +120,8 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         const Tile& t = tiles[i];
         const auto tile_start = Clock::now();
         reset_block(i);
-        if (options.packets != nullptr) {
-          RenderTilePacket8(ctx, *options.packets, camera, filter, t.x0, t.y0, t.x1, t.y1, s0,
+        if (options.kernels != nullptr) {
+          RenderTilePacket8(ctx, *options.kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0,
                             s1, options.seed, &blocks[i], &stats[i], pixels);
         } else {
           RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,

@@ -15,6 +15,8 @@
 
 namespace ptlab {
 
+struct WavefrontKernels;  // engine/render/wavefront.h
+
 struct RenderProgress {
   uint64_t samples_done = 0, samples_total = 0;  // pixel samples
   uint64_t rays = 0;
@@ -71,9 +73,10 @@ struct RenderOptions {
   uint64_t seed = 0;
   /// Set (e.g. by a SIGINT handler) to stop; the image keeps every completed pass.
   const std::atomic<bool>* cancel = nullptr;
-  /// When set, tiles run through the 8-wide packet path on this traversal backend (bit-identical
-  /// to the scalar path); it must outlive the render. Null: one ray at a time, the oracle.
-  const TraversalBackend8* packets = nullptr;
+  /// When set, tiles run through the wavefront (RenderTilePacket8, wavefront.h) with this kernel
+  /// table, simd/'s or the oracle's (bit-identical to the scalar loop either way); it must
+  /// outlive the render. Null: the scalar loop, one Li per sample (RenderTileScalar).
+  const WavefrontKernels* kernels = nullptr;
   /// > 0: no pass starts once this many seconds of rendering have passed (the image keeps
   /// the passes done; spp is then an upper bound). Not with a distribution.
   double time_budget = 0;

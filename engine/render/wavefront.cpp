@@ -1,14 +1,20 @@
 // The packet render path as a wavefront: SoA ray queues of 8-wide packets, compacted between
-// bounces, through traversal, shading, sampling and shadow stages for all integrators.
+// bounces, through traversal, shading, sampling and shadow stages for all integrators; and the
+// oracle's kernel table.
+#include "engine/render/wavefront.h"
+
 #include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
+#include "engine/bvh/intersect1.h"
 #include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
-#include "engine/render/packet_render.h"
+#include "engine/sampling/sobol.h"
 
 namespace ptlab {
 namespace {
@@ -99,11 +105,7 @@ struct RayQueue {
   void Push(const Ray& r, uint32_t who) {
     const size_t q = owner.size();
     if (q % kLanes == 0) packets.emplace_back();
-    RayPacket8& p = packets.back();
-    const size_t j = q % kLanes;
-    p.org_x[j] = r.o.x, p.org_y[j] = r.o.y, p.org_z[j] = r.o.z;
-    p.dir_x[j] = r.d.x, p.dir_y[j] = r.d.y, p.dir_z[j] = r.d.z;
-    p.t_min[j] = r.t_min, p.t_max[j] = r.t_max;
+    SetLaneRay(&packets.back(), int(q % kLanes), r);
     owner.push_back(who);
   }
   Vec3f Direction(size_t q) const {
@@ -126,8 +128,8 @@ double Seconds(Clock::time_point a, Clock::time_point b) {
 /// the per-bounce scratch (hits, interactions) is indexed by queue entry.
 class Wavefront {
  public:
-  Wavefront(const RenderContext& ctx, const TraversalBackend8& backend, TileSampleStats* stats)
-      : scene_(ctx.scene), backend_(backend), rules_(RulesFor(ctx.scene.integrator)),
+  Wavefront(const RenderContext& ctx, const WavefrontKernels& kernels, TileSampleStats* stats)
+      : scene_(ctx.scene), kernels_(kernels), rules_(RulesFor(ctx.scene.integrator)),
         stats_(stats), sobol_(ctx.scene.sampler.type == SamplerType::kSobol) {}
 
   void RenderTile(const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
@@ -218,14 +220,14 @@ class Wavefront {
     stats_->seconds.sampling += Seconds(t2, t3);
   }
 
-  // Closest hits of every queued ray, one backend call per packet.
+  // Closest hits of every queued ray, one kernel call per packet.
   void Traverse() {
     const size_t packets = rays_.packets.size();
     hits_.resize(packets), hit_mask_.resize(packets);
     for (size_t k = 0; k < packets; ++k) {
       const Mask8 active = rays_.Active(k);
-      hit_mask_[k] = backend_.intersect8(backend_.accel, rays_.packets[k], active, &hits_[k]) &
-                     active;
+      hit_mask_[k] =
+          kernels_.intersect8(kernels_.accel, rays_.packets[k], active, &hits_[k]) & active;
       stats_->rays += uint64_t(std::popcount(active));
     }
     stats_->packets += packets;
@@ -240,7 +242,7 @@ class Wavefront {
       const uint32_t i = rays_.owner[q];
       const size_t k = q / kLanes, j = q % kLanes;
       const Vec3f d = rays_.Direction(q);
-      if (((hit_mask_[k] >> j) & 1u) == 0) {
+      if (!LaneActive(hit_mask_[k], int(j))) {
         // Escaped: environment light, counted unless emitter sampling already did (after a
         // non-specular bounce), MIS-weighted when mis is on.
         if (rules_.normals) continue;
@@ -382,7 +384,7 @@ class Wavefront {
   }
 
   // Dimension `dim` of the given paths' samples (sub-sample sub of sub_count), by the
-  // backend's batch kernel.
+  // kernel table's batch kernel.
   void FillSobolRows(const std::vector<uint32_t>& paths, uint32_t sub, uint32_t sub_count) {
     const size_t m = paths.size();
     draw_seed_.resize(m), draw_index_.resize(m), draw_x_.resize(m), draw_y_.resize(m);
@@ -395,12 +397,12 @@ class Wavefront {
   void DrawSobol1D(const std::vector<uint32_t>& paths, uint32_t dim, uint32_t sub,
                    uint32_t sub_count, float* out) {
     FillSobolRows(paths, sub, sub_count);
-    backend_.sobol1d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), out);
+    kernels_.sobol1d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), out);
   }
   void DrawSobol2D(const std::vector<uint32_t>& paths, uint32_t dim, uint32_t sub,
                    uint32_t sub_count, Vec2f* out) {
     FillSobolRows(paths, sub, sub_count);
-    backend_.sobol2d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), draw_x_.data(),
+    kernels_.sobol2d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), draw_x_.data(),
                      draw_y_.data());
     for (size_t k = 0; k < paths.size(); ++k) out[k] = {draw_x_[k], draw_y_[k]};
   }
@@ -409,7 +411,7 @@ class Wavefront {
     occluded_.assign(requests_.size(), 0);
     for (size_t k = 0; k < shadows_.packets.size(); ++k) {
       const Mask8 active = shadows_.Active(k);
-      const Mask8 occ = backend_.occluded8(backend_.accel, shadows_.packets[k], active) & active;
+      const Mask8 occ = kernels_.occluded8(kernels_.accel, shadows_.packets[k], active) & active;
       for (Mask8 m = occ; m != 0; m &= m - 1) {
         occluded_[shadows_.owner[k * kLanes + size_t(std::countr_zero(m))]] = 1;
       }
@@ -469,7 +471,7 @@ class Wavefront {
   };
 
   const Scene& scene_;
-  const TraversalBackend8& backend_;
+  const WavefrontKernels& kernels_;
   const VertexRules rules_;
   TileSampleStats* stats_;
 
@@ -502,14 +504,51 @@ class Wavefront {
   std::vector<uint32_t> nee_paths_;
 };
 
+// The oracle's traversal kernels: each active lane alone through Intersect1 / Occluded1.
+Mask8 OracleIntersect8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active,
+                       HitPacket8* hits) {
+  Mask8 got = 0;
+  for (Mask8 todo = active & kAllLanes; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    Hit h;
+    if (!Intersect1(*accel.bvh, GetLaneRay(rays, j), &h)) continue;
+    SetLaneHit(hits, j, h.t, h.b1, h.b2, h.prim);
+    got |= LaneBit(j);
+  }
+  return got;
+}
+
+Mask8 OracleOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active) {
+  Mask8 got = 0;
+  for (Mask8 todo = active & kAllLanes; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    if (Occluded1(*accel.bvh, GetLaneRay(rays, j))) got |= LaneBit(j);
+  }
+  return got;
+}
+
 }  // namespace
 
-void RenderTilePacket8(const RenderContext& ctx, const TraversalBackend8& backend,
+WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
+  return {.accel = {.bvh = &bvh},
+          .intersect8 = OracleIntersect8,
+          .occluded8 = OracleOccluded8,
+          .sobol2d = ScrambledSobol2DBatch,
+          .sobol1d = ScrambledSobol1DBatch,
+          .name = "scalar-oracle"};
+}
+
+bool ForceScalar() {
+  const char* v = std::getenv("PTLAB_FORCE_SCALAR");
+  return v != nullptr && v[0] != '\0' && std::strcmp(v, "0") != 0;
+}
+
+void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
                        TileSampleStats* stats, const PixelSampling* pixels) {
   if (x1 <= x0 || y1 <= y0 || s_end <= s_begin) return;
-  Wavefront wave(ctx, backend, stats);
+  Wavefront wave(ctx, kernels, stats);
   wave.RenderTile(camera, filter, x0, y0, x1, y1, s_begin, s_end, seed, block, pixels);
 }
 

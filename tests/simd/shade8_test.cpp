@@ -643,24 +643,5 @@ TEST(Shade8, ShadeHitsPartitionsByMaterial) {
   });
 }
 
-TEST(Shade8, ForceScalarRoutesToTheOracle) {
-  MaterialTables m;
-  Pcg32 rng(2, 2);
-  AddMaterialRows(&m, rng);
-  const ShadeData s = MakeShadeData(m, MaterialTag::kConductor, 100);
-  const size_t n = s.index.size();
-  ShadeResult r0(n), r1(n);
-  ptlab::ShadeBatch(m, MaterialTag::kConductor, s.index.data(), n, s.View(), r0.Out());
-  setenv("PTLAB_FORCE_SCALAR", "1", 1);
-  EXPECT_STREQ(simd::ShadeTargetName(), "scalar oracle");
-  simd::ShadeBatch(m, MaterialTag::kConductor, s.index.data(), n, s.View(), r1.Out());
-  unsetenv("PTLAB_FORCE_SCALAR");
-  for (size_t i = 0; i < n; ++i) {
-    ASSERT_EQ(r0.weight[0][i], r1.weight[0][i]);
-    ASSERT_EQ(r0.f[2][i], r1.f[2][i]);
-  }
-  EXPECT_STRNE(simd::ShadeTargetName(), "scalar oracle");
-}
-
 }  // namespace
 }  // namespace ptlab

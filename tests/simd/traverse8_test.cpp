@@ -24,10 +24,11 @@
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/packet_render.h"
+#include "engine/render/wavefront.h"
 #include "engine/io/xml_loader.h"
 #include "hwy/targets.h"
 #include "simd/bvh8.h"
-#include "simd/traverse8_backend.h"
+#include "simd/wavefront_kernels.h"
 #include "tests/engine/bvh/test_meshes.h"
 
 namespace ptlab::simd {
@@ -242,7 +243,7 @@ void CheckHit(const char* what, const Ray& r, const Expected& e, bool got, const
 RayPacket8 Pack(const std::vector<Ray>& rays, size_t base, Mask8 active) {
   RayPacket8 p;
   for (int j = 0; j < 8; ++j) {
-    const bool on = (active >> j) & 1;
+    const bool on = LaneActive(active, j);
     const Ray& r = rays[base + j];
     p.org_x[j] = on ? r.o.x : kNaN, p.org_y[j] = on ? r.o.y : kNaN;
     p.org_z[j] = on ? r.o.z : kNaN, p.dir_x[j] = on ? r.d.x : kNaN;
@@ -280,8 +281,8 @@ void CompareAll(const Bvh8& bvh8, const std::vector<Ray>& rays,
     for (int j = 0; j < 8; ++j) {
       const Ray& r = rays[base + j];
       const Expected& e = expected[base + j];
-      const bool on = (active >> j) & 1;
-      const bool lane_hit = (got >> j) & 1;
+      const bool on = LaneActive(active, j);
+      const bool lane_hit = LaneActive(got, j);
       if (!lane_hit) {
         // Lanes that are inactive or miss come back bit-identical.
         if (Bits(hits.t[j]) != kSentinel || Bits(hits.b1[j]) != kSentinel ||
@@ -292,7 +293,7 @@ void CompareAll(const Bvh8& bvh8, const std::vector<Ray>& rays,
       if (!on) continue;
       const Hit h{hits.t[j], hits.b1[j], hits.b2[j], hits.prim[j]};
       CheckHit(config.name, r, e, lane_hit, h, mm);
-      if ((((occ >> j) & 1) != 0) != e.occluded) {
+      if (LaneActive(occ, j) != e.occluded) {
         mm->Report(config.name, r, "Occluded8 differs from Occluded1");
       }
       if (single_ray) {
@@ -314,9 +315,7 @@ void ForEachTarget(Body body) {
   for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
     SCOPED_TRACE(hwy::TargetName(target));
-    if (!ForceScalar()) {
-      EXPECT_STREQ(Traverse8TargetName(), hwy::TargetName(target));
-    }
+    EXPECT_STREQ(Traverse8TargetName(), hwy::TargetName(target));
     saw_128 |= target == HWY_SSE4 || target == HWY_EMU128 || target == HWY_SCALAR;
     body();
   }
@@ -335,7 +334,6 @@ const Fixture& AdversarialFixture() {
 }
 
 TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
-  if (ForceScalar()) GTEST_SKIP() << "PTLAB_FORCE_SCALAR is set: the kernels are not used";
   const Fixture& f = AdversarialFixture();
   const Bvh8 bvh8 = BuildBvh8(f.bvh);
   // 2^20 rays per target through the default (hybrid) configuration; the single-ray kernels
@@ -364,7 +362,6 @@ TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
 }
 
 TEST(Traverse8, BinaryLeavesMatchOracle) {
-  if (ForceScalar()) GTEST_SKIP() << "PTLAB_FORCE_SCALAR is set: the kernels are not used";
   const Fixture& f = AdversarialFixture();
   const Bvh8 bvh8 = BuildBvh8(f.bvh, {.merge_leaf_size = 0});
   const std::vector<Ray> rays = MakeRays(f.table, f.bvh, size_t{1} << 16, 2);
@@ -378,7 +375,6 @@ TEST(Traverse8, BinaryLeavesMatchOracle) {
 }
 
 TEST(Traverse8, IntersectStreamMatchesOracle) {
-  if (ForceScalar()) GTEST_SKIP() << "PTLAB_FORCE_SCALAR is set: the kernels are not used";
   const Fixture& f = AdversarialFixture();
   const Bvh8 bvh8 = BuildBvh8(f.bvh);
   // An odd count, so the last packet is partial.
@@ -408,7 +404,6 @@ TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
   for (const uint32_t merge : {0u, 4u, 8u}) {
     const Bvh8 bvh8 = BuildBvh8(f.bvh, {.merge_leaf_size = merge});
     ASSERT_FALSE(bvh8.empty());
-    EXPECT_EQ(bvh8.source, &f.bvh);
     EXPECT_EQ(bvh8.num_triangles, f.bvh.leaf_triangles.size());
     EXPECT_LE(bvh8.depth, static_cast<uint32_t>(kBvhMaxDepth));
     std::vector<int> covered(bvh8.num_triangles, 0);
@@ -475,9 +470,9 @@ TEST(Traverse8, EmptyAndSingleTriangleScenes) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The packet render path (engine/render/packet_render.h on simd::Intersect8 / Occluded8)
-// against render.cpp's scalar tile loop: bit-identical film on the Nori scenes, for every
-// integrator.
+// The wavefront (engine/render/wavefront.h) with simd/'s kernel table and with the oracle's,
+// against the scalar tile loop (RenderTileScalar): bit-identical film on the Nori scenes, for
+// every integrator.
 
 struct RenderRun {
   Image image;
@@ -486,7 +481,7 @@ struct RenderRun {
 
 // Renders the whole image tile by tile (odd tile sizes, so packets straddle tile edges and
 // partial packets occur) into one film block, with the scalar loop or the packet path.
-RenderRun RenderWith(const Scene& scene, const Bvh& bvh, const TraversalBackend8* backend,
+RenderRun RenderWith(const Scene& scene, const Bvh& bvh, const WavefrontKernels* kernels,
                      uint32_t spp) {
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
@@ -501,10 +496,10 @@ RenderRun RenderWith(const Scene& scene, const Bvh& bvh, const TraversalBackend8
       // Two passes of samples, as the driver does.
       for (uint32_t s0 = 0; s0 < spp; s0 += 2) {
         const uint32_t s1 = std::min(spp, s0 + 2);
-        if (backend == nullptr) {
+        if (kernels == nullptr) {
           RenderTileScalar(ctx, camera, filter, x, y, x1, y1, s0, s1, 7, &block, &run.stats);
         } else {
-          RenderTilePacket8(ctx, *backend, camera, filter, x, y, x1, y1, s0, s1, 7, &block,
+          RenderTilePacket8(ctx, *kernels, camera, filter, x, y, x1, y1, s0, s1, 7, &block,
                             &run.stats);
         }
       }
@@ -535,8 +530,8 @@ void ExpectPacketRenderEqualsScalar(const std::string& path, int width) {
   scene.camera.height = int(std::lround(width / aspect));
   const Bvh bvh = BuildBvh(scene.triangles);
   const Bvh8 bvh8 = BuildBvh8(bvh);
-  const TraversalBackend8 packets = PacketTraversalBackend(bvh8);
-  const TraversalBackend8 oracle = ScalarTraversalBackend(bvh);
+  const WavefrontKernels packets = SimdWavefrontKernels(bvh8);
+  const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
   using Type = IntegratorDesc::Type;
   const Type own = scene.integrator.type;
   for (const SamplerType sampler : {SamplerType::kIndependent, SamplerType::kSobol}) {
@@ -616,7 +611,7 @@ TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
   ASSERT_EQ(scene.integrator.type, IntegratorDesc::Type::kPathMis);
   const Bvh bvh = BuildBvh(scene.triangles);
   const Bvh8 bvh8 = BuildBvh8(bvh);
-  const TraversalBackend8 packets = PacketTraversalBackend(bvh8);
+  const WavefrontKernels packets = SimdWavefrontKernels(bvh8);
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
   const RenderContext ctx{scene, bvh};

@@ -21,7 +21,7 @@ struct Variant {
 struct VariantTarget {
   explicit VariantTarget(Scene* s) : scene(s) {}
   Scene* scene;
-  bool scalar = false;  // trace with the scalar oracle instead of 8-wide packets
+  bool scalar = false;  // render with the scalar oracle's kernels instead of simd/'s
   AdaptiveSampling adaptive;  // off unless the variant sets it
 };
 

@@ -109,7 +109,8 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
                   "frame of the 2015-16 Nori that rendered the eth2015 references)")
       ->check(CLI::IsMember({"nori", "nori2015"}));
   cmd->add_flag("--scalar", cl->render.scalar,
-                "Trace one ray at a time with the scalar oracle (same as PTLAB_FORCE_SCALAR=1)");
+                "Render with the scalar oracle's kernels, one ray at a time (same as "
+                "PTLAB_FORCE_SCALAR=1)");
   cmd->add_flag("--stats", cl->render.stats,
                 "Print the fraction of time in traversal, shading and sampling, and packet "
                 "occupancy");

@@ -12,10 +12,11 @@
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
+#include "engine/render/wavefront.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
-#include "simd/traverse8_backend.h"
+#include "simd/wavefront_kernels.h"
 #include "tools/converge/convergence.h"
 #include "tools/converge/variant.h"
 #include "tools/imgdiff/imgdiff.h"
@@ -28,13 +29,18 @@ constexpr int kExitRender = 1, kExitUsage = 2, kExitInterrupted = 130;
 constexpr int kAutoReferenceFactor = 16;
 constexpr uint64_t kAutoReferenceSeed = 0x5eed0fef;
 
-// A scene with what every run of it shares: BVHs and the packet backend.
+// A scene with what every run of it shares: BVHs and the two kernel tables.
 struct LoadedScene {
   std::string path, stem;
   Scene scene;
   Bvh bvh;
   simd::Bvh8 bvh8;
-  TraversalBackend8 backend;
+  WavefrontKernels simd_kernels, oracle_kernels;
+
+  // path=scalar or PTLAB_FORCE_SCALAR=1: the oracle's table (as `ptlab render --scalar`).
+  const WavefrontKernels* Kernels(bool scalar) const {
+    return scalar || ForceScalar() ? &oracle_kernels : &simd_kernels;
+  }
   Image reference;
   std::string reference_note;
 };
@@ -73,7 +79,7 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
   options.threads = args.threads;
   options.seed = seed;
   options.cancel = interrupted;
-  options.packets = target.scalar ? nullptr : &ls.backend;
+  options.kernels = ls.Kernels(target.scalar);
   options.adaptive = target.adaptive;
   const int w = scene.camera.width, h = scene.camera.height;
   FilmBlock halves[2] = {FilmBlock(0, 0, w, h), FilmBlock(0, 0, w, h)};
@@ -193,7 +199,8 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     }
     ls->bvh = BuildBvh(ls->scene.triangles);
     ls->bvh8 = simd::BuildBvh8(ls->bvh);
-    ls->backend = simd::PacketTraversalBackend(ls->bvh8);
+    ls->simd_kernels = simd::SimdWavefrontKernels(ls->bvh8);
+    ls->oracle_kernels = OracleWavefrontKernels(ls->bvh);
     if (!auto_ref) {
       StatusOr<Image> ref = ReadImage(args.refs[i]);
       Status st = ref.ok() ? CheckReference(*ref, ls->scene, "reference " + args.refs[i])
@@ -221,7 +228,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     o.threads = run_args.threads;
     o.seed = kAutoReferenceSeed;
     o.cancel = interrupted;
-    o.packets = t.scalar ? nullptr : &ls->backend;
+    o.kernels = ls->Kernels(t.scalar);
     std::fprintf(stderr, "converge: %s: rendering the reference (variant %s, %dx the budget)\n",
                  ls->stem.c_str(), variants[0].name.c_str(), kAutoReferenceFactor);
     RenderResult r = Render(scene, ls->bvh, o);

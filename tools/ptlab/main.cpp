@@ -26,14 +26,14 @@
 #include "engine/render/integrator.h"
 #include "engine/render/camera.h"
 #include "engine/render/render.h"
+#include "engine/render/wavefront.h"
 #include "engine/io/text_parsing.h"
 #include "engine/scene/scene_limits.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
-#include "simd/targets.h"
 #include "simd/traverse8.h"
-#include "simd/traverse8_backend.h"
+#include "simd/wavefront_kernels.h"
 #include "tools/chi2/nori_tests.h"
 #include "tools/mpi/mpi_render.h"
 #include "tools/mpi/mpi_session.h"
@@ -133,13 +133,8 @@ Status WriteTileTimes(const std::string& path, const RenderResult& r) {
   return WriteFileAtomically(path, out.str());
 }
 
-// --stats: where the thread time of the packet path went, and how full its packets were.
-void PrintStats(const RenderResult& r, int threads, bool packets) {
-  if (!packets) {
-    std::fprintf(stderr, "stats: %.2f Mrays in %.2f s; the stage breakdown is measured on the "
-                 "packet path (run without --scalar)\n", double(r.rays) * 1e-6, r.seconds);
-    return;
-  }
+// --stats: where the thread time of the wavefront went, and how full its packets were.
+void PrintStats(const RenderResult& r, int threads) {
   const StageSeconds& t = r.stage_seconds;
   const double total = t.total();
   auto pct = [&](double x) { return total > 0 ? 100.0 * x / total : 0.0; };
@@ -313,20 +308,22 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                  mpi.active() ? (" x " + std::to_string(mpi.size()) + " ranks").c_str() : "",
                  scene.triangles.size());
   const Bvh bvh = BuildBvh(scene.triangles);
-  const bool packets = !args.scalar && !simd::ForceScalar();
+  // The one switch between the kernel tables: --scalar or PTLAB_FORCE_SCALAR=1 picks the
+  // oracle's, which renders the same bits one ray at a time.
+  const bool packets = !args.scalar && !ForceScalar();
   simd::Bvh8 bvh8;
-  TraversalBackend8 backend;
+  WavefrontKernels kernels = OracleWavefrontKernels(bvh);
   if (packets) {
     bvh8 = simd::BuildBvh8(bvh);
-    backend = simd::PacketTraversalBackend(bvh8);
-    options.packets = &backend;
+    kernels = simd::SimdWavefrontKernels(bvh8);
   }
+  options.kernels = &kernels;
   const std::string traversal = packets ? std::string("packet8 ") + simd::Traverse8TargetName()
                                         : std::string("scalar");
   if (mpi.root()) std::fprintf(stderr, "ptlab: traversal: %s\n",
                packets ? ("8-wide packets, Highway target " +
                           std::string(simd::Traverse8TargetName())).c_str()
-                       : "scalar oracle (one ray at a time)");
+                       : "scalar oracle kernels (one ray at a time)");
   std::signal(SIGINT, OnInterrupt);
   std::signal(SIGTERM, OnInterrupt);
   const RenderResult result = Render(scene, bvh, options);
@@ -340,7 +337,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   }
   if (!quiet) reporter.Finish();
   if (!mpi.root()) return result.interrupted ? interrupted_code : 0;  // rank 0 writes the film
-  if (args.stats) PrintStats(result, options.threads * mpi.size(), packets);
+  if (args.stats) PrintStats(result, options.threads * mpi.size());
 
   if (result.nonfinite_samples > 0)
     std::fprintf(stderr, "warning: dropped %llu NaN/Inf samples (first at pixel %d,%d)\n",

@@ -4,7 +4,7 @@
 #include "engine/bvh/bvh.h"
 #include "engine/render/render.h"
 #include "simd/bvh8.h"
-#include "simd/traverse8_backend.h"
+#include "simd/wavefront_kernels.h"
 
 namespace ptlab {
 
@@ -12,8 +12,8 @@ namespace ptlab {
 inline RenderResult RenderWithPackets(const Scene& scene, RenderOptions options) {
   const Bvh bvh = BuildBvh(scene.triangles);
   const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
-  const TraversalBackend8 backend = simd::PacketTraversalBackend(bvh8);
-  options.packets = &backend;
+  const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8);
+  options.kernels = &kernels;
   return Render(scene, bvh, options);
 }
 

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -99,6 +100,28 @@ TEST(PtlabCli, SamplerOption) {
   EXPECT_FALSE(fs::exists(dir / "x.exr"));
 }
 
+// The two lines --stats prints: stage percentages, then rays and packets.
+struct StatsLines {
+  double total = 0, wall = 0, traversal = -1, shading = -1, sampling = -1, film = -1;
+  int threads = 0;
+  unsigned long long rays = 0, packets = 0;
+  double lanes = 0;
+};
+
+bool ParseStats(const std::string& log, StatsLines* s) {
+  const size_t at = log.find("stats: ");
+  if (at == std::string::npos) return false;
+  const size_t at2 = log.find("stats: ", at + 1);
+  return at2 != std::string::npos &&
+         std::sscanf(log.c_str() + at,
+                     "stats: %lf s of thread time in stages (%lf s wall x %d threads): "
+                     "traversal %lf %%, shading %lf %%, sampling %lf %%, film %lf %%",
+                     &s->total, &s->wall, &s->threads, &s->traversal, &s->shading, &s->sampling,
+                     &s->film) == 7 &&
+         std::sscanf(log.c_str() + at2, "stats: %llu rays in %llu packets (%lf of 8", &s->rays,
+                     &s->packets, &s->lanes) == 3;
+}
+
 // --stats: the stage fractions of the packet path add up to 100 %, the packets are counted.
 TEST(PtlabCli, StatsReportsStagesAndPackets) {
   const fs::path dir = TempDir("cli_stats");
@@ -106,37 +129,56 @@ TEST(PtlabCli, StatsReportsStagesAndPackets) {
                              " --spp 8 --width 96 --height 72 -q --stats";
   ASSERT_EQ(RunPtlab(render, dir / "log"), 0) << ReadFile(dir / "log");
   const std::string log = ReadFile(dir / "log");
-  double total = 0, wall = 0, traversal = -1, shading = -1, sampling = -1, film = -1;
-  int threads = 0;
-  const size_t at = log.find("stats: ");
-  ASSERT_NE(at, std::string::npos) << log;
-  ASSERT_EQ(std::sscanf(log.c_str() + at,
-                        "stats: %lf s of thread time in stages (%lf s wall x %d threads): "
-                        "traversal %lf %%, shading %lf %%, sampling %lf %%, film %lf %%",
-                        &total, &wall, &threads, &traversal, &shading, &sampling, &film),
-            7)
-      << log;
-  EXPECT_GT(total, 0.0);
-  EXPECT_GT(traversal, 0.0);
-  EXPECT_GT(shading, 0.0);
-  EXPECT_GT(sampling, 0.0);
-  EXPECT_NEAR(traversal + shading + sampling + film, 100.0, 0.25);
-  unsigned long long rays = 0, packets = 0;
-  double lanes = 0;
-  const size_t at2 = log.find("stats: ", at + 1);
-  ASSERT_NE(at2, std::string::npos) << log;
-  ASSERT_EQ(std::sscanf(log.c_str() + at2, "stats: %llu rays in %llu packets (%lf of 8", &rays,
-                        &packets, &lanes),
-            3)
-      << log;
-  EXPECT_GT(rays, 0u);
-  EXPECT_GE(rays, packets);
-  EXPECT_LE(rays, 8 * packets);
-  EXPECT_NEAR(lanes, double(rays) / double(packets), 0.01);
-  EXPECT_LE(lanes, 8.0);
-  // The scalar oracle says what it can and cannot break down.
+  StatsLines s;
+  ASSERT_TRUE(ParseStats(log, &s)) << log;
+  EXPECT_GT(s.total, 0.0);
+  EXPECT_GT(s.traversal, 0.0);
+  EXPECT_GT(s.shading, 0.0);
+  EXPECT_GT(s.sampling, 0.0);
+  EXPECT_NEAR(s.traversal + s.shading + s.sampling + s.film, 100.0, 0.25);
+  EXPECT_GT(s.rays, 0u);
+  EXPECT_GE(s.rays, s.packets);
+  EXPECT_LE(s.rays, 8 * s.packets);
+  EXPECT_NEAR(s.lanes, double(s.rays) / double(s.packets), 0.01);
+  EXPECT_LE(s.lanes, 8.0);
+  // --scalar runs the same wavefront on the oracle's kernel table: the same rays in the same
+  // packets, and its stages are broken down as well.
   ASSERT_EQ(RunPtlab(render + " --scalar", dir / "log2"), 0) << ReadFile(dir / "log2");
-  EXPECT_NE(ReadFile(dir / "log2").find("measured on the packet path"), std::string::npos);
+  const std::string log2 = ReadFile(dir / "log2");
+  EXPECT_NE(log2.find("traversal: scalar oracle kernels"), std::string::npos) << log2;
+  StatsLines oracle;
+  ASSERT_TRUE(ParseStats(log2, &oracle)) << log2;
+  EXPECT_GT(oracle.traversal, 0.0);
+  EXPECT_NEAR(oracle.traversal + oracle.shading + oracle.sampling + oracle.film, 100.0, 0.25);
+  EXPECT_EQ(oracle.rays, s.rays);
+  EXPECT_EQ(oracle.packets, s.packets);
+}
+
+// --scalar and PTLAB_FORCE_SCALAR=1 are one switch: the oracle's kernel table, which renders the
+// image of simd/'s bit for bit.
+TEST(PtlabCli, ScalarFlagAndForceScalarPickTheOracleKernels) {
+  const fs::path dir = TempDir("cli_force_scalar");
+  const std::string render =
+      "render " + kScenes + "/cbox.xml --spp 2 --width 40 --height 30 --seed 3 -q -o ";
+  ASSERT_EQ(RunPtlab(render + (dir / "simd.exr").string(), dir / "log0"), 0)
+      << ReadFile(dir / "log0");
+  EXPECT_EQ(ReadFile(dir / "log0").find("scalar oracle kernels"), std::string::npos);
+  ASSERT_EQ(RunPtlab(render + (dir / "flag.exr").string() + " --scalar", dir / "log1"), 0)
+      << ReadFile(dir / "log1");
+  EXPECT_NE(ReadFile(dir / "log1").find("traversal: scalar oracle kernels"), std::string::npos);
+  const std::string env_command = "PTLAB_FORCE_SCALAR=1 " + kPtlab + " " + render +
+                                  (dir / "env.exr").string() + " > " + (dir / "log2").string() +
+                                  " 2>&1";
+  ASSERT_EQ(std::system(env_command.c_str()), 0) << ReadFile(dir / "log2");
+  EXPECT_NE(ReadFile(dir / "log2").find("traversal: scalar oracle kernels"), std::string::npos);
+  StatusOr<Image> simd = ReadImage((dir / "simd.exr").string());
+  StatusOr<Image> flag = ReadImage((dir / "flag.exr").string());
+  StatusOr<Image> env = ReadImage((dir / "env.exr").string());
+  ASSERT_TRUE(simd.ok() && flag.ok() && env.ok());
+  ASSERT_EQ(simd->rgb.size(), flag->rgb.size());
+  ASSERT_EQ(simd->rgb.size(), env->rgb.size());
+  EXPECT_EQ(std::memcmp(simd->rgb.data(), flag->rgb.data(), simd->rgb.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(simd->rgb.data(), env->rgb.data(), simd->rgb.size() * sizeof(float)), 0);
 }
 
 TEST(PtlabCli, BadInputIsAClearErrorAndWritesNothing) {

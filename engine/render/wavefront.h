@@ -1,0 +1,88 @@
+// The wavefront render path (wavefront.cpp) and the typed table of its stage kernels, which the
+// scalar oracle (engine/) and simd/ each implement once.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/bvh/bvh.h"
+#include "engine/core/packet8.h"
+#include "engine/render/camera.h"
+#include "engine/render/film.h"
+#include "engine/render/filter.h"
+#include "engine/render/integrator.h"
+#include "engine/render/packet_render.h"
+
+namespace ptlab {
+
+namespace simd {
+struct Bvh8;  // simd/bvh8.h; engine/ only hands it to the SIMD table's kernels
+}  // namespace simd
+
+/// The acceleration structures the traversal kernels read, world space. The oracle's kernels
+/// read `bvh`, simd/'s read `bvh8` (a BVH8 collapsed from it); a table leaves the other null.
+/// Both must outlive the table.
+struct WavefrontAccel {
+  const Bvh* bvh = nullptr;
+  const simd::Bvh8* bvh8 = nullptr;
+};
+
+/// The stage kernels of the wavefront, one table per implementation: OracleWavefrontKernels
+/// (engine/, the reference) and simd::SimdWavefrontKernels (simd/wavefront_kernels.h). Every
+/// slot is set. The wavefront calls them in a fixed order with the same inputs whichever table
+/// it runs, so a table whose kernels meet their contracts renders the oracle's image.
+struct WavefrontKernels {
+  WavefrontAccel accel;
+
+  // Traversal stage. Contract of both: simd::Intersect8 / simd::Occluded8 (simd/traverse8.h),
+  // bit-identical to Intersect1 / Occluded1 lane by lane: only lanes in `active` are read, and
+  // a lane that misses or is inactive is not written.
+  Mask8 (*intersect8)(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active,
+                      HitPacket8* hits) = nullptr;
+  Mask8 (*occluded8)(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active) = nullptr;
+
+  // Sampling stage: the Sobol' sampler's batch draws (engine/sampling/sobol.h; contract:
+  // bit-identical to those oracles). The wavefront draws a decision's numbers for all its
+  // paths with one call when the scene's sampler is `sobol`.
+  void (*sobol2d)(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim, size_t n,
+                  float* x, float* y) = nullptr;
+  void (*sobol1d)(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim, size_t n,
+                  float* x) = nullptr;
+
+  // Planned slots (issue 11, the SIMD shading stage), each a batch over a wave's SoA columns
+  // with its scalar twin in this table's oracle:
+  //   interaction: hit records -> shading points (p, n, frame, uv, material ref), wo;
+  //   bsdf:        per material tag over a tag-partitioned batch: sample, eval, pdf
+  //                (oracle engine/bsdf/shade_batch.h, SIMD simd/shade8.h);
+  //   emitter:     emitter samples (area lights, environment map, distant disk, point) with
+  //                their pdfs and MIS weights, and the shadow rays' setup;
+  //   splat:       a wave's samples into the film block through a precomputed filter table.
+
+  /// For logs: "scalar-oracle" or the Highway target the SIMD kernels dispatch to.
+  const char* name = "";
+};
+
+/// The oracle's table: Intersect1 / Occluded1 lane by lane on `bvh` and the scalar Sobol'
+/// batches. `bvh` must outlive the table.
+WavefrontKernels OracleWavefrontKernels(const Bvh& bvh);
+
+/// True when PTLAB_FORCE_SCALAR is set (to anything but "" or "0"): the tools then render with
+/// OracleWavefrontKernels, as `--scalar` does. The kernels themselves never read it.
+bool ForceScalar();
+
+/// Renders samples [s_begin, s_end) of pixels [x0, x1) x [y0, y1) into `block` as a wavefront:
+/// the paths of a few pixel rows and all the samples are generated as camera packets of 4x2
+/// pixels at one sample index, then bounce by bounce go through
+///   traversal (intersect8 per packet) -> shading (emission, environment) -> sampling (emitter
+///   samples, roulette, BSDF) -> shadow traversal (occluded8 per packet) -> accumulation,
+/// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
+/// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
+/// and samples are splatted in the scalar order (row, pixel, sample), so with kernels that meet
+/// their contracts the block is bit-identical to RenderTileScalar's. Every integrator type is
+/// supported.
+void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
+                       const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
+                       int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
+                       TileSampleStats* stats, const PixelSampling* pixels = nullptr);
+
+}  // namespace ptlab

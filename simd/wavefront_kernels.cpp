@@ -1,0 +1,30 @@
+// simd/'s table of the wavefront's stage kernels: simd/traverse8 and simd/sampler8.
+#include "simd/wavefront_kernels.h"
+
+#include "simd/sampler8.h"
+#include "simd/traverse8.h"
+
+namespace ptlab::simd {
+namespace {
+
+Mask8 SimdIntersect8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active,
+                     HitPacket8* hits) {
+  return Intersect8(*accel.bvh8, rays, active, hits);
+}
+
+Mask8 SimdOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active) {
+  return Occluded8(*accel.bvh8, rays, active);
+}
+
+}  // namespace
+
+WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
+  return {.accel = {.bvh8 = &bvh8},
+          .intersect8 = SimdIntersect8,
+          .occluded8 = SimdOccluded8,
+          .sobol2d = ScrambledSobol2DBatch,
+          .sobol1d = ScrambledSobol1DBatch,
+          .name = Traverse8TargetName()};
+}
+
+}  // namespace ptlab::simd
