@@ -211,9 +211,12 @@ HWY_INLINE void SampleCosineHemisphere(D8 d, V8 ux, V8 uy, V8* wx, V8* wy, V8* w
   const M8 x_major = hn::Gt(hn::Abs(ox), hn::Abs(oy));
   const V8 quarter_pi = hn::Set(d, kPi / 4);
   const V8 r = hn::IfThenElse(x_major, ox, oy);
-  const V8 theta =
+  // At the centre θ is 0/0: zeroed, because hwy::Cos/Sin convert NaN to int (undefined on
+  // EMU128; UBSan found it). Those lanes are 0 below either way.
+  const V8 theta = hn::IfThenZeroElse(
+      at_center,
       hn::IfThenElse(x_major, hn::Mul(quarter_pi, hn::Div(oy, ox)),
-                     hn::Sub(hn::Set(d, kPi / 2), hn::Mul(quarter_pi, hn::Div(ox, oy))));
+                     hn::Sub(hn::Set(d, kPi / 2), hn::Mul(quarter_pi, hn::Div(ox, oy)))));
   const V8 dx = hn::IfThenZeroElse(at_center, hn::Mul(r, hn::Cos(d, theta)));
   const V8 dy = hn::IfThenZeroElse(at_center, hn::Mul(r, hn::Sin(d, theta)));
   *wx = dx;
