@@ -155,8 +155,12 @@ std::string ExrHeaderError(const std::string& bytes) {
   });
   const uint64_t size = bytes.size();
   if (size < 8) return "truncated (no version field)";
-  const uint32_t flags = uint32_t(uint8_t(bytes[4])) | uint32_t(uint8_t(bytes[5])) << 8 |
-                         uint32_t(uint8_t(bytes[6])) << 16 | uint32_t(uint8_t(bytes[7])) << 24;
+  auto u32_at = [&](uint64_t at) {  // little endian, as EXR stores every integer
+    uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = v << 8 | uint8_t(bytes[size_t(at) + size_t(k)]);
+    return v;
+  };
+  const uint32_t flags = u32_at(4);
   const bool multipart = flags & 0x1000;
   const uint64_t max_name = (flags & 0x400) ? 255 : 31;
   uint64_t pos = 8;
@@ -177,10 +181,7 @@ std::string ExrHeaderError(const std::string& bytes) {
       }
       if (!read_name(&type)) return "corrupt header: attribute '" + name + "' has no type name";
       if (pos + 4 > size) return "truncated header at attribute '" + name + "'";
-      const int32_t value_size = int32_t(uint32_t(uint8_t(bytes[size_t(pos)])) |
-                                         uint32_t(uint8_t(bytes[size_t(pos) + 1])) << 8 |
-                                         uint32_t(uint8_t(bytes[size_t(pos) + 2])) << 16 |
-                                         uint32_t(uint8_t(bytes[size_t(pos) + 3])) << 24);
+      const int32_t value_size = int32_t(u32_at(pos));
       pos += 4;
       if (value_size < 0 || uint64_t(value_size) > size - pos) {
         return "corrupt header: attribute '" + name + "' (" + type + ") claims " +
@@ -679,10 +680,15 @@ Status WritePfm(const std::string& path, const Image& image) {
   return Status::Ok();
 }
 
-Status WriteImage(const std::string& path, const Image& image) {
+std::string LowercaseExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+Status WriteImage(const std::string& path, const Image& image) {
+  const std::string ext = LowercaseExtension(path);
   if (ext == ".exr") return WriteExr(path, image);
   if (ext == ".png") return WritePng(path, image);
   if (ext == ".pfm") return WritePfm(path, image);

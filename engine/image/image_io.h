@@ -33,6 +33,9 @@ ImageFormat DetectImageFormat(const unsigned char* bytes, size_t size);
 /// Errors name the file and what was wrong (missing, empty, truncated, unknown format, bad header).
 StatusOr<Image> ReadImage(const std::string& path);
 
+/// The extension of `path` in lower case, with its dot (".png"), or "": what WriteImage goes by.
+std::string LowercaseExtension(const std::string& path);
+
 /// ReadImage of bytes already in memory; `path` only names them in errors (the fuzz
 /// harnesses of tests/fuzz/ call this).
 StatusOr<Image> DecodeImage(const std::string& path, const std::string& bytes);

@@ -248,12 +248,6 @@ Image EnvironmentPdfDebugImage(const EnvironmentMapTable& t, uint32_t row) {
   return image;
 }
 
-bool IsPngPath(const std::string& path) {
-  std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : "";
-  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".png";
-}
-
 StatusOr<Image> EnvironmentPdfImage(const std::string& map_path, bool for_png) {
   StatusOr<Image> map = ReadImage(map_path);
   if (!map.ok()) return map.status();

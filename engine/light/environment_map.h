@@ -80,7 +80,4 @@ Image EnvironmentPdfDebugImage(const EnvironmentMapTable& table, uint32_t row);
 /// (no sRGB curve, as CS184 writes it); otherwise (.exr, .pfm) they are as they are.
 StatusOr<Image> EnvironmentPdfImage(const std::string& map_path, bool for_png);
 
-/// True when `path` ends in .png (any case).
-bool IsPngPath(const std::string& path);
-
 }  // namespace ptlab

@@ -438,7 +438,7 @@ int main(int argc, char** argv) {
                         : ptlab::RunNoriTestCommand(test_file, test_verbose);
   if (envmap_cmd->parsed()) {
     const ptlab::StatusOr<ptlab::Image> pdf =
-        ptlab::EnvironmentPdfImage(envmap_in, ptlab::IsPngPath(envmap_out));
+        ptlab::EnvironmentPdfImage(envmap_in, ptlab::LowercaseExtension(envmap_out) == ".png");
     if (!pdf.ok()) {  // the map cannot be read or used: bad input
       std::fprintf(stderr, "error: %s\n", pdf.status().message().c_str());
       return 2;
