@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <pugixml.hpp>
 #include <string_view>
 #include <utility>
@@ -28,12 +29,18 @@ using collada::Document;
 constexpr int kDefaultFilmWidth = 480;
 constexpr float kCs184FocalDistance = 4.7f;  // pathtracer -d default
 constexpr float kHuge = 3.0e38f;
+// A spot's cos(θ)^e falls to 1/e at 1 - cos θ ≈ 1/e: beyond this exponent that is under
+// ~1,000 float steps of cos θ below 1, a beam float cannot render faithfully.
+constexpr float kMaxFalloffExponent = 1.0e4f;
 
-// A light of <library_lights> as CS184 reads it.
+// A light of <library_lights> as CS184 reads it (directional and spot lights as COLLADA
+// defines them: CS184 reads no spot light).
 struct LightDesc {
-  enum class Kind { kPoint, kAmbient, kArea };
+  enum class Kind { kPoint, kAmbient, kArea, kDirectional, kSpot };
   Kind kind = Kind::kPoint;
   Color3f color;
+  float falloff_angle = 180.0f;   // spot: the full cone angle, degrees (COLLADA's default)
+  float falloff_exponent = 0.0f;  // spot: the cos θ exponent (COLLADA's default)
 };
 
 std::string Name(const pugi::xml_node& node) {
@@ -241,19 +248,40 @@ class ColladaReader {
       return CheckRadiance(area.child("color"), desc->color);
     }
     const std::string_view type = kind.name();
-    if (type == "directional" || type == "spot")
-      return doc_.NotSupported(kind, "light type");
     // CS184 reads the attenuation factors but its lights do not use them; neither does ptlab.
+    const bool attenuated = type == "point" || type == "spot";
     PTLAB_RETURN_IF_ERROR(doc_.CheckChildren(
-        kind, type == "point" ? std::initializer_list<std::string_view>{"color",
-                                                                      "constant_attenuation",
-                                                                      "linear_attenuation",
-                                                                      "quadratic_attenuation"}
-                              : std::initializer_list<std::string_view>{"color"}));
+        kind,
+        type == "spot"
+            ? std::initializer_list<std::string_view>{"color", "constant_attenuation",
+                                                      "linear_attenuation", "quadratic_attenuation",
+                                                      "falloff_angle", "falloff_exponent"}
+        : attenuated
+            ? std::initializer_list<std::string_view>{"color", "constant_attenuation",
+                                                      "linear_attenuation", "quadratic_attenuation"}
+            : std::initializer_list<std::string_view>{"color"}));
     if (!kind.child("color")) return doc_.Error(kind, std::string("<") + std::string(type) + "> has no <color>");
-    desc->kind = type == "point" ? LightDesc::Kind::kPoint : LightDesc::Kind::kAmbient;
+    desc->kind = type == "point"         ? LightDesc::Kind::kPoint
+                 : type == "spot"        ? LightDesc::Kind::kSpot
+                 : type == "directional" ? LightDesc::Kind::kDirectional
+                                         : LightDesc::Kind::kAmbient;
     PTLAB_RETURN_IF_ERROR(doc_.Color(kind.child("color"), &desc->color));
+    if (desc->kind == LightDesc::Kind::kSpot) PTLAB_RETURN_IF_ERROR(ReadSpotFalloff(kind, desc));
     return CheckRadiance(kind.child("color"), desc->color);
+  }
+
+  Status ReadSpotFalloff(const pugi::xml_node& spot, LightDesc* desc) const {
+    PTLAB_RETURN_IF_ERROR(doc_.OptionalFloat(spot, "falloff_angle", &desc->falloff_angle));
+    PTLAB_RETURN_IF_ERROR(doc_.OptionalFloat(spot, "falloff_exponent", &desc->falloff_exponent));
+    if (!(desc->falloff_angle > 0 && desc->falloff_angle <= 180))
+      return doc_.Error(spot.child("falloff_angle"),
+                        "falloff_angle is out of range; expected the full cone angle in degrees, "
+                        "in (0, 180]");
+    if (!(desc->falloff_exponent >= 0 && desc->falloff_exponent <= kMaxFalloffExponent))
+      return doc_.Error(spot.child("falloff_exponent"),
+                        "falloff_exponent is out of range; expected a number in [0, " +
+                            std::to_string(int(kMaxFalloffExponent)) + "]");
+    return Status::Ok();
   }
 
   Status CheckRadiance(const pugi::xml_node& node, const Color3f& c) const {
@@ -353,7 +381,9 @@ class ColladaReader {
       } else if (name == "scale") {
         float v[3];
         PTLAB_RETURN_IF_ERROR(doc_.FixedFloats(child, 3, v));
-        t = Transform::Scale({v[0], v[1], v[2]}).matrix();
+        // The matrix itself, not Transform::Scale (which inverts it): a zero factor is legal
+        // here and an error only where a singular transform matters (meshes, light axes).
+        t.m[0][0] = v[0], t.m[1][1] = v[1], t.m[2][2] = v[2];
       } else {
         continue;
       }
@@ -433,6 +463,30 @@ class ColladaReader {
         t.power.push_back(desc.color * (4.0f * kPi));
         return Status::Ok();
       }
+      case LightDesc::Kind::kDirectional: {
+        // COLLADA lights shine down their local -z.
+        Vec3f dir;
+        PTLAB_RETURN_IF_ERROR(LightAxis(instance, world, &dir));
+        DirectionalLightTable& t = scene_.directional_lights;
+        scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kDirectional, uint32_t(t.size())));
+        t.direction.push_back(dir);
+        t.radiance.push_back(desc.color);
+        return Status::Ok();
+      }
+      case LightDesc::Kind::kSpot: {
+        Vec3f axis;
+        PTLAB_RETURN_IF_ERROR(LightAxis(instance, world, &axis));
+        SpotLightTable& t = scene_.spot_lights;
+        scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kSpot, uint32_t(t.size())));
+        t.position.push_back(ApplyPoint(world, {0, 0, 0}));
+        t.axis.push_back(axis);
+        t.intensity.push_back(desc.color);
+        // cos(angle/2) = sin(90° - angle/2): exactly 0 for the default 180°.
+        t.cos_half_angle.push_back(
+            float(std::sin((180.0 - double(desc.falloff_angle)) * std::numbers::pi / 360.0)));
+        t.exponent.push_back(desc.falloff_exponent);
+        return Status::Ok();
+      }
       case LightDesc::Kind::kAmbient: {
         // CS184's InfiniteHemisphereLight: constant radiance over the upper hemisphere (+y).
         if (IsBlack(desc.color)) return Status::Ok();
@@ -457,6 +511,17 @@ class ColladaReader {
         return Status::Ok();
       }
     }
+    return Status::Ok();
+  }
+
+  // The world direction of a light node's local -z (unit); an error when the node's transform
+  // collapses it.
+  Status LightAxis(const pugi::xml_node& instance, const Matrix4& world, Vec3f* axis) const {
+    const Vec3f d = ApplyVector(world, {0, 0, -1});
+    const float length = Length(d);
+    if (!(length > 0) || !std::isfinite(length))
+      return doc_.Error(instance, "the light's node transform has no direction (local -z)");
+    *axis = d / length;
     return Status::Ok();
   }
 

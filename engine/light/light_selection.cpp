@@ -39,10 +39,12 @@ void BuildEmitterSelection(Scene* scene) {
   t.slot_environment.assign(scene->environment_maps.size(), 0);
   t.slot_disk.assign(scene->distant_disks.size(), 0);
   t.slot_point.assign(scene->point_lights.size(), 0);
+  t.slot_directional.assign(scene->directional_lights.size(), 0);
+  t.slot_spot.assign(scene->spot_lights.size(), 0);
   if (n == 0) return;
   const double radius = SceneRadius(scene->triangles);
-  // An infinite emitter in a scene without geometry lights nothing; a unit disk keeps it
-  // selectable.
+  // An infinite or directional emitter in a scene without geometry lights nothing; a unit
+  // disk keeps it selectable.
   const double disk_area = kPiD * std::max(radius * radius, 1.0);
   t.power.resize(n);
   double total = 0;
@@ -69,6 +71,21 @@ void BuildEmitterSelection(Scene* scene) {
         t.slot_point[i] = uint32_t(k);
         power = double(Luminance(scene->point_lights.power[i]));
         break;
+      case EmitterTag::kDirectional:
+        // pbrt-v4's DistantLight::Phi: the irradiance over the disk the scene's bounding sphere
+        // casts.
+        t.slot_directional[i] = uint32_t(k);
+        power = disk_area * double(Luminance(scene->directional_lights.radiance[i]));
+        break;
+      case EmitterTag::kSpot: {
+        // ∫ cos^e θ dω over the cone cos θ > c: 2π (1 - c^(e+1)) / (e + 1).
+        t.slot_spot[i] = uint32_t(k);
+        const double c = std::max(double(scene->spot_lights.cos_half_angle[i]), 0.0);
+        const double e1 = double(scene->spot_lights.exponent[i]) + 1.0;
+        power = 2.0 * kPiD * (1.0 - std::pow(c, e1)) / e1 *
+                double(Luminance(scene->spot_lights.intensity[i]));
+        break;
+      }
     }
     power = std::isfinite(power) ? std::max(power, 0.0) : 0.0;
     t.power[k] = float(power);

@@ -80,6 +80,8 @@ struct Scene {
   EnvironmentMapTable environment_maps;
   DistantDiskTable distant_disks;
   PointLightTable point_lights;
+  DirectionalLightTable directional_lights;
+  SpotLightTable spot_lights;
   std::vector<EmitterRef> emitters;  // all emitters, in selection order
   EmitterSelectionTable emitter_selection;
 
