@@ -12,6 +12,7 @@
 #include "engine/io/collada_document.h"
 #include "engine/io/collada_effect.h"
 #include "engine/io/collada_mesh.h"
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/light/distant_disk.h"
 #include "engine/io/mesh_builder.h"
 #include "engine/scene/scene_limits.h"
@@ -55,6 +56,23 @@ Vec3f ApplyPoint(const Matrix4& m, const Vec3f& p) {
 }
 Vec3f ApplyVector(const Matrix4& m, const Vec3f& v) {
   return ApplyPoint(m, v) - ApplyPoint(m, {0, 0, 0});
+}
+
+// True when the upper 3x3 of m is a rotation (or reflection) times one scale factor > 0, which
+// it stores in *scale: its columns are orthogonal and of one length, to float precision.
+bool UniformScale(const Matrix4& m, float* scale) {
+  const Vec3f c[3] = {{m.m[0][0], m.m[1][0], m.m[2][0]},
+                      {m.m[0][1], m.m[1][1], m.m[2][1]},
+                      {m.m[0][2], m.m[1][2], m.m[2][2]}};
+  const float l = Length(c[0]);
+  if (!(l > 0) || !std::isfinite(l)) return false;
+  constexpr float kTolerance = 1e-5f;
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::fabs(Length(c[i]) - l) <= kTolerance * l)) return false;
+    if (!(std::fabs(Dot(c[i], c[(i + 1) % 3])) <= kTolerance * l * l)) return false;
+  }
+  *scale = l;
+  return true;
 }
 
 Matrix4 Columns(const Vec3f& x, const Vec3f& y, const Vec3f& z, const Vec3f& p) {
@@ -135,12 +153,13 @@ class ColladaReader {
   void ExpandBounds(uint32_t first_triangle) {
     const TriangleTable& tri = scene_.triangles;
     for (uint32_t t = first_triangle; t < tri.size(); ++t)
-      for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)}) {
-        bounds_min_ = {std::min(bounds_min_.x, v.x), std::min(bounds_min_.y, v.y),
-                       std::min(bounds_min_.z, v.z)};
-        bounds_max_ = {std::max(bounds_max_.x, v.x), std::max(bounds_max_.y, v.y),
-                       std::max(bounds_max_.z, v.z)};
-      }
+      for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)}) ExpandBoundsTo(v);
+  }
+  void ExpandBoundsTo(const Vec3f& v) {
+    bounds_min_ = {std::min(bounds_min_.x, v.x), std::min(bounds_min_.y, v.y),
+                   std::min(bounds_min_.z, v.z)};
+    bounds_max_ = {std::max(bounds_max_.x, v.x), std::max(bounds_max_.y, v.y),
+                   std::max(bounds_max_.z, v.z)};
   }
 
   // <unit meter> and <up_axis>: world = rotate(up axis to +y) · scale(meter).
@@ -534,6 +553,21 @@ class ColladaReader {
     scene_.emitters.push_back(ref);
   }
 
+  // A CGL sphere of world centre c and radius r as a SphereTable row.
+  Status AddAnalyticSphere(const pugi::xml_node& instance, const Vec3f& c, float r,
+                           MaterialRef material) {
+    if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && r > 0 &&
+          std::isfinite(r)))
+      return doc_.Error(instance,
+                        "the sphere's node transform gives no finite centre and radius > 0");
+    if (scene_.spheres.size() + 1 >= kMaxSpheres)
+      return doc_.Error(instance, "too many spheres; at most " + std::to_string(kMaxSpheres - 1));
+    scene_.spheres.Append(c, r, material);
+    ExpandBoundsTo(c - Vec3f{r, r, r});
+    ExpandBoundsTo(c + Vec3f{r, r, r});
+    return Status::Ok();
+  }
+
   // Appends `mesh` through `world` (which must be invertible) and checks its coordinates.
   Status AddWorldMesh(const pugi::xml_node& instance, const MeshData& mesh, const Matrix4& world,
                       MaterialRef material, const std::string& name, uint32_t* row) {
@@ -610,12 +644,8 @@ class ColladaReader {
       }
       return MaterialOf(material, ref, radiance);
     };
-    const auto add = [&](const MeshData& mesh, const std::string& symbol,
-                         const pugi::xml_node& user) -> Status {
-      if (mesh.indices.empty()) return Status::Ok();
-      MaterialRef ref;
-      Color3f radiance;
-      PTLAB_RETURN_IF_ERROR(material_for(symbol, user, &ref, &radiance));
+    const auto add_mesh = [&](const MeshData& mesh, MaterialRef ref,
+                              const Color3f& radiance) -> Status {
       uint32_t row = 0;
       const uint32_t first = uint32_t(scene_.triangles.size());
       PTLAB_RETURN_IF_ERROR(AddWorldMesh(instance, mesh, world, ref, name, &row));
@@ -623,7 +653,26 @@ class ColladaReader {
       if (!IsBlack(radiance)) AddAreaEmitter(row, radiance);
       return Status::Ok();
     };
-    if (g.is_sphere) return add(MakeSphere({0, 0, 0}, g.sphere_radius), "", geometry);
+    const auto add = [&](const MeshData& mesh, const std::string& symbol,
+                         const pugi::xml_node& user) -> Status {
+      if (mesh.indices.empty()) return Status::Ok();
+      MaterialRef ref;
+      Color3f radiance;
+      PTLAB_RETURN_IF_ERROR(material_for(symbol, user, &ref, &radiance));
+      return add_mesh(mesh, ref, radiance);
+    };
+    if (g.is_sphere) {
+      MaterialRef ref;
+      Color3f radiance;
+      PTLAB_RETURN_IF_ERROR(material_for("", geometry, &ref, &radiance));
+      // An analytic sphere where it stays one: not emissive (area lights sample triangles) and
+      // under a similarity transform (a non-uniform scale makes an ellipsoid).
+      float scale = 0;
+      if (IsBlack(radiance) && UniformScale(world, &scale))
+        return AddAnalyticSphere(instance, ApplyPoint(world, {0, 0, 0}), g.sphere_radius * scale,
+                                 ref);
+      return add_mesh(MakeSphere({0, 0, 0}, g.sphere_radius), ref, radiance);
+    }
     for (const collada::MeshPart& part : g.parts)
       PTLAB_RETURN_IF_ERROR(add(part.mesh, part.material_symbol, part.node));
     return Status::Ok();

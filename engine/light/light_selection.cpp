@@ -11,18 +11,23 @@
 namespace ptlab {
 namespace {
 
-// Radius of a sphere around every triangle (0 without geometry): the disk an infinite emitter
-// shines on, pbrt's measure of an environment light's power.
-double SceneRadius(const TriangleTable& t) {
-  if (t.size() == 0) return 0.0;
+// Radius of a sphere around every triangle and analytic sphere (0 without geometry): the disk
+// an infinite or directional emitter shines on, pbrt's measure of such a light's power.
+double SceneRadius(const TriangleTable& t, const SphereTable& spheres) {
+  if (t.size() == 0 && spheres.size() == 0) return 0.0;
   Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
            std::numeric_limits<float>::max()};
   Vec3f hi = -lo;
-  for (size_t i = 0; i < t.size(); ++i) {
-    for (const Vec3f& v : {t.V0(i), t.V1(i), t.V2(i)}) {
-      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
+  const auto expand = [&lo, &hi](const Vec3f& v) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  };
+  for (size_t i = 0; i < t.size(); ++i)
+    for (const Vec3f& v : {t.V0(i), t.V1(i), t.V2(i)}) expand(v);
+  for (size_t i = 0; i < spheres.size(); ++i) {
+    const float r = spheres.radius[i];
+    expand(spheres.Center(i) - Vec3f{r, r, r});
+    expand(spheres.Center(i) + Vec3f{r, r, r});
   }
   return 0.5 * double(Length(hi - lo));
 }
@@ -42,7 +47,7 @@ void BuildEmitterSelection(Scene* scene) {
   t.slot_directional.assign(scene->directional_lights.size(), 0);
   t.slot_spot.assign(scene->spot_lights.size(), 0);
   if (n == 0) return;
-  const double radius = SceneRadius(scene->triangles);
+  const double radius = SceneRadius(scene->triangles, scene->spheres);
   // An infinite or directional emitter in a scene without geometry lights nothing; a unit
   // disk keeps it selectable.
   const double disk_area = kPiD * std::max(radius * radius, 1.0);

@@ -1,11 +1,35 @@
 // The shading point of a ray hit: position, normals and the components the hit refers to.
 #include "engine/render/interaction.h"
 
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/light/area_light.h"
 
 namespace ptlab {
 
-SurfaceInteraction MakeInteraction(const Scene& scene, const Hit& hit) {
+namespace {
+
+// pbrt-v4's Sphere: o + t d carries the error of t; re-projecting it onto the sphere brings it
+// to the surface's own precision (Physically Based Rendering 4th ed., §6.8.5).
+SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+  const uint32_t i = SphereHitRow(hit.prim);
+  const SphereTable& s = scene.spheres;
+  const Vec3f c = s.Center(i);
+  const Vec3f offset = ray.At(hit.t) - c;
+  const float len = Length(offset);
+  const Vec3f n = len > 0 ? offset / len : Vec3f{0, 0, 1};
+  SurfaceInteraction its;
+  its.prim = hit.prim;
+  its.p = c + n * s.radius[i];
+  its.ng = n;
+  its.frame = Frame(n);
+  its.material = s.material[i];
+  return its;
+}
+
+}  // namespace
+
+SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit);
   const uint32_t tri = hit.prim;
   const TriangleTable& t = scene.triangles;
   SurfaceInteraction its;

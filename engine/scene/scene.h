@@ -11,6 +11,7 @@
 #include "engine/scene/emitter_tables.h"
 #include "engine/scene/geometry_tables.h"
 #include "engine/scene/material_tables.h"
+#include "engine/scene/sphere_table.h"
 
 namespace ptlab {
 
@@ -75,6 +76,7 @@ struct Scene {
   TriangleShadingTable shading;
   VertexTable vertices;
   MeshTable meshes;
+  SphereTable spheres;  // analytic spheres, beside the triangles (BuildBvh takes both)
   MaterialTables materials;
   AreaLightTable area_lights;
   EnvironmentMapTable environment_maps;

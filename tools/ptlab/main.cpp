@@ -307,7 +307,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                  options.threads,
                  mpi.active() ? (" x " + std::to_string(mpi.size()) + " ranks").c_str() : "",
                  scene.triangles.size());
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   // The one switch between the kernel tables: --scalar or PTLAB_FORCE_SCALAR=1 picks the
   // oracle's, which renders the same bits one ray at a time.
   const bool packets = !args.scalar && !ForceScalar();

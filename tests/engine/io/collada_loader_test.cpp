@@ -364,13 +364,39 @@ TEST(ColladaLoader, CglSphere) {
   Parts p;
   p.geometries += "<geometry id=\"sph\"><extra><technique profile=\"CGL\"><sphere><radius>.5"
                   "</radius></sphere></technique></extra></geometry>\n";
-  p.nodes = "<node id=\"n\"><translate>0 1 0</translate><instance_geometry url=\"#sph\"/></node>\n";
-  const Scene s = LoadOk(p);
-  ASSERT_EQ(s.meshes.size(), 1u);
-  EXPECT_EQ(s.triangles.size(), size_t(2 * kSphereSegments * (kSphereRings - 1)));
+  p.effects = "<effect id=\"glow\">" +
+              std::string(
+                  "<extra><technique profile=\"CGL\"><emission>"
+                  "<radiance>1 1 1</radiance></emission></technique></extra>") +
+              "</effect>\n";
+  p.materials = "<material id=\"lamp\"><instance_effect url=\"#glow\"/></material>\n";
+  // Translated, and rotated and scaled uniformly: analytic spheres.
+  p.nodes =
+      "<node id=\"a\"><translate>0 1 0</translate><instance_geometry url=\"#sph\"/>"
+      "</node>\n<node id=\"b\"><translate>5 0 0</translate><rotate>1 1 0 30</rotate>"
+      "<scale>2 2 2</scale><instance_geometry url=\"#sph\"/></node>\n";
+  Scene s = LoadOk(p);
+  ASSERT_EQ(s.spheres.size(), 2u);
+  EXPECT_EQ(s.triangles.size(), 0u);
+  ExpectNear(s.spheres.Center(0), {0, 1, 0});
+  EXPECT_EQ(s.spheres.radius[0], 0.5f);
+  EXPECT_EQ(s.spheres.material[0].tag(), MaterialTag::kDiffuse);  // CS184's default
+  ExpectNear(s.spheres.Center(1), {5, 0, 0});
+  EXPECT_NEAR(s.spheres.radius[1], 1.0f, 1e-6f);
+  // A non-uniform scale (an ellipsoid) and an emissive sphere stay UV-sphere meshes.
+  p.nodes =
+      "<node id=\"a\"><translate>0 1 0</translate><scale>1 2 1</scale>"
+      "<instance_geometry url=\"#sph\"/></node>\n"
+      "<node id=\"b\"><instance_geometry url=\"#sph\"><bind_material><technique_common>"
+      "<instance_material symbol=\"x\" target=\"#lamp\"/></technique_common>"
+      "</bind_material></instance_geometry></node>\n";
+  s = LoadOk(p);
+  EXPECT_EQ(s.spheres.size(), 0u);
+  EXPECT_EQ(s.triangles.size(), size_t(2 * 2 * kSphereSegments * (kSphereRings - 1)));
   float max_y = -1;
   for (size_t t = 0; t < s.triangles.size(); ++t) max_y = std::max(max_y, s.triangles.V0(t).y);
-  EXPECT_FLOAT_EQ(max_y, 1.5f);
+  EXPECT_FLOAT_EQ(max_y, 2.0f);
+  ASSERT_EQ(s.area_lights.size(), 1u);
 }
 
 TEST(ColladaLoader, MalformedFilesNameFileAndLine) {

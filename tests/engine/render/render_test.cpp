@@ -80,7 +80,7 @@ TEST(Render, PointLightFollowsTheInverseSquareLaw) {
     SCOPED_TRACE(integrator);
     const Scene scene = LoadOrDie(xml(integrator));
     ASSERT_EQ(scene.point_lights.size(), 1u);
-    const Bvh bvh = BuildBvh(scene.triangles);
+    const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
     RenderOptions options;
     options.spp = 16;
     const RenderResult r = Render(scene, bvh, options);
@@ -144,7 +144,7 @@ Color3f FloorRadianceAt(Scene scene, float x, float z) {
       Transform::Translate({x, 1, z}) * Transform::Rotate({1, 0, 0}, 90);  // +z to -y
   scene.camera.fov_deg = 0.01f;
   scene.camera.width = scene.camera.height = 1;
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   RenderOptions options;
   options.spp = 16;
   const Color3f c = Render(scene, bvh, options).image.At(0, 0);
@@ -210,7 +210,7 @@ TEST(Render, SpotLightFollowsItsFalloffAndCone) {
 TEST(Render, SameImageForAnyThreadCount) {
   for (const char* integrator : {"direct_mis", "whitted"}) {
     const Scene scene = LoadOrDie(BoxScene(integrator, 5));
-    const Bvh bvh = BuildBvh(scene.triangles);
+    const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
     RenderOptions one;
     one.spp = 5;
     one.seed = 7;
@@ -236,7 +236,7 @@ TEST(Render, SameImageForAnyThreadCount) {
 
 TEST(Render, CancelledBeforeStartKeepsNothing) {
   const Scene scene = LoadOrDie(BoxScene("direct_ems", 4));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   std::atomic<bool> cancel{true};
   RenderOptions options;
   options.spp = 4;
@@ -248,7 +248,7 @@ TEST(Render, CancelledBeforeStartKeepsNothing) {
 
 TEST(Render, InterruptKeepsCompletedPasses) {
   const Scene scene = LoadOrDie(BoxScene("direct_ems", 64));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   std::atomic<bool> cancel{false};
   RenderOptions options;
   options.spp = 64;  // 4 passes of 16
@@ -275,7 +275,7 @@ TEST(Render, InterruptKeepsCompletedPasses) {
 // Mean radiance of the box image rendered with `integrator` at spp samples per pixel.
 double BoxMean(const char* integrator, uint32_t spp) {
   const Scene scene = LoadOrDie(BoxScene(integrator, int(spp)));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   RenderOptions options;
   options.spp = spp;
   options.threads = 2;
