@@ -836,16 +836,15 @@ HWY_INLINE uint32_t TraverseLanes(const Bvh8& bvh, PacketState* s, uint32_t live
 // Spheres beside the BVH (a scene holds a handful): every sphere against every live lane.
 
 // IntersectSphere1 (engine/bvh/sphere_intersect.h) on one vector of rays, operation for
-// operation (contraction off: bit-identical). Returns the lanes with a root in (t_min, t_max)
-// and that root in *t.
-HWY_INLINE MF IntersectSphereLanes(DF d, VF cx, VF cy, VF cz, VF r, VF ox, VF oy, VF oz, VF dx,
-                                   VF dy, VF dz, VF t_min, VF t_max, VF* t) {
+// operation (contraction off: bit-identical), with c = SphereOriginC given per lane. Returns the
+// lanes with a root in (t_min, t_max) and that root in *t.
+HWY_INLINE MF IntersectSphereLanes(DF d, VF cx, VF cy, VF cz, VF r, VF c, VF ox, VF oy, VF oz,
+                                   VF dx, VF dy, VF dz, VF t_min, VF t_max, VF* t) {
   const VF zero = hn::Zero(d);
   const VF fx = hn::Sub(ox, cx), fy = hn::Sub(oy, cy), fz = hn::Sub(oz, cz);
   const VF a = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
   const VF b = hn::Add(hn::Add(hn::Mul(fx, dx), hn::Mul(fy, dy)), hn::Mul(fz, dz));
   const VF r2 = hn::Mul(r, r);
-  const VF c = hn::Sub(hn::Add(hn::Add(hn::Mul(fx, fx), hn::Mul(fy, fy)), hn::Mul(fz, fz)), r2);
   const VF s = hn::Div(b, a);
   const VF vx = hn::Sub(fx, hn::Mul(s, dx)), vy = hn::Sub(fy, hn::Mul(s, dy)),
            vz = hn::Sub(fz, hn::Mul(s, dz));
@@ -891,11 +890,16 @@ HWY_INLINE uint32_t SphereLanes(const Bvh8& bvh, const RayPacket8& rays, PacketS
     VI prim = hn::Load(di, s->best_prim + i);
     MF any = hn::FirstN(d, 0);  // no lane
     for (uint32_t k = 0; k < sp.size(); ++k) {
+      // c in double, lane by lane, with the oracle's own function.
+      alignas(32) float c[8];
+      for (size_t j = 0; j < lanes; ++j)
+        c[j] = SphereOriginC(s->o_x[i + j], s->o_y[i + j], s->o_z[i + j], sp.center_x[k],
+                             sp.center_y[k], sp.center_z[k], sp.radius[k]);
       VF t;
       const MF hit = hn::And(
           on, IntersectSphereLanes(d, hn::Set(d, sp.center_x[k]), hn::Set(d, sp.center_y[k]),
-                                   hn::Set(d, sp.center_z[k]), hn::Set(d, sp.radius[k]), ox, oy, oz,
-                                   dx, dy, dz, t_min, best, &t));
+                                   hn::Set(d, sp.center_z[k]), hn::Set(d, sp.radius[k]),
+                                   hn::Load(d, c), ox, oy, oz, dx, dy, dz, t_min, best, &t));
       any = hn::Or(any, hit);
       if (kAnyHit) continue;
       best = hn::IfThenElse(hit, t, best);

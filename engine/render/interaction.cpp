@@ -8,18 +8,15 @@ namespace ptlab {
 
 namespace {
 
-// pbrt-v4's Sphere: o + t d carries the error of t; re-projecting it onto the sphere brings it
-// to the surface's own precision (Physically Based Rendering 4th ed., §6.8.5).
+// A sphere hit: o + t d carries the error of t; re-projected onto the sphere (pbrt-v4,
+// Physically Based Rendering 4th ed., §6.8.5) it is as exact as the surface allows.
 SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
   const uint32_t i = SphereHitRow(hit.prim);
   const SphereTable& s = scene.spheres;
-  const Vec3f c = s.Center(i);
-  const Vec3f offset = ray.At(hit.t) - c;
-  const float len = Length(offset);
-  const Vec3f n = len > 0 ? offset / len : Vec3f{0, 0, 1};
   SurfaceInteraction its;
+  Vec3f n;
+  its.p = ProjectOntoSphere(ray.At(hit.t), s.Center(i), s.radius[i], &n);
   its.prim = hit.prim;
-  its.p = c + n * s.radius[i];
   its.ng = n;
   its.frame = Frame(n);
   its.material = s.material[i];

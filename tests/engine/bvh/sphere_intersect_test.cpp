@@ -8,6 +8,9 @@
 #include <cmath>
 
 #include "engine/bvh/intersect1.h"
+#include "engine/bvh/ray_offset.h"
+#include "engine/core/rng.h"
+#include "tests/engine/bvh/test_meshes.h"
 
 namespace ptlab {
 namespace {
@@ -102,6 +105,47 @@ TEST(SphereIntersect, TinyAndHugeSpheresFarFromTheOrigin) {
                          Ray{{0, -0.5f, 0}, {0, 1, 0}, 0.0f, 1e30f}}) {
     ASSERT_TRUE(Hit1(g, 1e4f, ray, &t));
     EXPECT_LT(std::fabs(SurfaceDistance(g, 1e4f, ray, t)), 2e-3);  // ulp(1e4) = 9.8e-4
+  }
+}
+
+// Secondary rays leave a sphere from its surface point pushed off by OffsetRayOrigin (as the
+// integrators spawn them): outward they never meet the sphere again, inward (glass) they meet
+// its far side (a point on the sphere at least half the chord 2 r |cos θ| away), never the
+// surface they start on. Spheres far from the origin included, down to radii 30 times the
+// offset (256 ulps of the coordinates, which also moves the origin sideways).
+TEST(SphereIntersect, SpawnedRaysLeaveOrCrossTheSphere) {
+  Pcg32 rng(77, 3);
+  const struct {
+    Vec3f c;
+    float r;
+  } spheres[] = {{{0, 0, 0}, 1},
+                 {{1000, -500, 200}, 0.5f},
+                 {{0, 0, 0}, 1e-3f},
+                 {{0, -1e4f, 0}, 1e4f},
+                 {{3, 4, 5}, 100}};
+  for (const auto& sp : spheres) {
+    SCOPED_TRACE(sp.r);
+    int crossed = 0;
+    for (int i = 0; i < 20000; ++i) {
+      Vec3f n = bvh_test::UniformSphereDirection(rng);
+      // As MakeInteraction places a sphere hit.
+      const Vec3f p = ProjectOntoSphere(sp.c + n * sp.r, sp.c, sp.r, &n);
+      Vec3f d = bvh_test::UniformSphereDirection(rng);
+      const float cos_theta = Dot(d, n);
+      if (std::fabs(cos_theta) < 0.1f) continue;
+      const bool inward = cos_theta < 0;
+      const Ray ray{OffsetRayOrigin(p, inward ? -n : n), d, 0.0f, 1e30f};
+      float t = 0;
+      const bool hit = Hit1(sp.c, sp.r, ray, &t);
+      ASSERT_EQ(hit, inward) << "cos " << cos_theta;
+      if (!hit) continue;
+      ++crossed;
+      const double chord = 2.0 * double(sp.r) * std::fabs(double(cos_theta));
+      const Vec3f q = ray.At(t);
+      ASSERT_NEAR(Length(q - sp.c), sp.r, 1e-6 * (Length(sp.c) + sp.r));
+      ASSERT_GT(Length(q - p), 0.5 * chord);
+    }
+    EXPECT_GT(crossed, 8000);
   }
 }
 
