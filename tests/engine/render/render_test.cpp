@@ -158,7 +158,8 @@ Color3f FloorRadianceAt(Scene scene, float x, float z) {
 // A Lambertian surface under a directional light of radiance E at incidence θ sends out
 // albedo/π · E cos θ: 0.5/π · 2π (1, 2, 3) = (1, 2, 3) head-on, half that at θ = 60°.
 TEST(Render, DirectionalLightGivesTheLambertianRadiance) {
-  const std::string sun = "<directional><color>6.2831853 12.566371 18.849556</color></directional>";
+  const std::string sun =
+      "<directional><color>6.2831853 12.566371 18.849556</color></directional>";
   // The light's -z turned to -y (head-on), then tilted 60° about z.
   const Scene head_on = FloorUnderColladaLight(sun, "<rotate>1 0 0 -90</rotate>");
   ASSERT_EQ(head_on.directional_lights.size(), 1u);
@@ -168,11 +169,21 @@ TEST(Render, DirectionalLightGivesTheLambertianRadiance) {
     EXPECT_NEAR(c.g, 2.0f, 2e-5f);
     EXPECT_NEAR(c.b, 3.0f, 3e-5f);
   }
-  const Scene tilted =
+  // Every integrator that samples emitters sees it, MIS or not (a delta light gets no MIS
+  // weight: BSDF sampling cannot reach it); BSDF sampling alone sees nothing.
+  Scene tilted =
       FloorUnderColladaLight(sun, "<rotate>0 0 1 60</rotate><rotate>1 0 0 -90</rotate>");
-  const Color3f c = FloorRadianceAt(tilted, 1.0f, -2.0f);
-  EXPECT_NEAR(c.r, 0.5f, 1e-5f);
-  EXPECT_NEAR(c.b, 1.5f, 2e-5f);
+  using T = IntegratorDesc::Type;
+  for (const T type : {T::kDirectEms, T::kDirectMis, T::kWhitted, T::kPathEms, T::kPathMis}) {
+    SCOPED_TRACE(IntegratorTypeName(type));
+    tilted.integrator.type = type;
+    tilted.integrator.max_depth = -1;
+    const Color3f c = FloorRadianceAt(tilted, 1.0f, -2.0f);
+    EXPECT_NEAR(c.r, 0.5f, 1e-5f);
+    EXPECT_NEAR(c.b, 1.5f, 2e-5f);
+  }
+  tilted.integrator.type = T::kDirectMats;
+  EXPECT_EQ(FloorRadianceAt(tilted, 1.0f, -2.0f).g, 0.0f);
   // From below the horizon the floor gets nothing.
   const Scene below = FloorUnderColladaLight(sun, "<rotate>1 0 0 90</rotate>");
   EXPECT_EQ(FloorRadianceAt(below, 0.0f, 0.0f).g, 0.0f);
