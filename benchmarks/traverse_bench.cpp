@@ -532,7 +532,7 @@ RenderBench* GetRenderScene(IntegratorDesc::Type type) {
     r->scene->camera.width = 200;
     r->scene->camera.height = 150;
     r->scene->integrator.type = type;
-    r->bvh = BuildBvh(r->scene->triangles);
+    r->bvh = BuildBvh(r->scene->triangles, r->scene->spheres);
     r->bvh8 = simd::BuildBvh8(r->bvh);
   }
   return cache.emplace(static_cast<int>(type), std::move(r)).first->second.get();

@@ -58,7 +58,9 @@ struct Bvh8 {
   AlignedVector<uint32_t> prim;
   uint32_t num_triangles = 0;
   uint32_t depth = 0;  // nodes on the longest root-to-leaf path
+  SphereTable spheres;  // the Bvh's spheres, tested beside the tree by every ray
 
+  /// No triangle can be hit (spheres may still be).
   bool empty() const { return nodes.empty(); }
 };
 
@@ -66,7 +68,7 @@ struct Bvh8 {
 /// opening the inner child of largest surface area first (Wald et al. 2008, "Getting rid of
 /// packets"). Child boxes are the binary nodes' boxes bit for bit, and the binary leaves (or
 /// merged subtrees) keep their triangles, so traversal visits the same triangles the oracle
-/// would. O(nodes); keeps no reference to `bvh`.
+/// would; its spheres are copied. O(nodes); keeps no reference to `bvh`.
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options = {});
 
 }  // namespace ptlab::simd

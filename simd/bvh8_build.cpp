@@ -160,6 +160,7 @@ class Collapser {
 
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options) {
   Bvh8 out;
+  out.spheres = bvh.spheres;
   if (bvh.empty()) return out;
   PTLAB_CHECK(bvh.leaf_triangles.size() < kBvh8MaxTriangles);
   Collapser(bvh, options, &out).Run();

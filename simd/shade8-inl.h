@@ -403,14 +403,16 @@ inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, boo
 }
 
 /// MirrorSample (engine/bsdf/mirror.h); Eval and Pdf are 0.
-inline void ShadeMirror(const ShadeIo& io, size_t n, bool eval) {
-  ForEachBlock(io, n, [eval](const ShadeIo& b, size_t i) HWY_ATTR {
+inline void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool eval) {
+  ForEachBlock(io, n, [&t, eval](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+    const V8 rr = Gather(d, t.reflectance_r, b.index, i),
+             rg = Gather(d, t.reflectance_g, b.index, i),
+             rb = Gather(d, t.reflectance_b, b.index, i);
     if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
-    StoreSample(d, b, i, hn::Gt(oz, zero), hn::Neg(ox), hn::Neg(oy), oz, one, one, one, one,
-                one);
+    StoreSample(d, b, i, hn::Gt(oz, zero), hn::Neg(ox), hn::Neg(oy), oz, rr, rg, rb, one, one);
   });
 }
 
@@ -652,7 +654,7 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
     case MaterialTag::kDiffuse:
       return ShadeDiffuse(m.diffuse, io, n, eval);
     case MaterialTag::kMirror:
-      return ShadeMirror(io, n, eval);
+      return ShadeMirror(m.mirror, io, n, eval);
     case MaterialTag::kDielectric:
       return ShadeDielectric(m.dielectric, io, n, eval);
     case MaterialTag::kConductor:

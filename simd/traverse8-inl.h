@@ -15,6 +15,7 @@
 #include <limits>
 #include <utility>
 
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/bvh/watertight_triangle.h"
 #include "engine/core/check.h"
 #include "hwy/cache_control.h"
@@ -832,15 +833,101 @@ HWY_INLINE uint32_t TraverseLanes(const Bvh8& bvh, PacketState* s, uint32_t live
 }
 
 // ---------------------------------------------------------------------------------------------
+// Spheres beside the BVH (a scene holds a handful): every sphere against every live lane.
+
+// IntersectSphere1 (engine/bvh/sphere_intersect.h) on one vector of rays, operation for
+// operation (contraction off: bit-identical), with c = SphereOriginC given per lane. Returns the
+// lanes with a root in (t_min, t_max) and that root in *t.
+HWY_INLINE MF IntersectSphereLanes(DF d, VF cx, VF cy, VF cz, VF r, VF c, VF ox, VF oy, VF oz,
+                                   VF dx, VF dy, VF dz, VF t_min, VF t_max, VF* t) {
+  const VF zero = hn::Zero(d);
+  const VF fx = hn::Sub(ox, cx), fy = hn::Sub(oy, cy), fz = hn::Sub(oz, cz);
+  const VF a = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
+  const VF b = hn::Add(hn::Add(hn::Mul(fx, dx), hn::Mul(fy, dy)), hn::Mul(fz, dz));
+  const VF r2 = hn::Mul(r, r);
+  const VF s = hn::Div(b, a);
+  const VF vx = hn::Sub(fx, hn::Mul(s, dx)), vy = hn::Sub(fy, hn::Mul(s, dy)),
+           vz = hn::Sub(fz, hn::Mul(s, dz));
+  const VF disc = hn::Sub(r2, hn::Add(hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy)), hn::Mul(vz, vz)));
+  const MF real = hn::Ge(disc, zero);
+  // Lanes without real roots take the square root of 0 (no NaN); they are masked out below.
+  const VF root = hn::Sqrt(hn::Mul(a, hn::IfThenElseZero(real, disc)));
+  const VF q = hn::IfThenElse(hn::Lt(b, zero), hn::Sub(root, b), hn::Neg(hn::Add(b, root)));
+  const VF q_a = hn::Div(q, a), c_q = hn::Div(c, q);
+  const MF swap = hn::Gt(q_a, c_q);
+  const VF t0 = hn::IfThenElse(swap, c_q, q_a), t1 = hn::IfThenElse(swap, q_a, c_q);
+  const MF in0 = hn::And(hn::Gt(t0, t_min), hn::Lt(t0, t_max));
+  const MF in1 = hn::And(hn::Gt(t1, t_min), hn::Lt(t1, t_max));
+  *t = hn::IfThenElse(in0, t0, t1);
+  return hn::And(real, hn::Or(in0, in1));
+}
+
+// Closest hit: the live lanes' best hits so far (triangles, or t_max) updated with the
+// spheres', in row order as IntersectSpheres1 does (b1 = b2 = 0 for a sphere).
+// Any hit: returns the lanes of `live` that meet a sphere before their t_max.
+template <bool kAnyHit>
+HWY_INLINE uint32_t SphereLanes(const Bvh8& bvh, const RayPacket8& rays, PacketState* s,
+                                uint32_t live) {
+  const DF d;
+  const DI di;
+  const size_t lanes = hn::Lanes(d);
+  const uint32_t half_mask = (1u << lanes) - 1;
+  const SphereTable& sp = bvh.spheres;
+  uint32_t hit_lanes = 0;
+  for (size_t i = 0; i < 8; i += lanes) {
+    const uint32_t on_bits = (live >> i) & half_mask;
+    if (on_bits == 0) continue;
+    const MF on = MaskFromBits(d, on_bits);
+    const VF one = hn::Set(d, 1.0f);
+    // Dead lanes compute with o = 0, d = (1, 1, 1) (no NaN) and are masked out.
+    const VF ox = hn::Load(d, s->o_x + i), oy = hn::Load(d, s->o_y + i),
+             oz = hn::Load(d, s->o_z + i);
+    const VF dx = hn::IfThenElse(on, hn::Load(d, rays.dir_x + i), one);
+    const VF dy = hn::IfThenElse(on, hn::Load(d, rays.dir_y + i), one);
+    const VF dz = hn::IfThenElse(on, hn::Load(d, rays.dir_z + i), one);
+    const VF t_min = hn::Load(d, s->wt.t_min + i);
+    VF best = kAnyHit ? hn::Load(d, s->wt.t_max + i) : hn::Load(d, s->best_t + i);
+    VI prim = hn::Load(di, s->best_prim + i);
+    MF any = hn::FirstN(d, 0);  // no lane
+    for (uint32_t k = 0; k < sp.size(); ++k) {
+      // c in double, lane by lane, with the oracle's own function.
+      alignas(32) float c[8];
+      for (size_t j = 0; j < lanes; ++j)
+        c[j] = SphereOriginC(s->o_x[i + j], s->o_y[i + j], s->o_z[i + j], sp.center_x[k],
+                             sp.center_y[k], sp.center_z[k], sp.radius[k]);
+      VF t;
+      const MF hit = hn::And(
+          on, IntersectSphereLanes(d, hn::Set(d, sp.center_x[k]), hn::Set(d, sp.center_y[k]),
+                                   hn::Set(d, sp.center_z[k]), hn::Set(d, sp.radius[k]),
+                                   hn::Load(d, c), ox, oy, oz, dx, dy, dz, t_min, best, &t));
+      any = hn::Or(any, hit);
+      if (kAnyHit) continue;
+      best = hn::IfThenElse(hit, t, best);
+      prim = hn::IfThenElse(hn::RebindMask(di, hit),
+                            hn::Set(di, static_cast<int32_t>(kSphereHitBit | k)), prim);
+    }
+    hit_lanes |= MaskBits(d, any) << i;
+    if (kAnyHit) continue;
+    hn::Store(best, d, s->best_t + i);
+    hn::Store(prim, di, s->best_prim + i);
+    hn::Store(hn::IfThenElseZero(hn::Not(any), hn::Load(d, s->best_b1 + i)), d, s->best_b1 + i);
+    hn::Store(hn::IfThenElseZero(hn::Not(any), hn::Load(d, s->best_b2 + i)), d, s->best_b2 + i);
+  }
+  return hit_lanes;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Entry points (dispatched from simd/traverse8.cpp).
 
 HWY_INLINE Mask8 Intersect8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
                                   HitPacket8* hits, const Traverse8Options& options) {
-  if (bvh.empty()) return 0;
+  const bool spheres = bvh.spheres.size() != 0;
+  if (bvh.empty() && !spheres) return 0;
   PacketState s;
   const Mask8 live = SetupPacket(rays, active & kAllLanes, &s);
   if (live == 0) return 0;
-  TraverseLanes<false>(bvh, &s, live, options);
+  if (!bvh.empty()) TraverseLanes<false>(bvh, &s, live, options);
+  if (spheres) SphereLanes<false>(bvh, rays, &s, live);
   Mask8 result = 0;
   for (uint32_t bits = live; bits != 0; bits &= bits - 1) {
     const int j = std::countr_zero(bits);
@@ -856,18 +943,24 @@ HWY_INLINE Mask8 Intersect8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8
 
 HWY_INLINE Mask8 Occluded8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
                                  const Traverse8Options& options) {
-  if (bvh.empty()) return 0;
+  const bool spheres = bvh.spheres.size() != 0;
+  if (bvh.empty() && !spheres) return 0;
   PacketState s;
   const Mask8 live = SetupPacket(rays, active & kAllLanes, &s);
   if (live == 0) return 0;
-  return TraverseLanes<true>(bvh, &s, live, options);
+  const Mask8 done = bvh.empty() ? 0 : TraverseLanes<true>(bvh, &s, live, options);
+  if (!spheres || done == live) return done;
+  return done | SphereLanes<true>(bvh, rays, &s, live & ~done);
 }
 
+// The single-ray kernels test the spheres with the oracle's own scalar code (bit-identical by
+// construction); only the packet kernels need the vector twin.
 HWY_INLINE bool Intersect1Kernel(const Bvh8& bvh, const Ray& ray, Hit* hit) {
-  if (bvh.empty() || !(ray.t_min < ray.t_max)) return false;
-  const SingleRay r = MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max);
+  if (!(ray.t_min < ray.t_max)) return false;
   LaneBest best{ray.t_max, kNoHit, 0.0f, 0.0f};
-  TraverseSingle<false>(bvh, 0, r, &best);
+  if (!bvh.empty())
+    TraverseSingle<false>(bvh, 0, MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max), &best);
+  if (IntersectSpheres1(bvh.spheres, ray, &best.t, &best.prim)) best.b1 = best.b2 = 0.0f;
   if (best.prim == kNoHit) return false;
   hit->t = best.t;
   hit->b1 = best.b1;
@@ -877,10 +970,12 @@ HWY_INLINE bool Intersect1Kernel(const Bvh8& bvh, const Ray& ray, Hit* hit) {
 }
 
 HWY_INLINE bool Occluded1Kernel(const Bvh8& bvh, const Ray& ray) {
-  if (bvh.empty() || !(ray.t_min < ray.t_max)) return false;
-  const SingleRay r = MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max);
+  if (!(ray.t_min < ray.t_max)) return false;
   LaneBest best{ray.t_max, kNoHit, 0.0f, 0.0f};
-  return TraverseSingle<true>(bvh, 0, r, &best);
+  if (!bvh.empty() &&
+      TraverseSingle<true>(bvh, 0, MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max), &best))
+    return true;
+  return OccludedSpheres1(bvh.spheres, ray);
 }
 
 }  // namespace HWY_NAMESPACE

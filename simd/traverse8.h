@@ -14,11 +14,13 @@ namespace ptlab::simd {
 // Every function here runs a Highway kernel (hn::CappedTag<float, 8>: one 8-lane vector on
 // AVX2/AVX-512, two 4-lane halves on SSE4) chosen at run time among the compiled targets
 // (simd/targets.h). Oracle: ptlab::Intersect1 / ptlab::Occluded1 (engine/bvh/intersect1.h) on
-// the binary Bvh the Bvh8 was built from. Contract, per ray: the same hit or miss, the same
-// primitive, and t, b1, b2 bit-identical (the kernel performs the oracle's float operations in
-// the oracle's order, with FMA contraction disabled, and the same double-precision fallback
-// on edges). The oracle's own packet kernels are OracleWavefrontKernels'
-// (engine/render/wavefront.h), which `--scalar` / PTLAB_FORCE_SCALAR=1 render with.
+// the binary Bvh the Bvh8 was built from, spheres included (tested after the tree, packets
+// with an 8-wide twin of IntersectSphere1, engine/bvh/sphere_intersect.h). Contract, per ray:
+// the same hit or miss, the same primitive, and t, b1, b2 bit-identical (the kernel performs
+// the oracle's float operations in the oracle's order, with FMA contraction disabled, and the
+// same double-precision fallback on edges). The oracle's own packet kernels are
+// OracleWavefrontKernels' (engine/render/wavefront.h), which `--scalar` / PTLAB_FORCE_SCALAR=1
+// render with.
 
 /// Tuning of packet traversal (defaults are the measured best; see benchmarks/).
 struct Traverse8Options {

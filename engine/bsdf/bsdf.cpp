@@ -57,7 +57,7 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
     case MaterialTag::kDiffuse:
       return DiffuseSample(m.diffuse.Albedo(ref.index()), wo, u2, sample);
     case MaterialTag::kMirror:
-      return MirrorSample(wo, sample);
+      return MirrorSample(m.mirror.Reflectance(ref.index()), wo, sample);
     case MaterialTag::kDielectric: {
       const uint32_t i = ref.index();
       const float eta = m.dielectric.int_ior[i] / m.dielectric.ext_ior[i];

@@ -8,6 +8,7 @@
 #include "engine/core/ray.h"
 #include "engine/core/vec.h"
 #include "engine/scene/geometry_tables.h"
+#include "engine/scene/sphere_table.h"
 
 namespace ptlab {
 
@@ -45,12 +46,14 @@ static_assert(sizeof(BvhNode) == 32, "BvhNode must stay 32 bytes");
 
 /// A BVH that owns a leaf-ordered copy of the triangle positions (so traversal reads leaves
 /// contiguously) and the map from leaf order back to scene triangle rows.
-/// An empty `nodes` means nothing can be hit. Triangles with a non-finite coordinate or zero
-/// area (repeated or collinear vertices) are left out: they can never be hit.
+/// An empty `nodes` means no triangle can be hit. Triangles with a non-finite coordinate or
+/// zero area (repeated or collinear vertices) are left out: they can never be hit. The scene's
+/// analytic spheres ride along outside the tree (a scene holds a handful; every ray tests all).
 struct Bvh {
   std::vector<BvhNode> nodes;       // nodes[0] is the root
   TriangleTable leaf_triangles;     // positions in leaf order
   AlignedVector<uint32_t> prim_id;  // leaf order -> scene TriangleTable row
+  SphereTable spheres;              // copy of the scene's spheres (rows = sphere hit ids)
 
   bool empty() const { return nodes.empty(); }
 };
@@ -59,5 +62,7 @@ struct Bvh {
 /// most kBvhMaxLeafSize triangles and depth below kBvhMaxDepth. Single-threaded, O(n log n);
 /// deterministic for a given table.
 Bvh BuildBvh(const TriangleTable& triangles);
+/// The same with the scene's analytic spheres beside the tree (fewer than kMaxSpheres).
+Bvh BuildBvh(const TriangleTable& triangles, const SphereTable& spheres);
 
 }  // namespace ptlab

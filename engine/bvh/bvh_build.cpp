@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/bvh/bvh.h"
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/core/check.h"
 
 namespace ptlab {
@@ -339,6 +340,13 @@ class Builder {
 Bvh BuildBvh(const TriangleTable& triangles) {
   Bvh bvh;
   Builder(triangles, &bvh).Build();
+  return bvh;
+}
+
+Bvh BuildBvh(const TriangleTable& triangles, const SphereTable& spheres) {
+  PTLAB_CHECK(spheres.size() < kMaxSpheres);
+  Bvh bvh = BuildBvh(triangles);
+  bvh.spheres = spheres;
   return bvh;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/bvh/watertight_triangle.h"
 #include "engine/core/check.h"
 
@@ -81,9 +82,8 @@ struct StackEntry {
   float t_entry;
 };
 
-}  // namespace
-
-bool Intersect1(const Bvh& bvh, const Ray& ray, Hit* hit) {
+// The triangles' closest hit (the BVH).
+bool IntersectTriangles1(const Bvh& bvh, const Ray& ray, Hit* hit) {
   if (bvh.nodes.empty() || !(ray.t_min < ray.t_max)) return false;
   const BvhNode* nodes = bvh.nodes.data();
   const SlabRay slab = MakeSlabRay(ray);
@@ -155,7 +155,8 @@ bool Intersect1(const Bvh& bvh, const Ray& ray, Hit* hit) {
   }
 }
 
-bool Occluded1(const Bvh& bvh, const Ray& ray) {
+// Any triangle hit (the BVH).
+bool OccludedTriangles1(const Bvh& bvh, const Ray& ray) {
   if (bvh.nodes.empty() || !(ray.t_min < ray.t_max)) return false;
   const BvhNode* nodes = bvh.nodes.data();
   const SlabRay slab = MakeSlabRay(ray);
@@ -194,6 +195,26 @@ bool Occluded1(const Bvh& bvh, const Ray& ray) {
     if (stack_size == 0) return false;
     current = stack[--stack_size];
   }
+}
+
+}  // namespace
+
+bool Intersect1(const Bvh& bvh, const Ray& ray, Hit* hit) {
+  if (!(ray.t_min < ray.t_max)) return false;
+  const bool triangle = IntersectTriangles1(bvh, ray, hit);
+  // Spheres after the triangles, strictly nearer only: a tie keeps the triangle (the lower id).
+  float t_max = triangle ? hit->t : ray.t_max;
+  uint32_t prim = kNoHit;
+  if (!IntersectSpheres1(bvh.spheres, ray, &t_max, &prim)) return triangle;
+  hit->t = t_max;
+  hit->b1 = hit->b2 = 0.0f;
+  hit->prim = prim;
+  return true;
+}
+
+bool Occluded1(const Bvh& bvh, const Ray& ray) {
+  if (!(ray.t_min < ray.t_max)) return false;
+  return OccludedTriangles1(bvh, ray) || OccludedSpheres1(bvh.spheres, ray);
 }
 
 }  // namespace ptlab

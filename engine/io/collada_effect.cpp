@@ -21,6 +21,14 @@ Status RequiredColor(const Document& doc, const pugi::xml_node& node, const char
   return doc.Color(child, c);
 }
 
+// A reflectance of `what` must not create energy: each channel <= 1 (>= 0 is Color's check).
+Status CheckReflectance(const Document& doc, const pugi::xml_node& node, const Color3f& c,
+                        const char* what) {
+  if (!(c.r <= 1 && c.g <= 1 && c.b <= 1))
+    return doc.Error(node, std::string(what) + " above 1; expected values in [0, 1]");
+  return Status::Ok();
+}
+
 Status ReadCgl(const Document& doc, const pugi::xml_node& technique, Effect* e) {
   pugi::xml_node bsdf;
   for (const pugi::xml_node child : technique.children()) {
@@ -39,12 +47,12 @@ Status ReadCgl(const Document& doc, const pugi::xml_node& technique, Effect* e) 
     PTLAB_RETURN_IF_ERROR(doc.CheckChildren(bsdf, {"reflectance"}));
     e->model = M::kDiffuse;
     PTLAB_RETURN_IF_ERROR(RequiredColor(doc, bsdf, "reflectance", &e->reflectance));
-    if (!(e->reflectance.r <= 1 && e->reflectance.g <= 1 && e->reflectance.b <= 1))
-      return doc.Error(bsdf, "diffuse reflectance above 1; expected values in [0, 1]");
+    PTLAB_RETURN_IF_ERROR(CheckReflectance(doc, bsdf, e->reflectance, "diffuse reflectance"));
   } else if (kind == "mirror") {
     PTLAB_RETURN_IF_ERROR(doc.CheckChildren(bsdf, {"reflectance"}));
     e->model = M::kMirror;
     PTLAB_RETURN_IF_ERROR(RequiredColor(doc, bsdf, "reflectance", &e->reflectance));
+    PTLAB_RETURN_IF_ERROR(CheckReflectance(doc, bsdf, e->reflectance, "mirror reflectance"));
   } else if (kind == "glass" || kind == "refraction") {
     PTLAB_RETURN_IF_ERROR(
         doc.CheckChildren(bsdf, {"reflectance", "transmittance", "roughness", "ior"}));
@@ -118,8 +126,7 @@ Status ReadCommon(const Document& doc, const pugi::xml_node& profile, Effect* e)
       return doc.NotSupported(diffuse.child("texture"), "textured diffuse color");
     if (!diffuse.child("color")) return doc.Error(diffuse, "<diffuse> has no <color>");
     PTLAB_RETURN_IF_ERROR(doc.Color(diffuse.child("color"), &e->reflectance));
-    if (!(e->reflectance.r <= 1 && e->reflectance.g <= 1 && e->reflectance.b <= 1))
-      return doc.Error(diffuse, "diffuse color above 1; expected values in [0, 1]");
+    PTLAB_RETURN_IF_ERROR(CheckReflectance(doc, diffuse, e->reflectance, "diffuse color"));
   }
   return Status::Ok();
 }
@@ -145,10 +152,7 @@ StatusOr<MaterialRef> AddEffectMaterial(const Document& doc, const Effect& e,
   switch (e.model) {
     case M::kDiffuse: return materials->AddDiffuse(e.reflectance);
     case M::kEmission: return materials->AddDiffuse({0, 0, 0});
-    case M::kMirror:
-      if (!IsWhite(e.reflectance))
-        return doc.NotSupported(e.node, "mirror reflectance other than 1 1 1");
-      return materials->AddMirror();
+    case M::kMirror: return materials->AddMirror(e.reflectance);
     case M::kGlass:
     case M::kRefraction: {
       uint8_t flags = kDielectricSchlick | kDielectricScaleRadiance;

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <pugixml.hpp>
 #include <string_view>
 #include <utility>
@@ -11,6 +12,7 @@
 #include "engine/io/collada_document.h"
 #include "engine/io/collada_effect.h"
 #include "engine/io/collada_mesh.h"
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/light/distant_disk.h"
 #include "engine/io/mesh_builder.h"
 #include "engine/scene/scene_limits.h"
@@ -28,12 +30,18 @@ using collada::Document;
 constexpr int kDefaultFilmWidth = 480;
 constexpr float kCs184FocalDistance = 4.7f;  // pathtracer -d default
 constexpr float kHuge = 3.0e38f;
+// A spot's cos(θ)^e falls to 1/e at 1 - cos θ ≈ 1/e: beyond this exponent that is under
+// ~1,000 float steps of cos θ below 1, a beam float cannot render faithfully.
+constexpr float kMaxFalloffExponent = 1.0e4f;
 
-// A light of <library_lights> as CS184 reads it.
+// A light of <library_lights> as CS184 reads it (directional and spot lights as COLLADA
+// defines them: CS184 reads no spot light).
 struct LightDesc {
-  enum class Kind { kPoint, kAmbient, kArea };
+  enum class Kind { kPoint, kAmbient, kArea, kDirectional, kSpot };
   Kind kind = Kind::kPoint;
   Color3f color;
+  float falloff_angle = 180.0f;   // spot: the full cone angle, degrees (COLLADA's default)
+  float falloff_exponent = 0.0f;  // spot: the cos θ exponent (COLLADA's default)
 };
 
 std::string Name(const pugi::xml_node& node) {
@@ -48,6 +56,23 @@ Vec3f ApplyPoint(const Matrix4& m, const Vec3f& p) {
 }
 Vec3f ApplyVector(const Matrix4& m, const Vec3f& v) {
   return ApplyPoint(m, v) - ApplyPoint(m, {0, 0, 0});
+}
+
+// True when the upper 3x3 of m is a rotation (or reflection) times one scale factor > 0, which
+// it stores in *scale: its columns are orthogonal and of one length, to float precision.
+bool UniformScale(const Matrix4& m, float* scale) {
+  const Vec3f c[3] = {{m.m[0][0], m.m[1][0], m.m[2][0]},
+                      {m.m[0][1], m.m[1][1], m.m[2][1]},
+                      {m.m[0][2], m.m[1][2], m.m[2][2]}};
+  const float l = Length(c[0]);
+  if (!(l > 0) || !std::isfinite(l)) return false;
+  constexpr float kTolerance = 1e-5f;
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::fabs(Length(c[i]) - l) <= kTolerance * l)) return false;
+    if (!(std::fabs(Dot(c[i], c[(i + 1) % 3])) <= kTolerance * l * l)) return false;
+  }
+  *scale = l;
+  return true;
 }
 
 Matrix4 Columns(const Vec3f& x, const Vec3f& y, const Vec3f& z, const Vec3f& p) {
@@ -128,12 +153,13 @@ class ColladaReader {
   void ExpandBounds(uint32_t first_triangle) {
     const TriangleTable& tri = scene_.triangles;
     for (uint32_t t = first_triangle; t < tri.size(); ++t)
-      for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)}) {
-        bounds_min_ = {std::min(bounds_min_.x, v.x), std::min(bounds_min_.y, v.y),
-                       std::min(bounds_min_.z, v.z)};
-        bounds_max_ = {std::max(bounds_max_.x, v.x), std::max(bounds_max_.y, v.y),
-                       std::max(bounds_max_.z, v.z)};
-      }
+      for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)}) ExpandBoundsTo(v);
+  }
+  void ExpandBoundsTo(const Vec3f& v) {
+    bounds_min_ = {std::min(bounds_min_.x, v.x), std::min(bounds_min_.y, v.y),
+                   std::min(bounds_min_.z, v.z)};
+    bounds_max_ = {std::max(bounds_max_.x, v.x), std::max(bounds_max_.y, v.y),
+                   std::max(bounds_max_.z, v.z)};
   }
 
   // <unit meter> and <up_axis>: world = rotate(up axis to +y) · scale(meter).
@@ -241,19 +267,40 @@ class ColladaReader {
       return CheckRadiance(area.child("color"), desc->color);
     }
     const std::string_view type = kind.name();
-    if (type == "directional" || type == "spot")
-      return doc_.NotSupported(kind, "light type");
     // CS184 reads the attenuation factors but its lights do not use them; neither does ptlab.
+    const bool attenuated = type == "point" || type == "spot";
     PTLAB_RETURN_IF_ERROR(doc_.CheckChildren(
-        kind, type == "point" ? std::initializer_list<std::string_view>{"color",
-                                                                      "constant_attenuation",
-                                                                      "linear_attenuation",
-                                                                      "quadratic_attenuation"}
-                              : std::initializer_list<std::string_view>{"color"}));
+        kind,
+        type == "spot"
+            ? std::initializer_list<std::string_view>{"color", "constant_attenuation",
+                                                      "linear_attenuation", "quadratic_attenuation",
+                                                      "falloff_angle", "falloff_exponent"}
+        : attenuated
+            ? std::initializer_list<std::string_view>{"color", "constant_attenuation",
+                                                      "linear_attenuation", "quadratic_attenuation"}
+            : std::initializer_list<std::string_view>{"color"}));
     if (!kind.child("color")) return doc_.Error(kind, std::string("<") + std::string(type) + "> has no <color>");
-    desc->kind = type == "point" ? LightDesc::Kind::kPoint : LightDesc::Kind::kAmbient;
+    desc->kind = type == "point"         ? LightDesc::Kind::kPoint
+                 : type == "spot"        ? LightDesc::Kind::kSpot
+                 : type == "directional" ? LightDesc::Kind::kDirectional
+                                         : LightDesc::Kind::kAmbient;
     PTLAB_RETURN_IF_ERROR(doc_.Color(kind.child("color"), &desc->color));
+    if (desc->kind == LightDesc::Kind::kSpot) PTLAB_RETURN_IF_ERROR(ReadSpotFalloff(kind, desc));
     return CheckRadiance(kind.child("color"), desc->color);
+  }
+
+  Status ReadSpotFalloff(const pugi::xml_node& spot, LightDesc* desc) const {
+    PTLAB_RETURN_IF_ERROR(doc_.OptionalFloat(spot, "falloff_angle", &desc->falloff_angle));
+    PTLAB_RETURN_IF_ERROR(doc_.OptionalFloat(spot, "falloff_exponent", &desc->falloff_exponent));
+    if (!(desc->falloff_angle > 0 && desc->falloff_angle <= 180))
+      return doc_.Error(spot.child("falloff_angle"),
+                        "falloff_angle is out of range; expected the full cone angle in degrees, "
+                        "in (0, 180]");
+    if (!(desc->falloff_exponent >= 0 && desc->falloff_exponent <= kMaxFalloffExponent))
+      return doc_.Error(spot.child("falloff_exponent"),
+                        "falloff_exponent is out of range; expected a number in [0, " +
+                            std::to_string(int(kMaxFalloffExponent)) + "]");
+    return Status::Ok();
   }
 
   Status CheckRadiance(const pugi::xml_node& node, const Color3f& c) const {
@@ -353,7 +400,9 @@ class ColladaReader {
       } else if (name == "scale") {
         float v[3];
         PTLAB_RETURN_IF_ERROR(doc_.FixedFloats(child, 3, v));
-        t = Transform::Scale({v[0], v[1], v[2]}).matrix();
+        // The matrix itself, not Transform::Scale (which inverts it): a zero factor is legal
+        // here and an error only where a singular transform matters (meshes, light axes).
+        t.m[0][0] = v[0], t.m[1][1] = v[1], t.m[2][2] = v[2];
       } else {
         continue;
       }
@@ -433,6 +482,30 @@ class ColladaReader {
         t.power.push_back(desc.color * (4.0f * kPi));
         return Status::Ok();
       }
+      case LightDesc::Kind::kDirectional: {
+        // COLLADA lights shine down their local -z.
+        Vec3f dir;
+        PTLAB_RETURN_IF_ERROR(LightAxis(instance, world, &dir));
+        DirectionalLightTable& t = scene_.directional_lights;
+        scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kDirectional, uint32_t(t.size())));
+        t.direction.push_back(dir);
+        t.radiance.push_back(desc.color);
+        return Status::Ok();
+      }
+      case LightDesc::Kind::kSpot: {
+        Vec3f axis;
+        PTLAB_RETURN_IF_ERROR(LightAxis(instance, world, &axis));
+        SpotLightTable& t = scene_.spot_lights;
+        scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kSpot, uint32_t(t.size())));
+        t.position.push_back(ApplyPoint(world, {0, 0, 0}));
+        t.axis.push_back(axis);
+        t.intensity.push_back(desc.color);
+        // cos(angle/2) = sin(90° - angle/2): exactly 0 for the default 180°.
+        t.cos_half_angle.push_back(
+            float(std::sin((180.0 - double(desc.falloff_angle)) * std::numbers::pi / 360.0)));
+        t.exponent.push_back(desc.falloff_exponent);
+        return Status::Ok();
+      }
       case LightDesc::Kind::kAmbient: {
         // CS184's InfiniteHemisphereLight: constant radiance over the upper hemisphere (+y).
         if (IsBlack(desc.color)) return Status::Ok();
@@ -460,6 +533,17 @@ class ColladaReader {
     return Status::Ok();
   }
 
+  // The world direction of a light node's local -z (unit); an error when the node's transform
+  // collapses it.
+  Status LightAxis(const pugi::xml_node& instance, const Matrix4& world, Vec3f* axis) const {
+    const Vec3f d = ApplyVector(world, {0, 0, -1});
+    const float length = Length(d);
+    if (!(length > 0) || !std::isfinite(length))
+      return doc_.Error(instance, "the light's node transform has no direction (local -z)");
+    *axis = d / length;
+    return Status::Ok();
+  }
+
   void AddAreaEmitter(uint32_t mesh_row, const Color3f& radiance) {
     AreaLightTable& lights = scene_.area_lights;
     const EmitterRef ref = EmitterRef::Make(EmitterTag::kArea, uint32_t(lights.size()));
@@ -467,6 +551,21 @@ class ColladaReader {
     lights.mesh.push_back(mesh_row);
     scene_.meshes.emitter[mesh_row] = ref;
     scene_.emitters.push_back(ref);
+  }
+
+  // A CGL sphere of world centre c and radius r as a SphereTable row.
+  Status AddAnalyticSphere(const pugi::xml_node& instance, const Vec3f& c, float r,
+                           MaterialRef material) {
+    if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && r > 0 &&
+          std::isfinite(r)))
+      return doc_.Error(instance,
+                        "the sphere's node transform gives no finite centre and radius > 0");
+    if (scene_.spheres.size() + 1 >= kMaxSpheres)
+      return doc_.Error(instance, "too many spheres; at most " + std::to_string(kMaxSpheres - 1));
+    scene_.spheres.Append(c, r, material);
+    ExpandBoundsTo(c - Vec3f{r, r, r});
+    ExpandBoundsTo(c + Vec3f{r, r, r});
+    return Status::Ok();
   }
 
   // Appends `mesh` through `world` (which must be invertible) and checks its coordinates.
@@ -545,12 +644,8 @@ class ColladaReader {
       }
       return MaterialOf(material, ref, radiance);
     };
-    const auto add = [&](const MeshData& mesh, const std::string& symbol,
-                         const pugi::xml_node& user) -> Status {
-      if (mesh.indices.empty()) return Status::Ok();
-      MaterialRef ref;
-      Color3f radiance;
-      PTLAB_RETURN_IF_ERROR(material_for(symbol, user, &ref, &radiance));
+    const auto add_mesh = [&](const MeshData& mesh, MaterialRef ref,
+                              const Color3f& radiance) -> Status {
       uint32_t row = 0;
       const uint32_t first = uint32_t(scene_.triangles.size());
       PTLAB_RETURN_IF_ERROR(AddWorldMesh(instance, mesh, world, ref, name, &row));
@@ -558,7 +653,26 @@ class ColladaReader {
       if (!IsBlack(radiance)) AddAreaEmitter(row, radiance);
       return Status::Ok();
     };
-    if (g.is_sphere) return add(MakeSphere({0, 0, 0}, g.sphere_radius), "", geometry);
+    const auto add = [&](const MeshData& mesh, const std::string& symbol,
+                         const pugi::xml_node& user) -> Status {
+      if (mesh.indices.empty()) return Status::Ok();
+      MaterialRef ref;
+      Color3f radiance;
+      PTLAB_RETURN_IF_ERROR(material_for(symbol, user, &ref, &radiance));
+      return add_mesh(mesh, ref, radiance);
+    };
+    if (g.is_sphere) {
+      MaterialRef ref;
+      Color3f radiance;
+      PTLAB_RETURN_IF_ERROR(material_for("", geometry, &ref, &radiance));
+      // An analytic sphere where it stays one: not emissive (area lights sample triangles) and
+      // under a similarity transform (a non-uniform scale makes an ellipsoid).
+      float scale = 0;
+      if (IsBlack(radiance) && UniformScale(world, &scale))
+        return AddAnalyticSphere(instance, ApplyPoint(world, {0, 0, 0}), g.sphere_radius * scale,
+                                 ref);
+      return add_mesh(MakeSphere({0, 0, 0}, g.sphere_radius), ref, radiance);
+    }
     for (const collada::MeshPart& part : g.parts)
       PTLAB_RETURN_IF_ERROR(add(part.mesh, part.material_symbol, part.node));
     return Status::Ok();

@@ -25,6 +25,8 @@ inline Color3f InfiniteLightRadiance(const Scene& scene, EmitterRef e, const Vec
       return DistantDiskRadiance(scene.distant_disks, e.index(), w);
     case EmitterTag::kArea:
     case EmitterTag::kPoint:
+    case EmitterTag::kDirectional:
+    case EmitterTag::kSpot:
       return {};
   }
   return {};  // an invalid ref
@@ -41,6 +43,8 @@ inline bool SampleInfiniteLight(const Scene& scene, EmitterRef e, const Vec2f& u
       return SampleDistantDisk(scene.distant_disks, e.index(), u, out);
     case EmitterTag::kArea:
     case EmitterTag::kPoint:
+    case EmitterTag::kDirectional:
+    case EmitterTag::kSpot:
       return false;
   }
   return false;  // an invalid ref
@@ -56,6 +60,8 @@ inline float InfiniteLightPdf(const Scene& scene, EmitterRef e, const Vec3f& w) 
       return DistantDiskPdf(scene.distant_disks, e.index(), w);
     case EmitterTag::kArea:
     case EmitterTag::kPoint:
+    case EmitterTag::kDirectional:
+    case EmitterTag::kSpot:
       return 0.0f;
   }
   return 0.0f;  // an invalid ref

@@ -11,18 +11,23 @@
 namespace ptlab {
 namespace {
 
-// Radius of a sphere around every triangle (0 without geometry): the disk an infinite emitter
-// shines on, pbrt's measure of an environment light's power.
-double SceneRadius(const TriangleTable& t) {
-  if (t.size() == 0) return 0.0;
+// Radius of a sphere around every triangle and analytic sphere (0 without geometry): the disk
+// an infinite or directional emitter shines on, pbrt's measure of such a light's power.
+double SceneRadius(const TriangleTable& t, const SphereTable& spheres) {
+  if (t.size() == 0 && spheres.size() == 0) return 0.0;
   Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
            std::numeric_limits<float>::max()};
   Vec3f hi = -lo;
-  for (size_t i = 0; i < t.size(); ++i) {
-    for (const Vec3f& v : {t.V0(i), t.V1(i), t.V2(i)}) {
-      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
+  const auto expand = [&lo, &hi](const Vec3f& v) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  };
+  for (size_t i = 0; i < t.size(); ++i)
+    for (const Vec3f& v : {t.V0(i), t.V1(i), t.V2(i)}) expand(v);
+  for (size_t i = 0; i < spheres.size(); ++i) {
+    const float r = spheres.radius[i];
+    expand(spheres.Center(i) - Vec3f{r, r, r});
+    expand(spheres.Center(i) + Vec3f{r, r, r});
   }
   return 0.5 * double(Length(hi - lo));
 }
@@ -39,10 +44,12 @@ void BuildEmitterSelection(Scene* scene) {
   t.slot_environment.assign(scene->environment_maps.size(), 0);
   t.slot_disk.assign(scene->distant_disks.size(), 0);
   t.slot_point.assign(scene->point_lights.size(), 0);
+  t.slot_directional.assign(scene->directional_lights.size(), 0);
+  t.slot_spot.assign(scene->spot_lights.size(), 0);
   if (n == 0) return;
-  const double radius = SceneRadius(scene->triangles);
-  // An infinite emitter in a scene without geometry lights nothing; a unit disk keeps it
-  // selectable.
+  const double radius = SceneRadius(scene->triangles, scene->spheres);
+  // An infinite or directional emitter in a scene without geometry lights nothing; a unit
+  // disk keeps it selectable.
   const double disk_area = kPiD * std::max(radius * radius, 1.0);
   t.power.resize(n);
   double total = 0;
@@ -69,6 +76,21 @@ void BuildEmitterSelection(Scene* scene) {
         t.slot_point[i] = uint32_t(k);
         power = double(Luminance(scene->point_lights.power[i]));
         break;
+      case EmitterTag::kDirectional:
+        // pbrt-v4's DistantLight::Phi: the irradiance over the disk the scene's bounding sphere
+        // casts.
+        t.slot_directional[i] = uint32_t(k);
+        power = disk_area * double(Luminance(scene->directional_lights.radiance[i]));
+        break;
+      case EmitterTag::kSpot: {
+        // ∫ cos^e θ dω over the cone cos θ > c: 2π (1 - c^(e+1)) / (e + 1).
+        t.slot_spot[i] = uint32_t(k);
+        const double c = std::max(double(scene->spot_lights.cos_half_angle[i]), 0.0);
+        const double e1 = double(scene->spot_lights.exponent[i]) + 1.0;
+        power = 2.0 * kPiD * (1.0 - std::pow(c, e1)) / e1 *
+                double(Luminance(scene->spot_lights.intensity[i]));
+        break;
+      }
     }
     power = std::isfinite(power) ? std::max(power, 0.0) : 0.0;
     t.power[k] = float(power);

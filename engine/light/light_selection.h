@@ -24,6 +24,8 @@ inline float EmitterSelectionPmf(const Scene& scene, EmitterRef e) {
     case EmitterTag::kEnvironment: return t.pmf[t.slot_environment[e.index()]];
     case EmitterTag::kDistantDisk: return t.pmf[t.slot_disk[e.index()]];
     case EmitterTag::kPoint: return t.pmf[t.slot_point[e.index()]];
+    case EmitterTag::kDirectional: return t.pmf[t.slot_directional[e.index()]];
+    case EmitterTag::kSpot: return t.pmf[t.slot_spot[e.index()]];
   }
   return 0.0f;
 }

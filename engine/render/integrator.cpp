@@ -40,7 +40,7 @@ Color3f SampleEmitterDirect(const RenderContext& ctx, const SurfaceInteraction& 
 Color3f LiNormals(const RenderContext& ctx, const Ray& ray, RayCounters* c) {
   Hit hit;
   if (!Trace(ctx, ray, &hit, c)) return {};
-  const Vec3f n = Abs(MakeInteraction(ctx.scene, hit).frame.n);
+  const Vec3f n = Abs(MakeInteraction(ctx.scene, ray, hit).frame.n);
   return {n.x, n.y, n.z};
 }
 
@@ -50,7 +50,7 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, PathSample
   const Scene& scene = ctx.scene;
   Hit hit;
   if (!Trace(ctx, ray, &hit, c)) return Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
-  const SurfaceInteraction its = MakeInteraction(scene, hit);
+  const SurfaceInteraction its = MakeInteraction(scene, ray, hit);
   const Vec3f wo_world = -ray.d / Length(ray.d);
   Color3f L = Emitted(scene, its, wo_world);
   const Vec3f wo = its.frame.ToLocal(wo_world);
@@ -67,7 +67,7 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, PathSample
     if (type == Type::kDirectMats) return L + bs.weight * Escaped(scene, wi, false, 0.0f);
     return L + bs.weight * Escaped(scene, wi, mis && !bs.delta, bs.pdf);
   }
-  const SurfaceInteraction light = MakeInteraction(scene, hit2);
+  const SurfaceInteraction light = MakeInteraction(scene, next, hit2);
   const Color3f Le = Emitted(scene, light, -wi);
   if (IsBlack(Le)) return L;
   float weight = 1.0f;
@@ -90,7 +90,7 @@ Color3f LiWhitted(const RenderContext& ctx, Ray ray, PathSampler& sampler, RayCo
       L += throughput * Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
       break;
     }
-    const SurfaceInteraction its = MakeInteraction(scene, hit);
+    const SurfaceInteraction its = MakeInteraction(scene, ray, hit);
     const Vec3f wo_world = -ray.d / Length(ray.d);
     L += throughput * Emitted(scene, its, wo_world);
     const Vec3f wo = its.frame.ToLocal(wo_world);
@@ -134,7 +134,7 @@ Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, PathSampler& sample
       else if (mis) L += throughput * Escaped(scene, w, true, prev_pdf);
       break;
     }
-    const SurfaceInteraction its = MakeInteraction(scene, hit);
+    const SurfaceInteraction its = MakeInteraction(scene, ray, hit);
     const Vec3f wo_world = -ray.d / Length(ray.d);
     const Color3f Le = Emitted(scene, its, wo_world);
     if (!IsBlack(Le)) {

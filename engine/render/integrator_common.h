@@ -10,6 +10,7 @@
 #include "engine/bvh/ray_offset.h"
 #include "engine/core/ray.h"
 #include "engine/light/area_light.h"
+#include "engine/light/delta_light.h"
 #include "engine/light/infinite_light.h"
 #include "engine/light/light_selection.h"
 #include "engine/sampling/sampler.h"
@@ -122,24 +123,20 @@ inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
     req.traced = true;
     return req;
   }
-  if (emitter.tag() == EmitterTag::kPoint) {
-    // A delta light, picked with probability pick_pmf; no MIS (BSDF sampling never reaches it).
-    const Vec3f p = scene.point_lights.position[emitter.index()];
-    const Vec3f d = p - its.p;
-    const float dist2 = Dot(d, d);
-    if (!(dist2 > 0)) return req;
-    const Vec3f wi = d / std::sqrt(dist2);
-    const Vec3f wi_local = its.frame.ToLocal(wi);
+  if (IsDeltaLight(emitter)) {
+    // Picked with probability pick_pmf; no MIS (BSDF sampling never reaches a delta light).
+    DeltaLightSample ls;
+    if (!SampleDeltaLight(scene, emitter, its.p, &ls)) return req;
+    const Vec3f wi_local = its.frame.ToLocal(ls.wi);
     const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
     if (IsBlack(f)) return req;
-    req.shadow.o = SpawnOrigin(its, wi);
-    req.shadow.d = p - req.shadow.o;  // t over [0, 1): up to the light itself
+    req.shadow.o = SpawnOrigin(its, ls.wi);
+    // A finite light: t over [0, 1) up to the light itself; a directional one: to infinity.
+    req.shadow.d = ls.infinite ? ls.wi : ls.position - req.shadow.o;
     req.shadow.t_min = 0.0f;
-    req.shadow.t_max = 1.0f;
-    const Color3f intensity = scene.point_lights.power[emitter.index()] * (0.25f * kInvPi);
-    req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
-                                               intensity * (1.0f / dist2), pick_pmf,
-                                               /*mis=*/false);
+    req.shadow.t_max = ls.infinite ? kInfinity : 1.0f;
+    req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f, ls.radiance,
+                                               pick_pmf, /*mis=*/false);
     req.traced = true;
     return req;
   }

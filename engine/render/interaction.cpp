@@ -1,11 +1,32 @@
 // The shading point of a ray hit: position, normals and the components the hit refers to.
 #include "engine/render/interaction.h"
 
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/light/area_light.h"
 
 namespace ptlab {
 
-SurfaceInteraction MakeInteraction(const Scene& scene, const Hit& hit) {
+namespace {
+
+// A sphere hit: o + t d carries the error of t; re-projected onto the sphere (pbrt-v4,
+// Physically Based Rendering 4th ed., §6.8.5) it is as exact as the surface allows.
+SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+  const uint32_t i = SphereHitRow(hit.prim);
+  const SphereTable& s = scene.spheres;
+  SurfaceInteraction its;
+  Vec3f n;
+  its.p = ProjectOntoSphere(ray.At(hit.t), s.Center(i), s.radius[i], &n);
+  its.prim = hit.prim;
+  its.ng = n;
+  its.frame = Frame(n);
+  its.material = s.material[i];
+  return its;
+}
+
+}  // namespace
+
+SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit);
   const uint32_t tri = hit.prim;
   const TriangleTable& t = scene.triangles;
   SurfaceInteraction its;

@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "engine/core/check.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/integrator.h"
@@ -40,6 +41,8 @@ bool PixelConverged(const PixelMoments& m, float tolerance) {
 }
 
 RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& options) {
+  // A Bvh built without the scene's spheres (BuildBvh(triangles) alone) would drop them.
+  PTLAB_CHECK(bvh.spheres.size() == scene.spheres.size());
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const Camera camera(scene.camera);

@@ -113,6 +113,7 @@ struct RayQueue {
     const size_t j = q % kLanes;
     return {p.dir_x[j], p.dir_y[j], p.dir_z[j]};
   }
+  Ray At(size_t q) const { return GetLaneRay(packets[q / kLanes], int(q % kLanes)); }
   /// Active lanes of packet k: all eight except in the last, partial packet.
   Mask8 Active(size_t k) const {
     const size_t n = std::min<size_t>(kLanes, size() - k * kLanes);
@@ -255,7 +256,7 @@ class Wavefront {
         continue;
       }
       const Hit hit{hits_[k].t[j], hits_[k].b1[j], hits_[k].b2[j], hits_[k].prim[j]};
-      const SurfaceInteraction its = MakeInteraction(scene_, hit);
+      const SurfaceInteraction its = MakeInteraction(scene_, rays_.At(q), hit);
       if (rules_.normals) {
         const Vec3f a = Abs(its.frame.n);
         L_[i] = {a.x, a.y, a.z};

@@ -1,4 +1,4 @@
-// Emitter components: area lights on meshes, environment maps and distant disks (one row each).
+// Emitter components: area lights on meshes, environment maps, distant disks and delta lights.
 #pragma once
 
 #include <cstdint>
@@ -75,16 +75,40 @@ struct PointLightTable {
   size_t size() const { return position.size(); }
 };
 
+/// Directional lights (COLLADA `<directional>`, pbrt's `distant`): parallel light travelling
+/// along `direction` (world, unit). `radiance` is what CS184 and pbrt call it: the irradiance
+/// (W/m² per channel) on a surface facing the light, so a Lambertian surface of albedo a lit
+/// head-on sends out a·radiance/π. Delta lights: reached by emitter sampling only.
+struct DirectionalLightTable {
+  std::vector<Vec3f> direction;
+  std::vector<Color3f> radiance;
+
+  size_t size() const { return direction.size(); }
+};
+
+/// Spot lights (COLLADA `<spot>`): a point at `position` sending radiant intensity
+/// intensity · cos(θ)^exponent (W/sr per channel) at angle θ from `axis` (world, unit) while
+/// cos θ > cos_half_angle, and nothing outside; the irradiance falls off as 1/r² as for point
+/// lights. Delta lights: reached by emitter sampling only.
+struct SpotLightTable {
+  std::vector<Vec3f> position, axis;
+  std::vector<Color3f> intensity;
+  std::vector<float> cos_half_angle, exponent;
+
+  size_t size() const { return position.size(); }
+};
+
 /// Selection of an emitter by power, over Scene::emitters in order: pmf and CDF (with a guide
-/// table) of each emitter's power (luminance of its emitted flux; infinite emitters as seen by
-/// a disk of the scene's bounding-sphere radius, pbrt's convention), and for each emitter
-/// table row its position in Scene::emitters. Empty when the scene has no emitters.
+/// table) of each emitter's power (luminance of its emitted flux; infinite and directional
+/// emitters as seen by a disk of the scene's bounding-sphere radius, pbrt's convention), and for
+/// each emitter table row its position in Scene::emitters. Empty when the scene has no emitters.
 struct EmitterSelectionTable {
   std::vector<float> power;        // luminance flux (W) per emitter, for messages and tests
   std::vector<float> pmf;          // selection probability per emitter (sums to 1)
   AlignedVector<float> cdf;        // normalised, last entry = 1
   AlignedVector<uint32_t> guide;   // emitters.size() + 1 entries
-  std::vector<uint32_t> slot_area, slot_environment, slot_disk, slot_point;
+  std::vector<uint32_t> slot_area, slot_environment, slot_disk, slot_point, slot_directional,
+      slot_spot;
 
   size_t size() const { return pmf.size(); }
 };

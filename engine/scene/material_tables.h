@@ -17,10 +17,14 @@ struct DiffuseTable {
   Color3f Albedo(size_t i) const { return {albedo_r[i], albedo_g[i], albedo_b[i]}; }
 };
 
-/// Perfect mirror: no parameters; only the number of rows matters.
+/// Specular mirror: the reflected sample's weight per RGB channel (1 1 1 for Nori's mirror; a
+/// CS184 CGL <mirror> tints it with its reflectance).
 struct MirrorTable {
-  size_t count = 0;
-  size_t size() const { return count; }
+  AlignedVector<float> reflectance_r, reflectance_g, reflectance_b;
+  size_t size() const { return reflectance_r.size(); }
+  Color3f Reflectance(size_t i) const {
+    return {reflectance_r[i], reflectance_g[i], reflectance_b[i]};
+  }
 };
 
 /// Options of a dielectric row (bit flags; see engine/bsdf/dielectric.h).
@@ -76,8 +80,10 @@ struct MaterialTables {
         diffuse.albedo_b.push_back(albedo.b);
     return MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(diffuse.size() - 1));
   }
-  MaterialRef AddMirror() {
-    return MaterialRef::Make(MaterialTag::kMirror, uint32_t(mirror.count++));
+  MaterialRef AddMirror(const Color3f& reflectance = {1, 1, 1}) {
+    mirror.reflectance_r.push_back(reflectance.r), mirror.reflectance_g.push_back(reflectance.g),
+        mirror.reflectance_b.push_back(reflectance.b);
+    return MaterialRef::Make(MaterialTag::kMirror, uint32_t(mirror.size() - 1));
   }
   MaterialRef AddDielectric(float int_ior, float ext_ior, uint8_t flags = 0) {
     auto& t = dielectric;

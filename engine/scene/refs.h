@@ -21,6 +21,8 @@ enum class EmitterTag : uint8_t {
   kEnvironment = 1,
   kDistantDisk = 2,
   kPoint = 3,
+  kDirectional = 4,
+  kSpot = 5,
 };
 
 /// tag:4 | index:28, as in MaterialRef and EmitterRef.

@@ -11,6 +11,7 @@
 #include "engine/scene/emitter_tables.h"
 #include "engine/scene/geometry_tables.h"
 #include "engine/scene/material_tables.h"
+#include "engine/scene/sphere_table.h"
 
 namespace ptlab {
 
@@ -75,11 +76,14 @@ struct Scene {
   TriangleShadingTable shading;
   VertexTable vertices;
   MeshTable meshes;
+  SphereTable spheres;  // analytic spheres, beside the triangles (BuildBvh takes both)
   MaterialTables materials;
   AreaLightTable area_lights;
   EnvironmentMapTable environment_maps;
   DistantDiskTable distant_disks;
   PointLightTable point_lights;
+  DirectionalLightTable directional_lights;
+  SpotLightTable spot_lights;
   std::vector<EmitterRef> emitters;  // all emitters, in selection order
   EmitterSelectionTable emitter_selection;
 

@@ -9,6 +9,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   ptlab::StatusOr<ptlab::Scene> scene = ptlab::LoadColladaSceneFromString(text, "fuzz.dae");
-  if (scene.ok() && scene->triangles.size() <= 100000) (void)ptlab::BuildBvh(scene->triangles);
+  if (scene.ok() && scene->triangles.size() <= 100000)
+    (void)ptlab::BuildBvh(scene->triangles, scene->spheres);
   return 0;
 }

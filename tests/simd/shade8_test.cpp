@@ -266,7 +266,7 @@ void AddMaterialRows(MaterialTables* m, Pcg32& rng) {
   for (int i = 0; i < 64; ++i) {
     const float r = rng.NextFloat(), g = rng.NextFloat();
     m->AddDiffuse({r, g, rng.NextFloat()});
-    m->AddMirror();
+    m->AddMirror(i % 2 == 0 ? Color3f{1, 1, 1} : Color3f{r, g, rng.NextFloat()});
     const float eta = std::pow(10.0f, rng.NextFloat() - 0.5f);
     const uint8_t flags = static_cast<uint8_t>(i % 4);  // both options, alone and together
     m->AddDielectric(eta, 1.0f, flags);

@@ -19,13 +19,14 @@
 #include <vector>
 
 #include "engine/bvh/intersect1.h"
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/core/rng.h"
+#include "engine/io/xml_loader.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/packet_render.h"
 #include "engine/render/wavefront.h"
-#include "engine/io/xml_loader.h"
 #include "hwy/targets.h"
 #include "simd/bvh8.h"
 #include "simd/wavefront_kernels.h"
@@ -440,6 +441,72 @@ TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
   }
 }
 
+// Spheres beside the BVH: a packet kernel (IntersectSphereLanes) against the oracle's
+// IntersectSphere1, bit for bit, with triangles in front of, inside and behind the spheres.
+// Rays aim at the spheres from outside, start inside them (glass), graze them (the ray passes
+// at radius · (1 ± 2^-k) from the centre) or are cut short by t_max.
+TEST(Traverse8, SpheresMatchOracleOnEveryTarget) {
+  const Fixture& f = AdversarialFixture();
+  SphereTable spheres;
+  const MaterialRef m = MaterialRef::Make(MaterialTag::kDiffuse, 0);
+  spheres.Append({0.2f, 0.1f, 0.0f}, 0.3f, m);
+  spheres.Append({0.3f, 0.1f, 0.1f}, 0.2f, m);          // overlapping the first
+  spheres.Append({-0.6f, 0.5f, 0.4f}, 1e-4f, m);        // tiny
+  spheres.Append({0.0f, -1e4f - 2.0f, 0.0f}, 1e4f, m);  // huge, below everything
+  spheres.Append({700.0f, 800.0f, -900.0f}, 2.0f, m);   // far from the origin
+  const Bvh bvh = BuildBvh(f.table, spheres);
+  const Bvh8 bvh8 = BuildBvh8(bvh);
+  ASSERT_EQ(bvh8.spheres.size(), spheres.size());
+  Pcg32 rng(2024, 13);
+  std::vector<Ray> rays;
+  for (int i = 0; i < (1 << 16); ++i) {
+    const uint32_t k = rng.NextUint() % spheres.size();
+    const Vec3f c = spheres.Center(k);
+    const float r = spheres.radius[k];
+    const Vec3f w = UniformSphereDirection(rng);
+    Ray ray;
+    if (i % 4 == 0) {  // from outside, at the sphere with a jitter of a few radii
+      ray.o = c + w * (r * (2.0f + 10.0f * rng.NextFloat()));
+      ray.d = (c + UniformSphereDirection(rng) * (r * rng.NextFloat())) - ray.o;
+    } else if (i % 4 == 1) {  // from inside
+      ray.o = c + w * (r * rng.NextFloat());
+      ray.d = UniformSphereDirection(rng) * (0.5f + rng.NextFloat());
+    } else if (i % 4 == 2) {  // grazing: past the sphere at r (1 ± 2^-e) from its centre
+      const Vec3f side = Normalize(Cross(w, UniformSphereDirection(rng)));
+      const float e = std::ldexp(1.0f, -int(rng.NextUint() % 22));
+      const float dist = r * (rng.NextFloat() < 0.5f ? 1.0f - e : 1.0f + e);
+      ray.o = c + side * dist - w * (3.0f * r);
+      ray.d = w;
+    } else {  // random rays through the triangles' box
+      ray.o = UniformInBox(rng, {-1, -1, -1}, {1, 1, 1});
+      ray.d = UniformSphereDirection(rng);
+    }
+    ray.t_min = 0.0f;
+    ray.t_max = (i % 7 == 0) ? rng.NextFloat() * 2.0f : kInf;
+    rays.push_back(ray);
+  }
+  const std::vector<Expected> expected = Oracle(bvh, rays);
+  size_t sphere_hits = 0;
+  for (const Expected& e : expected) sphere_hits += e.hit && IsSphereHit(e.h.prim);
+  EXPECT_GT(sphere_hits, rays.size() / 3);
+  ForEachTarget([&] {
+    Mismatches mm;
+    CompareAll(bvh8, rays, expected, {"hybrid", {}}, /*single_ray=*/true, &mm);
+    CompareAll(bvh8, rays, expected, {"packet, broadcast leaves", {0, true, false}}, false, &mm);
+    EXPECT_EQ(mm.count, 0);
+  });
+  // Spheres alone (no triangle): the packet and single-ray kernels still test them.
+  const Bvh only = BuildBvh(TriangleTable{}, spheres);
+  const Bvh8 only8 = BuildBvh8(only);
+  EXPECT_TRUE(only8.empty());
+  const std::vector<Expected> only_expected = Oracle(only, rays);
+  ForEachTarget([&] {
+    Mismatches mm;
+    CompareAll(only8, rays, only_expected, {"spheres only", {}}, /*single_ray=*/true, &mm);
+    EXPECT_EQ(mm.count, 0);
+  });
+}
+
 TEST(Traverse8, EmptyAndSingleTriangleScenes) {
   const Bvh empty = BuildBvh(TriangleTable{});
   const Bvh8 empty8 = BuildBvh8(empty);
@@ -528,7 +595,7 @@ void ExpectPacketRenderEqualsScalar(const std::string& path, int width) {
   const double aspect = double(scene.camera.width) / double(scene.camera.height);
   scene.camera.width = width;
   scene.camera.height = int(std::lround(width / aspect));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   const Bvh8 bvh8 = BuildBvh8(bvh);
   const WavefrontKernels packets = SimdWavefrontKernels(bvh8);
   const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
@@ -609,7 +676,7 @@ TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   const Scene& scene = *loaded;
   ASSERT_EQ(scene.integrator.type, IntegratorDesc::Type::kPathMis);
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   const Bvh8 bvh8 = BuildBvh8(bvh);
   const WavefrontKernels packets = SimdWavefrontKernels(bvh8);
   const Camera camera(scene.camera);

@@ -136,7 +136,7 @@ void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, in
       c.details.push_back(unsupported);
       c.verdict = NoriVerdict::kSkip;
     } else {
-      const Bvh bvh = BuildBvh(scene.triangles);
+      const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
       const Camera camera(scene.camera);
       const RenderContext ctx{scene, bvh};
       const uint64_t seed = MixBits(MixBits(options.seed ^ kSceneTTestSalt) + s);

@@ -88,6 +88,10 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
                       "field of view)")
           ->expected(2)
           ->check(CLI::Range(1, 65536));
+  cmd->add_option("-c,--camera-file", cl->render.camera_file,
+                  "CS184 camera settings file (-c; what its C key writes): position, view, "
+                  "vertical field of view, clip planes and lens")
+      ->check(CLI::ExistingFile);
   cmd->add_option("-a,--adaptive", cl->render.adaptive,
                   "Adaptive sampling: samples per batch and tolerance (CS184 -a 64 0.05)")
       ->expected(2);

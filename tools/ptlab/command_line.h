@@ -19,6 +19,7 @@ struct RenderArgs {
   std::string envmap;
   float lens_radius = -1, focal_distance = -1;
   std::vector<int> resolution;        // -r W H
+  std::string camera_file;            // -c FILE (CS184 camera settings)
   std::string image;                  // -f out.png (or .exr)
   std::vector<std::string> adaptive;  // -a batch tolerance
   uint64_t seed = 0;

@@ -197,7 +197,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
         return kExitUsage;
       }
     }
-    ls->bvh = BuildBvh(ls->scene.triangles);
+    ls->bvh = BuildBvh(ls->scene.triangles, ls->scene.spheres);
     ls->bvh8 = simd::BuildBvh8(ls->bvh);
     ls->simd_kernels = simd::SimdWavefrontKernels(ls->bvh8);
     ls->oracle_kernels = OracleWavefrontKernels(ls->bvh);

@@ -29,6 +29,7 @@
 #include "engine/render/wavefront.h"
 #include "engine/io/text_parsing.h"
 #include "engine/scene/scene_limits.h"
+#include "engine/io/cs184_camera_file.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
@@ -224,6 +225,15 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     }
     ResizeFilm(&scene.camera, int(width), int(height));
   }
+  if (!args.camera_file.empty()) {
+    // After the film size (the horizontal field follows it), before -b/-d (which win).
+    const Status camera = ReadCs184CameraFile(args.camera_file, &scene.camera);
+    if (!camera.ok()) {
+      if (mpi.root()) std::fprintf(stderr, "error: -c: %s\n", camera.message().c_str());
+      return 2;
+    }
+    scene.input_files.push_back(args.camera_file);
+  }
   const Status overridden = ApplySceneFlags(args, &scene);
   if (!overridden.ok()) {  // e.g. an -e map that cannot be read
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", overridden.message().c_str());
@@ -302,12 +312,15 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (!quiet) options.on_progress = [&](const RenderProgress& p) { reporter.Update(p); };
 
   if (mpi.root())
-    std::fprintf(stderr, "ptlab: %s  %dx%d  %u spp  %d threads%s  %zu triangles\n",
+    std::fprintf(stderr, "ptlab: %s  %dx%d  %u spp  %d threads%s  %zu triangles%s\n",
                  args.scene.c_str(), scene.camera.width, scene.camera.height, options.spp,
                  options.threads,
                  mpi.active() ? (" x " + std::to_string(mpi.size()) + " ranks").c_str() : "",
-                 scene.triangles.size());
-  const Bvh bvh = BuildBvh(scene.triangles);
+                 scene.triangles.size(),
+                 scene.spheres.size() > 0
+                     ? ("  " + std::to_string(scene.spheres.size()) + " spheres").c_str()
+                     : "");
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   // The one switch between the kernel tables: --scalar or PTLAB_FORCE_SCALAR=1 picks the
   // oracle's, which renders the same bits one ray at a time.
   const bool packets = !args.scalar && !ForceScalar();

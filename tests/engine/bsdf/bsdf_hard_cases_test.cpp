@@ -16,6 +16,7 @@ std::vector<MaterialRef> HardMaterials(MaterialTables* m) {
   std::vector<MaterialRef> refs;
   for (float a : {0.0f, 0.5f, 1.0f, 1e30f}) refs.push_back(m->AddDiffuse({a, a, a}));
   refs.push_back(m->AddMirror());
+  refs.push_back(m->AddMirror({0.0f, 0.25f, 1.0f}));
   for (float eta : bsdf_test::HardEtas())
     for (uint8_t flags : {0, int(kDielectricSchlick), int(kDielectricScaleRadiance),
                           int(kDielectricRefractOnly | kDielectricSchlick)})

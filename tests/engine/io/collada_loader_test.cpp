@@ -254,6 +254,43 @@ TEST(ColladaLoader, Lights) {
   EXPECT_EQ(s.emitters.size(), 3u);
 }
 
+TEST(ColladaLoader, DirectionalAndSpotLights) {
+  Parts p;
+  p.lights =
+      "<light id=\"sun\"><technique_common><directional><color>1 2 3</color></directional>"
+      "</technique_common></light>\n"
+      "<light id=\"spot\"><technique_common><spot><color>4 5 6</color>"
+      "<constant_attenuation>1</constant_attenuation><falloff_angle>60</falloff_angle>"
+      "<falloff_exponent>2.5</falloff_exponent></spot></technique_common></light>\n"
+      "<light id=\"wide\"><technique_common><spot><color>1 1 1</color></spot>"
+      "</technique_common></light>\n";
+  // The sun's -z turned to (0, -1, 0) and scaled (the direction is normalised); the spot at
+  // (1, 2, 3) with -z turned about y by 90° to (-1, 0, 0); the default spot shines down -z.
+  p.nodes +=
+      "<node id=\"l1\"><rotate>1 0 0 -90</rotate><scale>3 3 3</scale>"
+      "<instance_light url=\"#sun\"/></node>\n"
+      "<node id=\"l2\"><translate>1 2 3</translate><rotate>0 1 0 90</rotate>"
+      "<instance_light url=\"#spot\"/></node>\n"
+      "<node id=\"l3\"><instance_light url=\"#wide\"/></node>\n";
+  const Scene s = LoadOk(p);
+  ASSERT_EQ(s.directional_lights.size(), 1u);
+  ExpectNear(s.directional_lights.direction[0], {0, -1, 0});
+  EXPECT_EQ(s.directional_lights.radiance[0].b, 3.0f);
+  ASSERT_EQ(s.spot_lights.size(), 2u);
+  ExpectNear(s.spot_lights.position[0], {1, 2, 3});
+  ExpectNear(s.spot_lights.axis[0], {-1, 0, 0});
+  EXPECT_EQ(s.spot_lights.intensity[0].g, 5.0f);
+  EXPECT_NEAR(s.spot_lights.cos_half_angle[0], std::sqrt(3.0f) / 2, 1e-7f);  // half of 60°
+  EXPECT_EQ(s.spot_lights.exponent[0], 2.5f);
+  ExpectNear(s.spot_lights.axis[1], {0, 0, -1});
+  EXPECT_EQ(s.spot_lights.cos_half_angle[1], 0.0f);  // COLLADA's defaults: 180°, exponent 0
+  EXPECT_EQ(s.spot_lights.exponent[1], 0.0f);
+  ASSERT_EQ(s.emitters.size(), 3u);
+  EXPECT_EQ(s.emitters[0].tag(), EmitterTag::kDirectional);
+  EXPECT_EQ(s.emitters[1].tag(), EmitterTag::kSpot);
+  EXPECT_EQ(s.emitters[2].index(), 1u);
+}
+
 // Effects bound to one triangle each through bind_material.
 Scene LoadWithEffect(const std::string& cgl_or_common) {
   Parts p;
@@ -276,6 +313,12 @@ TEST(ColladaLoader, EffectsMapToPtlabModels) {
 
   s = LoadWithEffect(Cgl("<mirror><reflectance>1 1 1</reflectance></mirror>"));
   EXPECT_EQ(s.meshes.material[0].tag(), MaterialTag::kMirror);
+  EXPECT_EQ(s.materials.mirror.Reflectance(s.meshes.material[0].index()).g, 1.0f);
+  s = LoadWithEffect(Cgl("<mirror><reflectance>0.9 0.5 0.25</reflectance></mirror>"));
+  ASSERT_EQ(s.meshes.material[0].tag(), MaterialTag::kMirror);
+  EXPECT_EQ(s.materials.mirror.Reflectance(s.meshes.material[0].index()).r, 0.9f);
+  EXPECT_EQ(s.materials.mirror.Reflectance(s.meshes.material[0].index()).g, 0.5f);
+  EXPECT_EQ(s.materials.mirror.Reflectance(s.meshes.material[0].index()).b, 0.25f);
 
   s = LoadWithEffect(Cgl("<glass><reflectance>1 1 1</reflectance><transmittance>1 1 1"
                          "</transmittance><roughness>0</roughness><ior>1.45</ior></glass>"));
@@ -321,13 +364,39 @@ TEST(ColladaLoader, CglSphere) {
   Parts p;
   p.geometries += "<geometry id=\"sph\"><extra><technique profile=\"CGL\"><sphere><radius>.5"
                   "</radius></sphere></technique></extra></geometry>\n";
-  p.nodes = "<node id=\"n\"><translate>0 1 0</translate><instance_geometry url=\"#sph\"/></node>\n";
-  const Scene s = LoadOk(p);
-  ASSERT_EQ(s.meshes.size(), 1u);
-  EXPECT_EQ(s.triangles.size(), size_t(2 * kSphereSegments * (kSphereRings - 1)));
+  p.effects = "<effect id=\"glow\">" +
+              std::string(
+                  "<extra><technique profile=\"CGL\"><emission>"
+                  "<radiance>1 1 1</radiance></emission></technique></extra>") +
+              "</effect>\n";
+  p.materials = "<material id=\"lamp\"><instance_effect url=\"#glow\"/></material>\n";
+  // Translated, and rotated and scaled uniformly: analytic spheres.
+  p.nodes =
+      "<node id=\"a\"><translate>0 1 0</translate><instance_geometry url=\"#sph\"/>"
+      "</node>\n<node id=\"b\"><translate>5 0 0</translate><rotate>1 1 0 30</rotate>"
+      "<scale>2 2 2</scale><instance_geometry url=\"#sph\"/></node>\n";
+  Scene s = LoadOk(p);
+  ASSERT_EQ(s.spheres.size(), 2u);
+  EXPECT_EQ(s.triangles.size(), 0u);
+  ExpectNear(s.spheres.Center(0), {0, 1, 0});
+  EXPECT_EQ(s.spheres.radius[0], 0.5f);
+  EXPECT_EQ(s.spheres.material[0].tag(), MaterialTag::kDiffuse);  // CS184's default
+  ExpectNear(s.spheres.Center(1), {5, 0, 0});
+  EXPECT_NEAR(s.spheres.radius[1], 1.0f, 1e-6f);
+  // A non-uniform scale (an ellipsoid) and an emissive sphere stay UV-sphere meshes.
+  p.nodes =
+      "<node id=\"a\"><translate>0 1 0</translate><scale>1 2 1</scale>"
+      "<instance_geometry url=\"#sph\"/></node>\n"
+      "<node id=\"b\"><instance_geometry url=\"#sph\"><bind_material><technique_common>"
+      "<instance_material symbol=\"x\" target=\"#lamp\"/></technique_common>"
+      "</bind_material></instance_geometry></node>\n";
+  s = LoadOk(p);
+  EXPECT_EQ(s.spheres.size(), 0u);
+  EXPECT_EQ(s.triangles.size(), size_t(2 * 2 * kSphereSegments * (kSphereRings - 1)));
   float max_y = -1;
   for (size_t t = 0; t < s.triangles.size(); ++t) max_y = std::max(max_y, s.triangles.V0(t).y);
-  EXPECT_FLOAT_EQ(max_y, 1.5f);
+  EXPECT_FLOAT_EQ(max_y, 2.0f);
+  ASSERT_EQ(s.area_lights.size(), 1u);
 }
 
 TEST(ColladaLoader, MalformedFilesNameFileAndLine) {
@@ -367,17 +436,44 @@ TEST(ColladaLoader, MalformedFilesNameFileAndLine) {
     p.nodes = "<node id=\"a\"><node id=\"b\"><instance_node url=\"#a\"/></node></node>\n";
     ExpectError(p, "<node id=\"a\"", {"cycle"});
   }
-  {
+  for (const char* falloff : {"<falloff_exponent>-1</falloff_exponent>",
+                              "<falloff_exponent>2e4</falloff_exponent>",
+                              "<falloff_angle>0</falloff_angle>",
+                              "<falloff_angle>180.5</falloff_angle>",
+                              "<falloff_angle>-30</falloff_angle>"}) {
     Parts p;
-    p.lights = "<light id=\"sp\"><technique_common><spot><color>1 1 1</color></spot>"
+    p.lights = std::string("<light id=\"sp\"><technique_common><spot><color>1 1 1</color>\n") +
+               falloff + "</spot></technique_common></light>";
+    const std::string element = std::string(falloff).substr(0, std::string(falloff).find('>') + 1);
+    ExpectError(p, element, {element.substr(1, element.size() - 2), "out of range"});
+  }
+  // Light bodies (and a node instancing them) with the element the error names.
+  struct BadLight {
+    const char* body;
+    const char* node;
+    const char* marker;
+    const char* word;
+  };
+  for (const BadLight& bad : std::vector<BadLight>{
+           {"<spot><color>1 1 1</color>\n<falloff_angle>wide</falloff_angle></spot>", "",
+            "<falloff_angle>", "wide"},
+           {"<directional><color>1 x 1</color></directional>", "", "<color>1 x", "x"},
+           {"<directional><color>1 1 1</color><falloff_angle>30</falloff_angle></directional>",
+            "", "<falloff_angle>", "falloff_angle"},
+           {"<directional><color>1 1 1</color></directional>",
+            "<node id=\"flat\"><scale>1 1 0</scale><instance_light url=\"#l\"/></node>\n",
+            "<instance_light", "no direction"}}) {
+    Parts p;
+    p.lights = std::string("<light id=\"l\"><technique_common>") + bad.body +
                "</technique_common></light>";
-    ExpectError(p, "<spot>", {"not supported yet: <spot>"});
+    p.nodes += bad.node;
+    ExpectError(p, bad.marker, {bad.word});
   }
   {
     Parts p;
-    p.lights = "<light id=\"sun\"><technique_common><directional><color>1 1 1</color>"
-               "</directional></technique_common></light>";
-    ExpectError(p, "<directional>", {"not supported yet: <directional>"});
+    p.effects = "<effect id=\"e\">" + Cgl("\n<mirror><reflectance>1 1.5 1</reflectance></mirror>") +
+                "</effect>";
+    ExpectError(p, "<mirror>", {"mirror reflectance above 1"});
   }
   {
     Parts p;

@@ -49,6 +49,40 @@ TEST(LightSelection, PowerIsFluxLuminance) {
   EXPECT_EQ(scene.integrator.light_selection, LightSelection::kPower);  // the default
 }
 
+// The power of delta lights: a directional light's power is its
+// radiance over the disk of the scene's bounding sphere (pbrt's DistantLight::Phi), a spot's
+// its intensity integrated over the cone, 2π (1 - cos^(e+1) θh) / (e + 1) · I.
+TEST(LightSelection, DirectionalAndSpotPower) {
+  Scene scene;
+  scene.triangles.Append({0, 0, 0}, {3, 0, 0}, {0, 4, 0});  // bounding box diagonal 5
+  scene.directional_lights.direction.push_back({0, -1, 0});
+  scene.directional_lights.radiance.push_back({2, 2, 2});
+  scene.spot_lights.position.push_back({0, 1, 0});
+  scene.spot_lights.axis.push_back({0, -1, 0});
+  scene.spot_lights.intensity.push_back({3, 3, 3});
+  scene.spot_lights.cos_half_angle.push_back(0.5f);
+  scene.spot_lights.exponent.push_back(2.0f);
+  scene.spot_lights.position.push_back({0, 1, 0});
+  scene.spot_lights.axis.push_back({0, -1, 0});
+  scene.spot_lights.intensity.push_back({1, 1, 1});
+  scene.spot_lights.cos_half_angle.push_back(0.0f);  // 180°, exponent 0: a hemisphere
+  scene.spot_lights.exponent.push_back(0.0f);
+  scene.emitters = {EmitterRef::Make(EmitterTag::kSpot, 1),
+                    EmitterRef::Make(EmitterTag::kDirectional, 0),
+                    EmitterRef::Make(EmitterTag::kSpot, 0)};
+  BuildEmitterSelection(&scene);
+  const EmitterSelectionTable& t = scene.emitter_selection;
+  ASSERT_EQ(t.size(), 3u);
+  const double pi = 3.14159265358979;
+  EXPECT_NEAR(t.power[0], 2 * pi, 1e-5);
+  EXPECT_NEAR(t.power[1], pi * 2.5 * 2.5 * 2, 1e-4);
+  EXPECT_NEAR(t.power[2], 2 * pi * (1 - 0.125) / 3 * 3, 1e-5);
+  EXPECT_NEAR(EmitterSelectionPmf(scene, EmitterRef::Make(EmitterTag::kSpot, 0)),
+              t.power[2] / (t.power[0] + t.power[1] + t.power[2]), 1e-6);
+  EXPECT_EQ(t.slot_directional[0], 1u);
+  EXPECT_EQ(t.slot_spot[1], 0u);
+}
+
 TEST(LightSelection, PickFrequenciesMatchThePmf) {
   for (const char* rule : {"uniform", "power"}) {
     const Scene scene =

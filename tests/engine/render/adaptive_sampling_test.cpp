@@ -54,7 +54,7 @@ AdaptiveRun RenderAdaptive(const Scene& scene, bool packets) {
   if (packets) {
     run.result = RenderWithPackets(scene, options);
   } else {
-    const Bvh bvh = BuildBvh(scene.triangles);
+    const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
     run.result = Render(scene, bvh, options);
   }
   return run;

@@ -10,7 +10,7 @@ namespace ptlab {
 
 /// Render(scene) through the packet path (bit-identical to the scalar path, only faster).
 inline RenderResult RenderWithPackets(const Scene& scene, RenderOptions options) {
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
   const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8);
   options.kernels = &kernels;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/bvh/bvh.h"
+#include "engine/io/collada_loader.h"
 #include "engine/io/xml_loader.h"
 #include "tests/engine/render/packet_render_for_test.h"
 
@@ -79,7 +80,7 @@ TEST(Render, PointLightFollowsTheInverseSquareLaw) {
     SCOPED_TRACE(integrator);
     const Scene scene = LoadOrDie(xml(integrator));
     ASSERT_EQ(scene.point_lights.size(), 1u);
-    const Bvh bvh = BuildBvh(scene.triangles);
+    const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
     RenderOptions options;
     options.spp = 16;
     const RenderResult r = Render(scene, bvh, options);
@@ -100,10 +101,127 @@ TEST(Render, PointLightFollowsTheInverseSquareLaw) {
   EXPECT_EQ(Render(mats, bvh, options).image.At(0, 0).g, 0.0f);
 }
 
+// A CS184-style scene of our own: a diffuse floor (albedo 0.5, the plane y = 0 facing +y,
+// 20 × 20) and the COLLADA light `light` instanced by a node with `transform`.
+Scene FloorUnderColladaLight(const std::string& light, const std::string& transform) {
+  const std::string dae = R"(<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<library_cameras><camera id="cam"><optics><technique_common><perspective><yfov>30</yfov>
+  <aspect_ratio>1</aspect_ratio><znear>0.01</znear><zfar>100</zfar></perspective>
+  </technique_common></optics></camera></library_cameras>
+<library_lights><light id="l"><technique_common>)" + light + R"(</technique_common></light>
+</library_lights>
+<library_effects><effect id="e"><extra><technique profile="CGL"><diffuse>
+  <reflectance>0.5 0.5 0.5</reflectance></diffuse></technique></extra></effect></library_effects>
+<library_materials><material id="m"><instance_effect url="#e"/></material></library_materials>
+<library_geometries><geometry id="floor"><mesh>
+  <source id="fp"><float_array id="fpa" count="12">-10 0 -10 10 0 -10 10 0 10 -10 0 10
+  </float_array><technique_common><accessor source="#fpa" count="4" stride="3"><param name="X"/>
+  <param name="Y"/><param name="Z"/></accessor></technique_common></source>
+  <vertices id="fv"><input semantic="POSITION" source="#fp"/></vertices>
+  <triangles material="s" count="2"><input semantic="VERTEX" source="#fv" offset="0"/>
+  <p>0 3 2 0 2 1</p></triangles></mesh></geometry></library_geometries>
+<library_visual_scenes><visual_scene id="vs">
+  <node id="c"><translate>0 1 5</translate><instance_camera url="#cam"/></node>
+  <node id="f"><instance_geometry url="#floor"><bind_material><technique_common>
+    <instance_material symbol="s" target="#m"/></technique_common></bind_material>
+  </instance_geometry></node>
+  <node id="ln">)" + transform + R"(<instance_light url="#l"/></node>
+</visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#vs"/></scene></COLLADA>
+)";
+  StatusOr<Scene> scene = LoadColladaSceneFromString(dae, "floor.dae");
+  EXPECT_TRUE(scene.ok()) << scene.status().message();
+  return scene.ok() ? std::move(*scene) : Scene{};
+}
+
+// Outgoing radiance of the floor at (x, 0, z), seen straight down through a one-pixel camera of
+// 0.01° (the pixel covers a spot 2e-4 wide), by the scalar loop; the wavefront must give the
+// same bits. A delta light lights the spot from one direction, so the estimate has no variance
+// beyond the spot's extent: the expected values below hold to float rounding.
+Color3f FloorRadianceAt(Scene scene, float x, float z) {
+  scene.camera.camera_to_world =
+      Transform::Translate({x, 1, z}) * Transform::Rotate({1, 0, 0}, 90);  // +z to -y
+  scene.camera.fov_deg = 0.01f;
+  scene.camera.width = scene.camera.height = 1;
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
+  RenderOptions options;
+  options.spp = 16;
+  const Color3f c = Render(scene, bvh, options).image.At(0, 0);
+  const Color3f p = RenderWithPackets(scene, options).image.At(0, 0);
+  EXPECT_EQ(p.r, c.r);
+  EXPECT_EQ(p.g, c.g);
+  EXPECT_EQ(p.b, c.b);
+  return c;
+}
+
+// A Lambertian surface under a directional light of radiance E at incidence θ sends out
+// albedo/π · E cos θ: 0.5/π · 2π (1, 2, 3) = (1, 2, 3) head-on, half that at θ = 60°.
+TEST(Render, DirectionalLightGivesTheLambertianRadiance) {
+  const std::string sun =
+      "<directional><color>6.2831853 12.566371 18.849556</color></directional>";
+  // The light's -z turned to -y (head-on), then tilted 60° about z.
+  const Scene head_on = FloorUnderColladaLight(sun, "<rotate>1 0 0 -90</rotate>");
+  ASSERT_EQ(head_on.directional_lights.size(), 1u);
+  for (const float x : {0.0f, 3.0f, -7.5f}) {
+    const Color3f c = FloorRadianceAt(head_on, x, 0.25f);
+    EXPECT_NEAR(c.r, 1.0f, 1e-5f);
+    EXPECT_NEAR(c.g, 2.0f, 2e-5f);
+    EXPECT_NEAR(c.b, 3.0f, 3e-5f);
+  }
+  // Every integrator that samples emitters sees it, MIS or not (a delta light gets no MIS
+  // weight: BSDF sampling cannot reach it); BSDF sampling alone sees nothing.
+  Scene tilted =
+      FloorUnderColladaLight(sun, "<rotate>0 0 1 60</rotate><rotate>1 0 0 -90</rotate>");
+  using T = IntegratorDesc::Type;
+  for (const T type : {T::kDirectEms, T::kDirectMis, T::kWhitted, T::kPathEms, T::kPathMis}) {
+    SCOPED_TRACE(IntegratorTypeName(type));
+    tilted.integrator.type = type;
+    tilted.integrator.max_depth = -1;
+    const Color3f c = FloorRadianceAt(tilted, 1.0f, -2.0f);
+    EXPECT_NEAR(c.r, 0.5f, 1e-5f);
+    EXPECT_NEAR(c.b, 1.5f, 2e-5f);
+  }
+  tilted.integrator.type = T::kDirectMats;
+  EXPECT_EQ(FloorRadianceAt(tilted, 1.0f, -2.0f).g, 0.0f);
+  // From below the horizon the floor gets nothing.
+  const Scene below = FloorUnderColladaLight(sun, "<rotate>1 0 0 90</rotate>");
+  EXPECT_EQ(FloorRadianceAt(below, 0.0f, 0.0f).g, 0.0f);
+}
+
+// A spot 2 above the floor shining down (full cone 90°, exponent 2, intensity I = 4π): the floor
+// at distance x from its foot sees θ = atan(x/2), r² = 4 + x², and sends out
+// albedo/π · I cos²θ / r² · cos θ = 2 cos³θ / r²; nothing outside the 45° half angle.
+TEST(Render, SpotLightFollowsItsFalloffAndCone) {
+  const Scene scene = FloorUnderColladaLight(
+      "<spot><color>12.566371 12.566371 12.566371</color><falloff_angle>90</falloff_angle>"
+      "<falloff_exponent>2</falloff_exponent></spot>",
+      "<translate>0 2 0</translate><rotate>1 0 0 -90</rotate>");
+  ASSERT_EQ(scene.spot_lights.size(), 1u);
+  for (const float x : {0.0f, 1.0f, 1.9f}) {
+    SCOPED_TRACE(x);
+    const double r2 = 4.0 + double(x) * x, cos_theta = 2.0 / std::sqrt(r2);
+    const double expected = 2.0 * std::pow(cos_theta, 3.0) / r2;
+    const Color3f c = FloorRadianceAt(scene, x, 0.0f);
+    EXPECT_NEAR(c.r, expected, 1e-5 * expected);
+    EXPECT_EQ(c.g, c.r);
+  }
+  // Past the cone's edge at x = 2 (θ = 45°).
+  EXPECT_EQ(FloorRadianceAt(scene, 2.1f, 0.0f).r, 0.0f);
+  EXPECT_EQ(FloorRadianceAt(scene, 0.0f, -5.0f).r, 0.0f);
+  // Exponent 0 and the full 180° cone: a point light of intensity I (0.5 on the axis).
+  const Scene wide = FloorUnderColladaLight(
+      "<spot><color>12.566371 12.566371 12.566371</color></spot>",
+      "<translate>0 2 0</translate><rotate>1 0 0 -90</rotate>");
+  EXPECT_NEAR(FloorRadianceAt(wide, 0.0f, 0.0f).r, 0.5f, 5e-6f);
+  const double far_r2 = 4.0 + 36.0, far_cos = 2.0 / std::sqrt(far_r2);
+  EXPECT_NEAR(FloorRadianceAt(wide, 6.0f, 0.0f).r, 2.0 * far_cos / far_r2, 1e-6);
+}
+
 TEST(Render, SameImageForAnyThreadCount) {
   for (const char* integrator : {"direct_mis", "whitted"}) {
     const Scene scene = LoadOrDie(BoxScene(integrator, 5));
-    const Bvh bvh = BuildBvh(scene.triangles);
+    const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
     RenderOptions one;
     one.spp = 5;
     one.seed = 7;
@@ -129,7 +247,7 @@ TEST(Render, SameImageForAnyThreadCount) {
 
 TEST(Render, CancelledBeforeStartKeepsNothing) {
   const Scene scene = LoadOrDie(BoxScene("direct_ems", 4));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   std::atomic<bool> cancel{true};
   RenderOptions options;
   options.spp = 4;
@@ -141,7 +259,7 @@ TEST(Render, CancelledBeforeStartKeepsNothing) {
 
 TEST(Render, InterruptKeepsCompletedPasses) {
   const Scene scene = LoadOrDie(BoxScene("direct_ems", 64));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   std::atomic<bool> cancel{false};
   RenderOptions options;
   options.spp = 64;  // 4 passes of 16
@@ -168,7 +286,7 @@ TEST(Render, InterruptKeepsCompletedPasses) {
 // Mean radiance of the box image rendered with `integrator` at spp samples per pixel.
 double BoxMean(const char* integrator, uint32_t spp) {
   const Scene scene = LoadOrDie(BoxScene(integrator, int(spp)));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   RenderOptions options;
   options.spp = spp;
   options.threads = 2;

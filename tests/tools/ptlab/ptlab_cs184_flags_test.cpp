@@ -1,6 +1,7 @@
 // CS184's pathtracer flags on `ptlab render`: each value reaches the render (EXR header, image),
 // each bad value is a clear error with exit code 2 (usage) or 1 (input), and nothing is written.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -150,6 +151,42 @@ TEST_F(PtlabCs184Flags, Resolution) {
   ExpectUsageError(kLambertian + " -r 40 -o " + Out("bad.exr"), "-r");
   ExpectUsageError(kLambertian + " -r 0 30 -o " + Out("bad.exr"), "-r");
   ExpectUsageError(kLambertian + " -r 40 30 --width 20 -o " + Out("bad.exr"), "excludes");
+}
+
+// -c FILE: a CS184 camera settings file moves the camera (another image; the lens line is
+// used, -d on the command line wins); a bad file is exit 2 naming -c and file:line.
+TEST_F(PtlabCs184Flags, CameraFile) {
+  // In front of the Cornell box's open side (ptlab z = -1), looking into it along +z: right
+  // (-1, 0, 0), up (0, 1, 0), back (0, 0, -1); vFov 40.
+  const std::string camera =
+      "60 40 1.33333 0.01 100\n0 0.75 -3 0 0.75 0 \n0 0 3 0.5 50\n-1 0 0 0 1 0 0 0 -1 \n"
+      "640 480 1\n4.5 0\n";
+  std::FILE* f = std::fopen(Out("cam.txt").c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs(camera.c_str(), f);
+  std::fclose(f);
+  ASSERT_EQ(Render(kLambertian + " -r 32 24 -s 2 -o " + Out("file.exr")), 0) << Log();
+  ASSERT_EQ(Render(kLambertian + " -r 32 24 -s 2 -c " + Out("cam.txt") + " -o " + Out("c.exr")),
+            0)
+      << Log();
+  ASSERT_EQ(Render(kLambertian + " -r 32 24 -s 2 -c " + Out("cam.txt") + " -d 2 -o " +
+                   Out("cd.exr")),
+            0)
+      << Log();
+  StatusOr<Image> file = ReadImage(Out("file.exr")), c = ReadImage(Out("c.exr"));
+  ASSERT_TRUE(file.ok() && c.ok());
+  EXPECT_NE(file->rgb, c->rgb);
+  EXPECT_GT(Mean(Out("c.exr")), 0.01);
+  EXPECT_EQ(Header(dir_ / "c.exr")["ptlab:focal_distance"], "4.500000");
+  EXPECT_EQ(Header(dir_ / "cd.exr")["ptlab:focal_distance"], "2.000000");
+  f = std::fopen(Out("bad.txt").c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("60 40 1.33333 0.01 100\n0 1 x\n", f);
+  std::fclose(f);
+  ExpectUsageError(kLambertian + " -c " + Out("bad.txt") + " -o " + Out("bad.exr"),
+                   "-c: " + Out("bad.txt") + ":2: 'x' is not a number");
+  ExpectUsageError(kLambertian + " -c " + Out("nothere.txt") + " -o " + Out("bad.exr"),
+                   "--camera-file");
 }
 
 // -f names the PNG and the EXR goes beside it.

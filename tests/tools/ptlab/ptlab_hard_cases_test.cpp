@@ -159,7 +159,7 @@ TEST(PtlabHardCases, TenMillionTrianglesRenderFinite) {
   }
   AddMesh(&scene, grid, Transform(), diffuse, "grid");
   ASSERT_GE(scene.triangles.size(), size_t(10'000'000));
-  const Bvh bvh = BuildBvh(scene.triangles);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   RenderOptions options;
   options.spp = 2;
   options.threads = 2;
