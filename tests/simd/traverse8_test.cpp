@@ -678,5 +678,16 @@ TEST(Traverse8Render, PacketPathMatchesOracleOnOwnScenes) {
   }
 }
 
+// Issue 11's other scenes: the smooth dielectric (motto, every path through the dielectric
+// kernel) and our demo (glass, rough gold and rough plastic under the Venice environment map,
+// thin lens; the map is read from ../shared/data).
+TEST(Traverse8Render, PacketPathMatchesOracleOnDielectricAndEnvironmentMap) {
+  ExpectPacketRenderMatchesOracle(kSharedData + "nori/epfl/scenes/pa4/motto/motto-dielectric.xml",
+                                  64);
+  if (!std::filesystem::exists(kSharedData + "envmaps/venice_sunset_1k.exr"))
+    GTEST_SKIP() << "shared data not found: the Venice map";
+  ExpectPacketRenderMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/demo.xml", 64);
+}
+
 }  // namespace
 }  // namespace ptlab::simd
