@@ -472,11 +472,12 @@ class Wavefront {
     }
   }
 
-  // Splats the wave's samples in the scalar loop's order (row, pixel, sample); non-finite
-  // samples are dropped and counted.
+  // Splats the wave's samples in the scalar loop's order (row, pixel, sample) with the kernel
+  // table's splat slot; non-finite samples are dropped and counted.
   void Splat(const PixelFilter& filter, int x0, int y0, int x1, int y1, size_t samples,
              FilmBlock* block, const PixelSampling* pixels) {
     const auto t0 = Clock::now();
+    splat_.Clear();
     for (size_t i = 0; i < slot_.size(); ++i) results_[slot_[i]].L = L_[i];
     const size_t tile_w = size_t(x1 - x0);
     for (int y = y0; y < y1; ++y) {
@@ -493,10 +494,11 @@ class Wavefront {
             if (stats_->nonfinite++ == 0) stats_->first_x = x0 + int(px), stats_->first_y = y;
             continue;
           }
-          block->Splat(filter, r.sx, r.sy, r.L);
+          splat_.Push(r.sx, r.sy, r.L);
         }
       }
     }
+    kernels_.splat(filter, splat_.View(), block);
     stats_->seconds.film += Seconds(t0, Clock::now());
   }
 
@@ -528,6 +530,20 @@ class Wavefront {
     void Resize(size_t n) {
       for (auto* v : {&wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf, &eta})
         v->resize(n);
+    }
+  };
+
+  /// The splat stage's SoA columns: film position and radiance of each finite sample.
+  struct SplatColumns {
+    AlignedVector<float> sx, sy, r, g, b;
+    void Clear() {
+      for (auto* v : {&sx, &sy, &r, &g, &b}) v->clear();
+    }
+    void Push(float x, float y, const Color3f& L) {
+      sx.push_back(x), sy.push_back(y), r.push_back(L.r), g.push_back(L.g), b.push_back(L.b);
+    }
+    FilmSamples View() const {
+      return {sx.data(), sy.data(), r.data(), g.data(), b.data(), sx.size()};
     }
   };
 
@@ -571,6 +587,7 @@ class Wavefront {
   std::vector<uint32_t> nee_paths_;
   BsdfColumns bsdf_;
   ShadeScratch shade_scratch_;
+  SplatColumns splat_;
 };
 
 // The oracle's traversal kernels: each active lane alone through Intersect1 / Occluded1.
@@ -605,6 +622,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .sobol2d = ScrambledSobol2DBatch,
           .sobol1d = ScrambledSobol1DBatch,
           .bsdf = ShadeBatch,
+          .splat = SplatSamples,
           .name = "scalar-oracle"};
 }
 

@@ -59,12 +59,16 @@ struct WavefrontKernels {
   void (*bsdf)(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
                const ShadeInputs& in, const ShadeOutputs& out) = nullptr;
 
+  // Splat stage: a wave's finite samples, in the scalar loop's order, into the film block
+  // through the filter's precomputed table (PixelFilter::Eval). Oracle: ptlab::SplatSamples
+  // (FilmBlock::Splat per sample); SIMD: simd::SplatSamples, bit-identical (simd/splat8.h).
+  void (*splat)(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) = nullptr;
+
   // Planned slots (issue 11, the SIMD shading stage), each a batch over a wave's SoA columns
   // with its scalar twin in this table's oracle:
   //   interaction: hit records -> shading points (p, n, frame, uv, material ref), wo;
   //   emitter:     emitter samples (area lights, environment map, distant disk, point) with
-  //                their pdfs and MIS weights, and the shadow rays' setup;
-  //   splat:       a wave's samples into the film block through a precomputed filter table.
+  //                their pdfs and MIS weights, and the shadow rays' setup.
 
   /// For logs: "scalar-oracle" or the Highway target the SIMD kernels dispatch to.
   const char* name = "";
