@@ -1,7 +1,9 @@
-// simd/'s table of the wavefront's stage kernels: simd/traverse8 and simd/sampler8.
+// simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8, simd/splat8.
 #include "simd/wavefront_kernels.h"
 
 #include "simd/sampler8.h"
+#include "simd/shade8.h"
+#include "simd/splat8.h"
 #include "simd/traverse8.h"
 
 namespace ptlab::simd {
@@ -24,6 +26,8 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .occluded8 = SimdOccluded8,
           .sobol2d = ScrambledSobol2DBatch,
           .sobol1d = ScrambledSobol1DBatch,
+          .bsdf = ShadeBatch,
+          .splat = SplatSamples,
           .name = Traverse8TargetName()};
 }
 

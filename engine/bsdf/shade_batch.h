@@ -81,7 +81,8 @@ struct ShadeScratch {
 
 /// The shading stage for n hits with arbitrary materials: partition by tag, copy each group's
 /// inputs into contiguous arrays, run `batch` (ShadeBatch or simd::ShadeBatch) once per tag
-/// present, scatter the results back. Tags with no hits cost nothing. Rows with an invalid ref
+/// present, scatter the results back (when all n hits have one tag, `batch` runs on the arrays
+/// themselves). Tags with no hits cost nothing. Rows with an invalid ref
 /// get f = 0, pdf_l = 0, wi = 0, weight = 0, pdf = 0 and eta = 1.
 template <class BatchFn>
 void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* refs, size_t n,
@@ -124,6 +125,12 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
       out.weight.r[i] = out.weight.g[i] = out.weight.b[i] = out.pdf[i] = 0.0f;
       out.eta[i] = 1.0f;
     }
+  }
+  // One tag for every row: the rows are already that tag's contiguous batch, in input order.
+  for (int t = 0; t < kMaterialTagCount; ++t) {
+    if (n == 0 || part.begin[t + 1] - part.begin[t] != n) continue;
+    batch(m, static_cast<MaterialTag>(t), part.index.data(), n, in, out);
+    return;
   }
   const float* src_in[9] = {in.wo.x, in.wo.y,   in.wo.z, in.wl.x, in.wl.y,
                             in.wl.z, in.u_lobe, in.u_x,  in.u_y};

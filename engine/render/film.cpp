@@ -13,20 +13,26 @@ void FilmBlock::Reset(int x0, int y0, int width, int height) {
 
 void FilmBlock::Clear() { std::fill(sum_.begin(), sum_.end(), 0.0f); }
 
-void FilmBlock::Splat(const PixelFilter& filter, float sx, float sy, const Color3f& radiance) {
-  const float r = filter.radius();
+SplatFootprint FilmBlock::Footprint(float radius, float sx, float sy) const {
   // Pixels whose centre lies within the radius: i + 0.5 in [sx - r, sx + r].
-  const int ix0 = std::max(x0_, int(std::ceil(sx - 0.5f - r)));
-  const int ix1 = std::min(x0_ + width_ - 1, int(std::floor(sx - 0.5f + r)));
-  const int iy0 = std::max(y0_, int(std::ceil(sy - 0.5f - r)));
-  const int iy1 = std::min(y0_ + height_ - 1, int(std::floor(sy - 0.5f + r)));
+  SplatFootprint f;
+  f.ix0 = std::max(x0_, int(std::ceil(sx - 0.5f - radius)));
+  f.ix1 = std::min(x0_ + width_ - 1, int(std::floor(sx - 0.5f + radius)));
+  f.iy0 = std::max(y0_, int(std::ceil(sy - 0.5f - radius)));
+  f.iy1 = std::min(y0_ + height_ - 1, int(std::floor(sy - 0.5f + radius)));
+  return f;
+}
+
+void FilmBlock::Splat(const PixelFilter& filter, float sx, float sy, const Color3f& radiance) {
+  const SplatFootprint f = Footprint(filter.radius(), sx, sy);
+  const int nx = std::min(kMaxFilterTaps, f.ix1 - f.ix0 + 1);
+  if (nx <= 0) return;
   float wx[kMaxFilterTaps];
-  const int nx = std::min(kMaxFilterTaps, ix1 - ix0 + 1);
-  for (int i = 0; i < nx; ++i) wx[i] = filter.Eval(float(ix0 + i) + 0.5f - sx);
-  for (int j = iy0; j <= iy1; ++j) {
+  for (int i = 0; i < nx; ++i) wx[i] = filter.Eval(float(f.ix0 + i) + 0.5f - sx);
+  for (int j = f.iy0; j <= f.iy1; ++j) {
     const float wy = filter.Eval(float(j) + 0.5f - sy);
     if (wy == 0.0f) continue;
-    float* row = &sum_[(size_t(j - y0_) * size_t(width_) + size_t(ix0 - x0_)) * 4];
+    float* row = PixelSums(f.ix0, j);
     for (int i = 0; i < nx; ++i) {
       const float w = wx[i] * wy;
       row[4 * i + 0] += w * radiance.r;
@@ -34,6 +40,13 @@ void FilmBlock::Splat(const PixelFilter& filter, float sx, float sy, const Color
       row[4 * i + 2] += w * radiance.b;
       row[4 * i + 3] += w;
     }
+  }
+}
+
+void SplatSamples(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) {
+  for (size_t k = 0; k < samples.n; ++k) {
+    block->Splat(filter, samples.sx[k], samples.sy[k],
+                 Color3f{samples.r[k], samples.g[k], samples.b[k]});
   }
 }
 

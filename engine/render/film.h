@@ -1,6 +1,7 @@
 // Film: weighted radiance sums per pixel, filled by splatting samples through the pixel filter.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "engine/core/vec.h"
@@ -13,6 +14,22 @@ namespace ptlab {
 /// Pixels a sample may touch along one axis; filters are limited to radius < kMaxFilterTaps / 2.
 inline constexpr int kMaxFilterTaps = 32;
 static_assert(2 * kMaxFilterRadius + 1 <= kMaxFilterTaps, "the largest filter must fit its taps");
+
+/// Samples to splat, SoA: continuous image positions and radiance, n rows.
+struct FilmSamples {
+  const float* sx = nullptr;
+  const float* sy = nullptr;
+  const float* r = nullptr;
+  const float* g = nullptr;
+  const float* b = nullptr;
+  size_t n = 0;
+};
+
+/// The pixels of a block one sample touches: [ix0, ix1] x [iy0, iy1], image coordinates (empty
+/// when ix1 < ix0 or iy1 < iy0).
+struct SplatFootprint {
+  int ix0 = 0, ix1 = -1, iy0 = 0, iy1 = -1;
+};
 
 /// A rectangle of pixel accumulators (sum of w·L and of w). A tile block covers its tile plus
 /// a border of the filter radius; blocks are merged into the full film in a fixed order so
@@ -28,6 +45,13 @@ class FilmBlock {
   /// Splats radiance L of a sample at continuous image position (sx, sy); pixel (i, j) has its
   /// centre at (i + 0.5, j + 0.5).
   void Splat(const PixelFilter& filter, float sx, float sy, const Color3f& radiance);
+  /// The pixels of this block whose centre lies within `radius` of (sx, sy) on both axes.
+  SplatFootprint Footprint(float radius, float sx, float sy) const;
+  /// The r, g, b, w accumulators of pixel (x, y) (image coordinates, inside the block) and the
+  /// pixels after it in its row.
+  float* PixelSums(int x, int y) {
+    return &sum_[(size_t(y - y0_) * size_t(width_) + size_t(x - x0_)) * 4];
+  }
   /// Adds the overlapping part of other into this block.
   void Merge(const FilmBlock& other);
   /// Normalised image (sum w·L / sum w; 0 where no weight) of this block.
@@ -45,5 +69,9 @@ class FilmBlock {
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;
   std::vector<float> sum_;  // r, g, b, w per pixel
 };
+
+/// Splats the samples in order into `block` (FilmBlock::Splat each): the scalar oracle of
+/// simd::SplatSamples (simd/splat8.h) and the oracle table's splat kernel (wavefront.h).
+void SplatSamples(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block);
 
 }  // namespace ptlab

@@ -62,13 +62,16 @@ Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, PathSample
   if (!SampleBsdf(scene, its, wo, sampler, 0, &bs)) return L;
   const Vec3f wi = its.frame.ToWorld(bs.wi);
   Ray next{SpawnOrigin(its, wi), wi, 0.0f, kInfinity};
+  // The ray's direction renormalised, as LiPath and the wavefront see every ray (ToWorld's
+  // result can be an ulp off unit length, which moves an environment-map lookup).
+  const Vec3f w = next.d / Length(next.d);
   Hit hit2;
   if (!Trace(ctx, next, &hit2, c)) {
-    if (type == Type::kDirectMats) return L + bs.weight * Escaped(scene, wi, false, 0.0f);
-    return L + bs.weight * Escaped(scene, wi, mis && !bs.delta, bs.pdf);
+    if (type == Type::kDirectMats) return L + bs.weight * Escaped(scene, w, false, 0.0f);
+    return L + bs.weight * Escaped(scene, w, mis && !bs.delta, bs.pdf);
   }
   const SurfaceInteraction light = MakeInteraction(scene, next, hit2);
-  const Color3f Le = Emitted(scene, light, -wi);
+  const Color3f Le = Emitted(scene, light, -w);
   if (IsBlack(Le)) return L;
   float weight = 1.0f;
   if (mis && !bs.delta) {

@@ -17,8 +17,8 @@
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 
-// Both callers run these same functions, so the wavefront produces the scalar path's bits;
-// tests/simd/traverse8_test.cpp (Traverse8Render*) checks the two paths bit for bit.
+// Both callers run these same functions, so the wavefront with the oracle's kernel table
+// produces the scalar path's bits; tests/simd/traverse8_test.cpp (Traverse8Render*) checks it.
 namespace ptlab::integrator {
 
 /// Nori's Whitted integrator continues specular chains with probability 0.95.

@@ -74,8 +74,8 @@ struct RenderOptions {
   /// Set (e.g. by a SIGINT handler) to stop; the image keeps every completed pass.
   const std::atomic<bool>* cancel = nullptr;
   /// When set, tiles run through the wavefront (RenderTilePacket8, wavefront.h) with this kernel
-  /// table, simd/'s or the oracle's (bit-identical to the scalar loop either way); it must
-  /// outlive the render. Null: the scalar loop, one Li per sample (RenderTileScalar).
+  /// table: the oracle's (bit-identical to the scalar loop) or simd/'s (within the render
+  /// contract of RenderTilePacket8); it must outlive the render. Null: the scalar loop, one Li per sample (RenderTileScalar).
   const WavefrontKernels* kernels = nullptr;
   /// > 0: no pass starts once this many seconds of rendering have passed (the image keeps
   /// the passes done; spp is then an upper bound). Not with a distribution.

@@ -30,8 +30,6 @@ using integrator::kWhittedMaxDepth;
 using integrator::MisWeight;
 using integrator::PrepareEmitterSample;
 using integrator::PrepareEmitterSampleWith;
-using integrator::SampleBsdf;
-using integrator::SampleBsdfWith;
 using integrator::SpawnOrigin;
 using Type = IntegratorDesc::Type;
 using Clock = std::chrono::steady_clock;
@@ -283,10 +281,13 @@ class Wavefront {
 
   // Emitter samples (shadow rays queued), Russian roulette and BSDF sampling, in the scalar
   // integrators' order of random numbers; continuing paths form the next, compact ray queue.
+  // The BSDF numbers are drawn here, per path in that order, into the BSDF stage's columns;
+  // SampleBsdfs then runs the kernel table's bsdf slot over them and continues the paths.
   void Sample(int depth) {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
     requests_.clear(), nee_paths_.clear();
+    bsdf_.Clear();
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_.emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
@@ -332,23 +333,58 @@ class Wavefront {
         if (depth >= kWhittedMaxDepth || roulette() >= kWhittedContinuation) continue;
         roulette_scale = 1.0f / kWhittedContinuation;
       }
-      BsdfSample bs;
+      // The lobe number, then the direction (SampleBsdf's order).
+      float u_lobe;
+      Vec2f u_dir;
       if (sobol_) {
-        if (!SampleBsdfWith(scene_, its, wo, bsdf_lobe_[k], bsdf_direction_[k], &bs)) continue;
-      } else if (!SampleBsdf(scene_, its, wo, sampler, depth, &bs)) {
-        continue;
-      }
-      if (rules_.roulette == VertexRules::Roulette::kWhitted) {
-        throughput_[i] *= bs.weight * roulette_scale;
+        u_lobe = bsdf_lobe_[k], u_dir = bsdf_direction_[k];
       } else {
-        throughput_[i] *= bs.weight;
+        u_lobe = sampler.Get1D(DecisionDimension(depth, Decision::kBsdfLobe));
+        u_dir = sampler.Get2D(DecisionDimension(depth, Decision::kBsdfDirection));
       }
-      eta_[i] *= bs.eta;
+      bsdf_.Push(i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
+    }
+    SampleBsdfs();
+  }
+
+  // The BSDF stage: the kernel table's bsdf slot over the columns, one contiguous batch per
+  // material tag (ShadeHitsWith: counting sort by tag, gather, kernel, scatter); then, in queue
+  // order, each sampled path's throughput, state and next ray, as the scalar integrators do.
+  void SampleBsdfs() {
+    BsdfColumns& b = bsdf_;
+    const size_t n = b.size();
+    if (n == 0) return;
+    b.Resize(n);
+    ShadeInputs in;
+    in.wo = {b.wo_x.data(), b.wo_y.data(), b.wo_z.data()};
+    in.u_lobe = b.u_lobe.data(), in.u_x = b.u_x.data(), in.u_y = b.u_y.data();
+    ShadeOutputs out;
+    out.wi = {b.wi_x.data(), b.wi_y.data(), b.wi_z.data()};
+    out.weight = {b.weight_r.data(), b.weight_g.data(), b.weight_b.data()};
+    out.pdf = b.pdf.data(), out.eta = b.eta.data();
+    const auto bsdf = kernels_.bsdf;
+    ShadeHitsWith(
+        [bsdf](const MaterialTables& mt, MaterialTag tag, const uint32_t* index, size_t count,
+               const ShadeInputs& bin, const ShadeOutputs& bout) {
+          bsdf(mt, tag, index, count, bin, bout);
+        },
+        scene_.materials, b.material.data(), n, in, out, &shade_scratch_);
+    for (size_t c = 0; c < n; ++c) {
+      if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
+      const uint32_t i = b.path[c];
+      const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
+      if (rules_.roulette == VertexRules::Roulette::kWhitted) {
+        throughput_[i] *= weight * b.roulette_scale[c];
+      } else {
+        throughput_[i] *= weight;
+      }
+      eta_[i] *= b.eta[c];
       if (rules_.cut_black && IsBlack(throughput_[i])) continue;
-      specular_[i] = bs.delta;
-      prev_pdf_[i] = bs.pdf;
+      specular_[i] = IsDeltaMaterial(b.material[c].tag());
+      prev_pdf_[i] = b.pdf[c];
+      const SurfaceInteraction& its = its_[b.entry[c]];
       prev_p_[i] = its.p;
-      const Vec3f wi = its.frame.ToWorld(bs.wi);
+      const Vec3f wi = its.frame.ToWorld(Vec3f{b.wi_x[c], b.wi_y[c], b.wi_z[c]});
       next_rays_.Push(Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity}, i);
     }
   }
@@ -437,11 +473,12 @@ class Wavefront {
     }
   }
 
-  // Splats the wave's samples in the scalar loop's order (row, pixel, sample); non-finite
-  // samples are dropped and counted.
+  // Splats the wave's samples in the scalar loop's order (row, pixel, sample) with the kernel
+  // table's splat slot; non-finite samples are dropped and counted.
   void Splat(const PixelFilter& filter, int x0, int y0, int x1, int y1, size_t samples,
              FilmBlock* block, const PixelSampling* pixels) {
     const auto t0 = Clock::now();
+    splat_.Clear();
     for (size_t i = 0; i < slot_.size(); ++i) results_[slot_[i]].L = L_[i];
     const size_t tile_w = size_t(x1 - x0);
     for (int y = y0; y < y1; ++y) {
@@ -458,12 +495,58 @@ class Wavefront {
             if (stats_->nonfinite++ == 0) stats_->first_x = x0 + int(px), stats_->first_y = y;
             continue;
           }
-          block->Splat(filter, r.sx, r.sy, r.L);
+          splat_.Push(r.sx, r.sy, r.L);
         }
       }
     }
+    kernels_.splat(filter, splat_.View(), block);
     stats_->seconds.film += Seconds(t0, Clock::now());
   }
+
+  /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex (in
+  /// queue order): the path, its queue entry (for the shading point), material, wo in the
+  /// local frame and the numbers (inputs); wi (local), weight f·|cos θi|/pdf, pdf (0: no
+  /// sample) and eta (outputs, written by the bsdf slot).
+  struct BsdfColumns {
+    std::vector<uint32_t> path, entry;
+    std::vector<MaterialRef> material;
+    std::vector<float> roulette_scale;
+    AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
+    AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
+
+    size_t size() const { return path.size(); }
+    void Clear() {
+      for (auto* v : {&path, &entry}) v->clear();
+      material.clear(), roulette_scale.clear();
+      for (auto* v : {&wo_x, &wo_y, &wo_z, &u_lobe, &u_x, &u_y}) v->clear();
+    }
+    void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
+              float lobe, const Vec2f& dir, float scale) {
+      path.push_back(path_id), entry.push_back(queue_entry), material.push_back(ref);
+      roulette_scale.push_back(scale);
+      wo_x.push_back(wo.x), wo_y.push_back(wo.y), wo_z.push_back(wo.z);
+      u_lobe.push_back(lobe), u_x.push_back(dir.x), u_y.push_back(dir.y);
+    }
+    /// Sizes the output columns for n rows.
+    void Resize(size_t n) {
+      for (auto* v : {&wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf, &eta})
+        v->resize(n);
+    }
+  };
+
+  /// The splat stage's SoA columns: film position and radiance of each finite sample.
+  struct SplatColumns {
+    AlignedVector<float> sx, sy, r, g, b;
+    void Clear() {
+      for (auto* v : {&sx, &sy, &r, &g, &b}) v->clear();
+    }
+    void Push(float x, float y, const Color3f& L) {
+      sx.push_back(x), sy.push_back(y), r.push_back(L.r), g.push_back(L.g), b.push_back(L.b);
+    }
+    FilmSamples View() const {
+      return {sx.data(), sy.data(), r.data(), g.data(), b.data(), sx.size()};
+    }
+  };
 
   struct Result {
     float sx = 0, sy = 0;
@@ -503,6 +586,9 @@ class Wavefront {
   std::vector<EmitterSampleRequest> requests_;
   std::vector<uint8_t> occluded_;
   std::vector<uint32_t> nee_paths_;
+  BsdfColumns bsdf_;
+  ShadeScratch shade_scratch_;
+  SplatColumns splat_;
 };
 
 // The oracle's traversal kernels: each active lane alone through Intersect1 / Occluded1.
@@ -536,6 +622,8 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .occluded8 = OracleOccluded8,
           .sobol2d = ScrambledSobol2DBatch,
           .sobol1d = ScrambledSobol1DBatch,
+          .bsdf = ShadeBatch,
+          .splat = SplatSamples,
           .name = "scalar-oracle"};
 }
 

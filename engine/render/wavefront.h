@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "engine/bsdf/shade_batch.h"
 #include "engine/bvh/bvh.h"
 #include "engine/core/packet8.h"
 #include "engine/render/camera.h"
@@ -49,14 +50,25 @@ struct WavefrontKernels {
   void (*sobol1d)(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim, size_t n,
                   float* x) = nullptr;
 
+  // BSDF stage: one material's kernel over a contiguous batch of rows that all have tag `tag`
+  // (the wavefront partitions its continuing entries by tag with PartitionByMaterial and calls
+  // this once per tag present; engine/bsdf/shade_batch.h). Oracle: ptlab::ShadeBatch
+  // (BsdfSampleDirection per row, so the oracle table keeps the scalar path's bits); SIMD:
+  // simd::ShadeBatch, within the contract of simd/shade8.h. The wavefront samples only
+  // (in.wl.x == nullptr: f and pdf_l are not written).
+  void (*bsdf)(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
+               const ShadeInputs& in, const ShadeOutputs& out) = nullptr;
+
+  // Splat stage: a wave's finite samples, in the scalar loop's order, into the film block
+  // through the filter's precomputed table (PixelFilter::Eval). Oracle: ptlab::SplatSamples
+  // (FilmBlock::Splat per sample); SIMD: simd::SplatSamples, bit-identical (simd/splat8.h).
+  void (*splat)(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) = nullptr;
+
   // Planned slots (issue 11, the SIMD shading stage), each a batch over a wave's SoA columns
   // with its scalar twin in this table's oracle:
   //   interaction: hit records -> shading points (p, n, frame, uv, material ref), wo;
-  //   bsdf:        per material tag over a tag-partitioned batch: sample, eval, pdf
-  //                (oracle engine/bsdf/shade_batch.h, SIMD simd/shade8.h);
   //   emitter:     emitter samples (area lights, environment map, distant disk, point) with
-  //                their pdfs and MIS weights, and the shadow rays' setup;
-  //   splat:       a wave's samples into the film block through a precomputed filter table.
+  //                their pdfs and MIS weights, and the shadow rays' setup.
 
   /// For logs: "scalar-oracle" or the Highway target the SIMD kernels dispatch to.
   const char* name = "";
@@ -77,9 +89,11 @@ bool ForceScalar();
 ///   samples, roulette, BSDF) -> shadow traversal (occluded8 per packet) -> accumulation,
 /// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
 /// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
-/// and samples are splatted in the scalar order (row, pixel, sample), so with kernels that meet
-/// their contracts the block is bit-identical to RenderTileScalar's. Every integrator type is
-/// supported.
+/// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
+/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF kernel differs from its
+/// oracle by a few ulp (simd/shade8.h), so the image agrees with the oracle's within the render
+/// contract of tests/simd/traverse8_test.cpp (relMSE, block means) but not bit for bit. Every
+/// integrator type is supported.
 void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,

@@ -39,7 +39,9 @@ struct AdaptiveRun {
   std::vector<uint32_t> pass_spp;
 };
 
-AdaptiveRun RenderAdaptive(const Scene& scene, bool packets) {
+enum class RenderPath { kScalar, kOracleWavefront, kSimdWavefront };
+
+AdaptiveRun RenderAdaptive(const Scene& scene, RenderPath path) {
   RenderOptions options;
   options.spp = 128;
   options.threads = 2;
@@ -51,11 +53,18 @@ AdaptiveRun RenderAdaptive(const Scene& scene, bool packets) {
     run.moments = *pass.pixels;
     run.pass_spp.push_back(pass.spp_done);
   };
-  if (packets) {
-    run.result = RenderWithPackets(scene, options);
-  } else {
-    const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-    run.result = Render(scene, bvh, options);
+  switch (path) {
+    case RenderPath::kScalar: {
+      const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
+      run.result = Render(scene, bvh, options);
+      break;
+    }
+    case RenderPath::kOracleWavefront:
+      run.result = RenderWithOracleWavefront(scene, options);
+      break;
+    case RenderPath::kSimdWavefront:
+      run.result = RenderWithPackets(scene, options);
+      break;
   }
   return run;
 }
@@ -64,7 +73,7 @@ TEST(AdaptiveSampling, PixelsStopByTheRuleAndCountsAddUp) {
   StatusOr<Scene> scene = LoadScene(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");
   ASSERT_TRUE(scene.ok()) << scene.status().message();
   scene->camera.width = scene->camera.height = 48;
-  const AdaptiveRun run = RenderAdaptive(*scene, true);
+  const AdaptiveRun run = RenderAdaptive(*scene, RenderPath::kSimdWavefront);
   const RenderResult& r = run.result;
   ASSERT_EQ(r.pixel_samples.size(), size_t(48 * 48));
   EXPECT_FALSE(r.interrupted);
@@ -94,11 +103,13 @@ TEST(AdaptiveSampling, PixelsStopByTheRuleAndCountsAddUp) {
   EXPECT_LT(r.samples_taken, uint64_t(48 * 48) * 128);
 }
 
-TEST(AdaptiveSampling, PacketAndScalarPathsAgreeBitForBit) {
+TEST(AdaptiveSampling, OracleWavefrontAndScalarPathsAgreeBitForBit) {
   StatusOr<Scene> scene = LoadScene(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");
   ASSERT_TRUE(scene.ok());
   scene->camera.width = 40, scene->camera.height = 24;
-  const AdaptiveRun a = RenderAdaptive(*scene, true), b = RenderAdaptive(*scene, false);
+  // The wavefront with the oracle's kernel table: its adaptive bookkeeping, bit for bit.
+  const AdaptiveRun a = RenderAdaptive(*scene, RenderPath::kOracleWavefront),
+                    b = RenderAdaptive(*scene, RenderPath::kScalar);
   EXPECT_EQ(a.result.pixel_samples, b.result.pixel_samples);
   ASSERT_EQ(a.result.image.rgb.size(), b.result.image.rgb.size());
   EXPECT_EQ(std::memcmp(a.result.image.rgb.data(), b.result.image.rgb.data(),

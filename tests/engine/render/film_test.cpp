@@ -1,7 +1,10 @@
 // Film and pixel filters: splat weights, Nori's filter shapes, block merging.
 #include "engine/render/film.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -11,15 +14,52 @@ namespace {
 TEST(PixelFilter, NoriShapes) {
   const PixelFilter gauss(FilterDesc{FilterDesc::Type::kGaussian, 2.0f, 0.5f});
   const float tail = std::exp(-2.0f * 4.0f);
-  EXPECT_FLOAT_EQ(gauss.Eval(0), 1.0f - tail);
-  EXPECT_FLOAT_EQ(gauss.Eval(0.5f), std::exp(-0.5f) - tail);
-  EXPECT_FLOAT_EQ(gauss.Eval(2.0f), 0.0f);
-  EXPECT_FLOAT_EQ(gauss.Eval(2.5f), 0.0f);
+  EXPECT_FLOAT_EQ(gauss.EvalExact(0), 1.0f - tail);
+  EXPECT_FLOAT_EQ(gauss.EvalExact(0.5f), std::exp(-0.5f) - tail);
+  EXPECT_FLOAT_EQ(gauss.EvalExact(2.0f), 0.0f);
+  EXPECT_FLOAT_EQ(gauss.EvalExact(2.5f), 0.0f);
   const PixelFilter tent(FilterDesc{FilterDesc::Type::kTent, 1.0f, 0});
-  EXPECT_FLOAT_EQ(tent.Eval(0.25f), 0.75f);
+  EXPECT_FLOAT_EQ(tent.EvalExact(0.25f), 0.75f);
   const PixelFilter box(FilterDesc{FilterDesc::Type::kBox, 0.5f, 0});
-  EXPECT_FLOAT_EQ(box.Eval(0.49f), 1.0f);
-  EXPECT_FLOAT_EQ(box.Eval(0.51f), 0.0f);
+  EXPECT_FLOAT_EQ(box.EvalExact(0.49f), 1.0f);
+  EXPECT_FLOAT_EQ(box.EvalExact(0.51f), 0.0f);
+}
+
+// The film's table lookup against the analytic filter, densely over [-r - 0.5, r + 0.5] and at
+// the table's own samples, within filter.h's bound: h²/(8σ²) for the Gaussian (linear
+// interpolation of a function whose |f''| ≤ 1/σ²), rounding (1e-6) for the tent, exact for the
+// box; zero beyond the radius, finite and ≥ 0 everywhere.
+TEST(PixelFilter, TableMatchesAnalyticFilter) {
+  struct Case {
+    FilterDesc desc;
+    double tol;
+  };
+  std::vector<Case> cases;
+  for (const float radius : {0.5f, 1.0f, 2.0f, 3.0f}) {
+    for (const float stddev : {0.25f, 0.5f, 1.0f}) {
+      const double h = double(radius) / kFilterTableSize;
+      cases.push_back({FilterDesc{FilterDesc::Type::kGaussian, radius, stddev},
+                       h * h / (8.0 * stddev * stddev) + 1e-6});
+    }
+    cases.push_back({FilterDesc{FilterDesc::Type::kTent, radius, 0}, 1e-6});
+    cases.push_back({FilterDesc{FilterDesc::Type::kBox, radius, 0}, 0.0});
+  }
+  for (const Case& c : cases) {
+    const PixelFilter f(c.desc);
+    const float r = c.desc.radius;
+    SCOPED_TRACE("type " + std::to_string(int(c.desc.type)) + " radius " + std::to_string(r) +
+                 " stddev " + std::to_string(c.desc.stddev));
+    double worst = 0;
+    constexpr int kSteps = 100000;
+    for (int k = 0; k <= kSteps; ++k) {
+      const float x = (r + 0.5f) * (2.0f * float(k) / kSteps - 1.0f);
+      const float table = f.Eval(x), exact = f.EvalExact(x);
+      ASSERT_TRUE(std::isfinite(table) && table >= 0) << x;
+      if (std::fabs(x) > r) ASSERT_EQ(table, 0.0f) << x;
+      worst = std::max(worst, std::fabs(double(table) - double(exact)));
+    }
+    EXPECT_LE(worst, c.tol);
+  }
 }
 
 TEST(FilmBlock, BoxFilterTouchesOnlyItsPixel) {

@@ -88,7 +88,8 @@ TEST(Render, PointLightFollowsTheInverseSquareLaw) {
     EXPECT_NEAR(c.r, 0.5f, 1e-4f);
     EXPECT_NEAR(c.g, 1.0f, 2e-4f);
     EXPECT_NEAR(c.b, 0.5f, 1e-4f);
-    // The wavefront gives the same bits.
+    // The wavefront gives the same bits here: the SIMD diffuse sample's weight is the albedo
+    // exactly and no bounced ray finds anything.
     const Color3f p = RenderWithPackets(scene, options).image.At(0, 0);
     EXPECT_EQ(p.r, c.r);
     EXPECT_EQ(p.g, c.g);

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/image/image_io.h"
+#include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab {
 namespace {
@@ -141,8 +142,9 @@ TEST(PtlabCli, StatsReportsStagesAndPackets) {
   EXPECT_LE(s.rays, 8 * s.packets);
   EXPECT_NEAR(s.lanes, double(s.rays) / double(s.packets), 0.01);
   EXPECT_LE(s.lanes, 8.0);
-  // --scalar runs the same wavefront on the oracle's kernel table: the same rays in the same
-  // packets, and its stages are broken down as well.
+  // --scalar runs the same wavefront on the oracle's kernel table, and its stages are broken
+  // down as well. Its BSDF samples differ from the SIMD ones by a few ulp (simd/shade8.h), which
+  // ends or continues a rare path differently: about the same rays in about as many packets.
   ASSERT_EQ(RunPtlab(render + " --scalar", dir / "log2"), 0) << ReadFile(dir / "log2");
   const std::string log2 = ReadFile(dir / "log2");
   EXPECT_NE(log2.find("traversal: scalar oracle kernels"), std::string::npos) << log2;
@@ -150,12 +152,13 @@ TEST(PtlabCli, StatsReportsStagesAndPackets) {
   ASSERT_TRUE(ParseStats(log2, &oracle)) << log2;
   EXPECT_GT(oracle.traversal, 0.0);
   EXPECT_NEAR(oracle.traversal + oracle.shading + oracle.sampling + oracle.film, 100.0, 0.25);
-  EXPECT_EQ(oracle.rays, s.rays);
-  EXPECT_EQ(oracle.packets, s.packets);
+  EXPECT_NEAR(double(oracle.rays), double(s.rays), 1e-3 * double(s.rays));
+  EXPECT_NEAR(double(oracle.packets), double(s.packets), 1e-3 * double(s.packets));
 }
 
-// --scalar and PTLAB_FORCE_SCALAR=1 are one switch: the oracle's kernel table, which renders the
-// image of simd/'s bit for bit.
+// --scalar and PTLAB_FORCE_SCALAR=1 are one switch: the oracle's kernel table (the same image
+// bit for bit), whose image simd/'s table matches within the render contract (relMSE ≤ 1e-3,
+// tests/simd/traverse8_test.cpp).
 TEST(PtlabCli, ScalarFlagAndForceScalarPickTheOracleKernels) {
   const fs::path dir = TempDir("cli_force_scalar");
   const std::string render =
@@ -177,8 +180,8 @@ TEST(PtlabCli, ScalarFlagAndForceScalarPickTheOracleKernels) {
   ASSERT_TRUE(simd.ok() && flag.ok() && env.ok());
   ASSERT_EQ(simd->rgb.size(), flag->rgb.size());
   ASSERT_EQ(simd->rgb.size(), env->rgb.size());
-  EXPECT_EQ(std::memcmp(simd->rgb.data(), flag->rgb.data(), simd->rgb.size() * sizeof(float)), 0);
-  EXPECT_EQ(std::memcmp(simd->rgb.data(), env->rgb.data(), simd->rgb.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(flag->rgb.data(), env->rgb.data(), flag->rgb.size() * sizeof(float)), 0);
+  EXPECT_LE(CompareImages(*simd, *flag, ImageDiffOptions{}).rel_mse_all, 1e-3);
 }
 
 TEST(PtlabCli, BadInputIsAClearErrorAndWritesNothing) {
