@@ -21,6 +21,7 @@
 #include "engine/bvh/intersect1.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/core/rng.h"
+#include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
@@ -609,7 +610,7 @@ void ExpectWithinRenderContract(const Image& simd, const Image& oracle) {
 void ExpectPacketRenderMatchesOracle(const std::string& path, int width) {
   const char* rel_path = path.c_str();
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
-  StatusOr<Scene> loaded = LoadScene(path);
+  StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
   const double aspect = double(scene.camera.width) / double(scene.camera.height);
@@ -754,6 +755,12 @@ TEST(Traverse8Render, PacketPathMatchesOracleOnDielectricAndEnvironmentMap) {
   if (!std::filesystem::exists(kSharedData + "envmaps/venice_sunset_1k.exr"))
     GTEST_SKIP() << "shared data not found: the Venice map";
   ExpectPacketRenderMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/demo.xml", 64);
+}
+
+// Analytic spheres (CS184's CGL spheres: a mirror and a glass sphere, rays leaving them from
+// inside and outside) through the oracle's and the SIMD sphere kernels.
+TEST(Traverse8Render, PacketPathMatchesOracleOnCs184Spheres) {
+  ExpectPacketRenderMatchesOracle(kSharedData + "cs184/dae/sky/CBspheres.dae", 48);
 }
 
 }  // namespace
