@@ -287,7 +287,8 @@ class Wavefront {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
     requests_.clear(), nee_paths_.clear();
-    bsdf_.Clear(), area_.Clear();
+    bsdf_.Clear();
+    area_.Clear(rules_.nee ? rays_.size() * size_t(n_light) : 0);
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_.emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
@@ -371,7 +372,6 @@ class Wavefront {
     EmitterColumns& a = area_;
     const size_t n = a.size();
     if (n == 0) return;
-    a.Resize(n);
     const AreaLightBatchInputs in{a.light.data(), a.ref_x.data(), a.ref_y.data(),
                                   a.ref_z.data(), a.u_x.data(),   a.u_y.data()};
     const AreaLightBatchOutputs out{a.p_x.data(),  a.p_y.data(),  a.p_z.data(),  a.n_x.data(),
@@ -587,24 +587,27 @@ class Wavefront {
     std::vector<float> pick_pmf;
     AlignedVector<float> ref_x, ref_y, ref_z, u_x, u_y;
     AlignedVector<float> p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
+    size_t rows = 0;
 
-    size_t size() const { return request.size(); }
-    void Clear() {
-      for (auto* v : {&request, &entry, &light}) v->clear();
-      pick_pmf.clear();
-      for (auto* v : {&ref_x, &ref_y, &ref_z, &u_x, &u_y}) v->clear();
+    size_t size() const { return rows; }
+    /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the
+    /// rows are written in place, which keeps the per-sample loop free of push_back calls).
+    /// The columns only grow, so a wave sizes them once.
+    void Clear(size_t capacity) {
+      rows = 0;
+      const auto grow = [capacity](auto* v) {
+        if (v->size() < capacity) v->resize(capacity);
+      };
+      grow(&request), grow(&entry), grow(&light), grow(&pick_pmf);
+      for (auto* v : {&ref_x, &ref_y, &ref_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z,
+                      &ng_x, &ng_y, &ng_z, &pdf})
+        grow(v);
     }
     void Push(uint32_t r, uint32_t queue_entry, uint32_t light_row, float pmf, const Vec3f& ref,
               const Vec2f& u) {
-      request.push_back(r), entry.push_back(queue_entry), light.push_back(light_row);
-      pick_pmf.push_back(pmf);
-      ref_x.push_back(ref.x), ref_y.push_back(ref.y), ref_z.push_back(ref.z);
-      u_x.push_back(u.x), u_y.push_back(u.y);
-    }
-    /// Sizes the output columns for n rows.
-    void Resize(size_t n) {
-      for (auto* v : {&p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z, &pdf})
-        v->resize(n);
+      const size_t c = rows++;
+      request[c] = r, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
+      ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
     }
   };
 
