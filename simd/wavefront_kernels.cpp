@@ -1,6 +1,8 @@
-// simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8, simd/splat8.
+// simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
+// simd/splat8, simd/emitter8.
 #include "simd/wavefront_kernels.h"
 
+#include "simd/emitter8.h"
 #include "simd/sampler8.h"
 #include "simd/shade8.h"
 #include "simd/splat8.h"
@@ -28,6 +30,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .sobol1d = ScrambledSobol1DBatch,
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
+          .area_light = SampleAreaLightBatch,
           .name = Traverse8TargetName()};
 }
 

@@ -67,22 +67,28 @@ float AreaToSolidAngle(float pdf_area, const Vec3f& p, const Vec3f& n, const Vec
 
 }  // namespace
 
+AreaLightTrianglePick PickAreaLightTriangle(const Scene& scene, uint32_t light, float u_x) {
+  const AreaLightTable& lights = scene.area_lights;
+  const uint32_t mesh = lights.mesh[light];
+  const uint32_t count = scene.meshes.triangle_count[mesh];
+  const float* cdf = lights.triangle_cdf.data() + lights.cdf_offset[light];
+  const uint32_t* guide = lights.triangle_guide.data() + lights.guide_offset[light];
+  const uint32_t k = std::min<uint32_t>(GuidedUpperBound(cdf, count, guide, u_x), count - 1);
+  // u_x within the triangle's CDF interval is uniform again: it goes on to the point, so that a
+  // stratified u stays stratified over the whole light.
+  const float lo = k > 0 ? cdf[k - 1] : 0.0f, width = cdf[k] - lo;
+  u_x = width > 0 ? std::min((u_x - lo) / width, 0x1.fffffep-1f) : 0.5f;
+  return {scene.meshes.first_triangle[mesh] + k, std::max(u_x, 0.0f)};
+}
+
 AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f& ref,
                                 TriangleSampling mode, Vec2f u) {
   const AreaLightTable& lights = scene.area_lights;
   AreaLightSample s;
   if (!(lights.area[light] > 0)) return s;
-  const uint32_t mesh = lights.mesh[light];
-  const uint32_t count = scene.meshes.triangle_count[mesh];
-  const float* cdf = lights.triangle_cdf.data() + lights.cdf_offset[light];
-  const uint32_t* guide = lights.triangle_guide.data() + lights.guide_offset[light];
-  const uint32_t k = std::min<uint32_t>(GuidedUpperBound(cdf, count, guide, u.x), count - 1);
-  const uint32_t tri = scene.meshes.first_triangle[mesh] + k;
-  // u.x within the triangle's CDF interval is uniform again: it goes on to the point, so that a
-  // stratified u stays stratified over the whole light.
-  const float lo = k > 0 ? cdf[k - 1] : 0.0f, width = cdf[k] - lo;
-  u.x = width > 0 ? std::min((u.x - lo) / width, 0x1.fffffep-1f) : 0.5f;
-  u.x = std::max(u.x, 0.0f);
+  const AreaLightTrianglePick pick = PickAreaLightTriangle(scene, light, u.x);
+  const uint32_t tri = pick.tri;
+  u.x = pick.u_x;
   const TriangleTable& t = scene.triangles;
   const Vec3f ng = Cross(t.V1(tri) - t.V0(tri), t.V2(tri) - t.V0(tri));
   s.radiance = lights.radiance[light];
@@ -103,6 +109,15 @@ AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f&
   s.ng = Length(ng) > 0 ? Normalize(ng) : s.n;
   s.pdf = AreaToSolidAngle(1.0f / lights.area[light], s.p, s.n, ref);
   return s;
+}
+
+void SampleAreaLightBatch(const Scene& scene, TriangleSampling mode, size_t n,
+                          const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) {
+  for (size_t i = 0; i < n; ++i) {
+    SetAreaLightRow(out, i,
+                    SampleAreaLight(scene, in.light[i], AreaLightRowRef(in, i), mode,
+                                    AreaLightRowU(in, i)));
+  }
 }
 
 float AreaLightPdf(const Scene& scene, uint32_t light, uint32_t tri, const Vec3f& p,

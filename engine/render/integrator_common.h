@@ -101,6 +101,35 @@ struct EmitterSampleRequest {
   Color3f contribution;
 };
 
+/// The rest of PrepareEmitterSampleWith once area light sample ls is drawn (the light picked
+/// with probability pick_pmf): the shadow ray and the contribution, if any. The wavefront draws
+/// its area-light samples as a batch (SampleAreaLightBatch) and finishes each with this.
+inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
+                                                     const SurfaceInteraction& its,
+                                                     const Vec3f& wo, bool mis,
+                                                     const AreaLightSample& ls, float pick_pmf) {
+  EmitterSampleRequest req;
+  if (!(ls.pdf > 0)) return req;
+  const Vec3f d = ls.p - its.p;
+  const float dist2 = Dot(d, d);
+  if (!(dist2 > 0)) return req;
+  const Vec3f wi = d / std::sqrt(dist2);
+  if (!(Dot(ls.n, wi) < 0)) return req;
+  const Vec3f wi_local = its.frame.ToLocal(wi);
+  const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+  if (IsBlack(f)) return req;
+  // Shadow ray between the two offset points; d is not normalised, so t runs over [0, 1).
+  req.shadow.o = SpawnOrigin(its, wi);
+  const Vec3f target = OffsetRayOrigin(ls.p, Dot(ls.ng, wi) <= 0 ? ls.ng : -ls.ng);
+  req.shadow.d = target - req.shadow.o;
+  req.shadow.t_min = 0.0f;
+  req.shadow.t_max = 1.0f;
+  req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
+                                             ls.radiance, ls.pdf * pick_pmf, mis);
+  req.traced = true;
+  return req;
+}
+
 /// PrepareEmitterSample with its numbers given: u_pick picks the emitter, u the point on it.
 inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
                                                      const SurfaceInteraction& its,
@@ -141,27 +170,10 @@ inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
     return req;
   }
   if (emitter.tag() != EmitterTag::kArea) return req;
-  const AreaLightSample ls = SampleAreaLight(scene, emitter.index(), its.p,
-                                             scene.integrator.triangle_sampling, u);
-  if (!(ls.pdf > 0)) return req;
-  const Vec3f d = ls.p - its.p;
-  const float dist2 = Dot(d, d);
-  if (!(dist2 > 0)) return req;
-  const Vec3f wi = d / std::sqrt(dist2);
-  if (!(Dot(ls.n, wi) < 0)) return req;
-  const Vec3f wi_local = its.frame.ToLocal(wi);
-  const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
-  if (IsBlack(f)) return req;
-  // Shadow ray between the two offset points; d is not normalised, so t runs over [0, 1).
-  req.shadow.o = SpawnOrigin(its, wi);
-  const Vec3f target = OffsetRayOrigin(ls.p, Dot(ls.ng, wi) <= 0 ? ls.ng : -ls.ng);
-  req.shadow.d = target - req.shadow.o;
-  req.shadow.t_min = 0.0f;
-  req.shadow.t_max = 1.0f;
-  req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
-                                             ls.radiance, ls.pdf * pick_pmf, mis);
-  req.traced = true;
-  return req;
+  return AreaEmitterSampleRequest(
+      scene, its, wo, mis,
+      SampleAreaLight(scene, emitter.index(), its.p, scene.integrator.triangle_sampling, u),
+      pick_pmf);
 }
 
 inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const SurfaceInteraction& its,

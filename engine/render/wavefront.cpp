@@ -19,6 +19,7 @@
 namespace ptlab {
 namespace {
 
+using integrator::AreaEmitterSampleRequest;
 using integrator::Emitted;
 using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
@@ -28,7 +29,6 @@ using integrator::kInfinity;
 using integrator::kWhittedContinuation;
 using integrator::kWhittedMaxDepth;
 using integrator::MisWeight;
-using integrator::PrepareEmitterSample;
 using integrator::PrepareEmitterSampleWith;
 using integrator::SpawnOrigin;
 using Type = IntegratorDesc::Type;
@@ -288,6 +288,7 @@ class Wavefront {
     next_rays_.Clear(), shadows_.Clear();
     requests_.clear(), nee_paths_.clear();
     bsdf_.Clear();
+    area_.Clear(rules_.nee ? rays_.size() * size_t(n_light) : 0);
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_.emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
@@ -302,18 +303,33 @@ class Wavefront {
       const bool delta = IsDeltaMaterial(its.material.tag());
       if (rules_.nee && (!delta || rules_.nee_on_delta)) {
         for (int s = 0; s < n_light; ++s) {
-          const uint32_t r = uint32_t(requests_.size());
           if (!emitters) {
             requests_.push_back({});
-          } else if (sobol_) {
-            const size_t at = size_t(s) * m + k;
-            requests_.push_back(PrepareEmitterSampleWith(scene_, its, wo, rules_.mis,
-                                                         light_pick_[at], light_point_[at]));
-          } else {
-            requests_.push_back(PrepareEmitterSample(scene_, its, wo, rules_.mis, sampler, depth,
-                                                     uint32_t(s), uint32_t(n_light)));
+            continue;
           }
-          if (requests_.back().traced) shadows_.Push(requests_.back().shadow, r);
+          // PrepareEmitterSample's numbers (pick, then point); area-light picks go to the
+          // emitter stage's batch, the others are prepared here.
+          float u_pick;
+          Vec2f u;
+          if (sobol_) {
+            const size_t at = size_t(s) * m + k;
+            u_pick = light_pick_[at], u = light_point_[at];
+          } else {
+            u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), uint32_t(s),
+                                   uint32_t(n_light));
+            u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), uint32_t(s),
+                              uint32_t(n_light));
+          }
+          float pick_pmf = 0.0f;
+          const EmitterRef emitter = SelectEmitter(scene_, u_pick, &pick_pmf);
+          if (pick_pmf > 0 && emitter.tag() == EmitterTag::kArea) {
+            area_.Push(uint32_t(requests_.size()), uint32_t(q), emitter.index(), pick_pmf, its.p,
+                       u);
+            requests_.push_back({});
+          } else {
+            requests_.push_back(
+                PrepareEmitterSampleWith(scene_, its, wo, rules_.mis, u_pick, u));
+          }
         }
         nee_paths_.push_back(i);
         nee_throughput_[i] = throughput_[i];
@@ -344,7 +360,35 @@ class Wavefront {
       }
       bsdf_.Push(i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
     }
+    SampleAreaLights();
+    for (size_t r = 0; r < requests_.size(); ++r)
+      if (requests_[r].traced) shadows_.Push(requests_[r].shadow, uint32_t(r));
     SampleBsdfs();
+  }
+
+  // The emitter stage: the kernel table's area_light slot over the wave's area-light picks,
+  // then each pick's request (shadow ray, contribution) as PrepareEmitterSample finishes it.
+  void SampleAreaLights() {
+    EmitterColumns& a = area_;
+    const size_t n = a.size();
+    if (n == 0) return;
+    const AreaLightBatchInputs in{a.light.data(), a.ref_x.data(), a.ref_y.data(),
+                                  a.ref_z.data(), a.u_x.data(),   a.u_y.data()};
+    const AreaLightBatchOutputs out{a.p_x.data(),  a.p_y.data(),  a.p_z.data(),  a.n_x.data(),
+                                    a.n_y.data(),  a.n_z.data(),  a.ng_x.data(), a.ng_y.data(),
+                                    a.ng_z.data(), a.pdf.data()};
+    kernels_.area_light(scene_, scene_.integrator.triangle_sampling, n, in, out);
+    for (size_t c = 0; c < n; ++c) {
+      AreaLightSample ls;
+      ls.p = {a.p_x[c], a.p_y[c], a.p_z[c]};
+      ls.n = {a.n_x[c], a.n_y[c], a.n_z[c]};
+      ls.ng = {a.ng_x[c], a.ng_y[c], a.ng_z[c]};
+      ls.pdf = a.pdf[c];
+      ls.radiance = scene_.area_lights.radiance[a.light[c]];
+      const size_t q = a.entry[c];
+      requests_[a.request[c]] =
+          AreaEmitterSampleRequest(scene_, its_[q], wo_[q], rules_.mis, ls, a.pick_pmf[c]);
+    }
   }
 
   // The BSDF stage: the kernel table's bsdf slot over the columns, one contiguous batch per
@@ -534,6 +578,39 @@ class Wavefront {
     }
   };
 
+  /// The emitter stage's SoA columns, one row per emitter sample that picked an area light (in
+  /// request order): its request, queue entry (for the shading point), light, pick
+  /// probability, reference point and numbers (inputs); the light sample (outputs, written by
+  /// the area_light slot).
+  struct EmitterColumns {
+    std::vector<uint32_t> request, entry, light;
+    std::vector<float> pick_pmf;
+    AlignedVector<float> ref_x, ref_y, ref_z, u_x, u_y;
+    AlignedVector<float> p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
+    size_t rows = 0;
+
+    size_t size() const { return rows; }
+    /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the
+    /// rows are written in place, which keeps the per-sample loop free of push_back calls).
+    /// The columns only grow, so a wave sizes them once.
+    void Clear(size_t capacity) {
+      rows = 0;
+      const auto grow = [capacity](auto* v) {
+        if (v->size() < capacity) v->resize(capacity);
+      };
+      grow(&request), grow(&entry), grow(&light), grow(&pick_pmf);
+      for (auto* v : {&ref_x, &ref_y, &ref_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z,
+                      &ng_x, &ng_y, &ng_z, &pdf})
+        grow(v);
+    }
+    void Push(uint32_t r, uint32_t queue_entry, uint32_t light_row, float pmf, const Vec3f& ref,
+              const Vec2f& u) {
+      const size_t c = rows++;
+      request[c] = r, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
+      ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
+    }
+  };
+
   /// The splat stage's SoA columns: film position and radiance of each finite sample.
   struct SplatColumns {
     AlignedVector<float> sx, sy, r, g, b;
@@ -587,6 +664,7 @@ class Wavefront {
   std::vector<uint8_t> occluded_;
   std::vector<uint32_t> nee_paths_;
   BsdfColumns bsdf_;
+  EmitterColumns area_;
   ShadeScratch shade_scratch_;
   SplatColumns splat_;
 };
@@ -624,6 +702,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .sobol1d = ScrambledSobol1DBatch,
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
+          .area_light = SampleAreaLightBatch,
           .name = "scalar-oracle"};
 }
 

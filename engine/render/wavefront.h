@@ -8,6 +8,7 @@
 #include "engine/bsdf/shade_batch.h"
 #include "engine/bvh/bvh.h"
 #include "engine/core/packet8.h"
+#include "engine/light/area_light.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
@@ -64,11 +65,19 @@ struct WavefrontKernels {
   // (FilmBlock::Splat per sample); SIMD: simd::SplatSamples, bit-identical (simd/splat8.h).
   void (*splat)(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) = nullptr;
 
+  // Emitter stage: the wave's area-light samples (every emitter sample whose pick is an area
+  // light) as one batch over SoA columns (engine/light/area_light.h); the wavefront finishes
+  // each row with integrator::AreaEmitterSampleRequest (shadow ray, BSDF, MIS weight). Oracle:
+  // ptlab::SampleAreaLightBatch (SampleAreaLight per row); SIMD: simd::SampleAreaLightBatch,
+  // bit-identical (simd/emitter8.h).
+  void (*area_light)(const Scene& scene, TriangleSampling mode, size_t n,
+                     const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) = nullptr;
+
   // Planned slots (issue 11, the SIMD shading stage), each a batch over a wave's SoA columns
   // with its scalar twin in this table's oracle:
   //   interaction: hit records -> shading points (p, n, frame, uv, material ref), wo;
-  //   emitter:     emitter samples (area lights, environment map, distant disk, point) with
-  //                their pdfs and MIS weights, and the shadow rays' setup.
+  //   emitter:     the other emitters' samples (environment map, distant disk, point) and the
+  //                MIS weights and shadow rays' setup.
 
   /// For logs: "scalar-oracle" or the Highway target the SIMD kernels dispatch to.
   const char* name = "";

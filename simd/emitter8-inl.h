@@ -1,0 +1,238 @@
+// Per-target kernel of simd/emitter8.h (re-included once per Highway target): SampleAreaLight's
+// operations in its order, eight rows per vector.
+
+#if defined(PTLAB_SIMD_EMITTER8_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef PTLAB_SIMD_EMITTER8_INL_H_
+#undef PTLAB_SIMD_EMITTER8_INL_H_
+#else
+#define PTLAB_SIMD_EMITTER8_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/light/area_light.h"
+#include "engine/scene/scene.h"
+#include "hwy/highway.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace ptlab::simd {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// Per lane of one vector of rows: the picked triangle and the vertex rows of its normals (0
+/// where unused), the rescaled u_x, 1 / light area, and which lanes are valid (area > 0) and
+/// interpolate vertex normals (1.0f) — what the vector part gathers and masks with.
+struct AreaLightLanes {
+  alignas(64) int32_t tri[8], i0[8], i1[8], i2[8];
+  alignas(64) float u_x[8], inv_area[8], valid[8], vertex_normal[8];
+};
+
+/// Fills `l` for rows [row, row + lanes); returns whether any lane is valid. The triangle pick
+/// (PickAreaLightTriangle) runs as vectors: the guide table's bucket of u, then a masked
+/// linear scan over the bucket for the first CDF entry above u (std::upper_bound over the
+/// bucket, without its unpredictable branches), and the same exactness check; a lane whose
+/// bucket does not bracket the answer takes the scalar pick (its full binary search).
+template <class D>
+HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightBatchInputs& in, size_t row,
+                          AreaLightLanes* l) {
+  const hn::RebindToSigned<D> di;
+  const size_t lanes = hn::Lanes(d);
+  const AreaLightTable& lights = scene.area_lights;
+  const TriangleShadingTable& sh = scene.shading;
+  const auto zero = hn::Zero(d);
+  const auto light = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.light + row));
+  const auto area = hn::GatherIndex(d, lights.area.data(), light);
+  const auto valid = hn::Gt(area, zero);
+  if (hn::AllFalse(d, valid)) return false;
+  const auto valid_i = hn::RebindMask(di, valid);
+  const auto as_i = [](const uint32_t* p) { return reinterpret_cast<const int32_t*>(p); };
+  const auto zero_i = hn::Zero(di), one_i = hn::Set(di, 1);
+  // Lanes of zero-area lights read row 0 of a one-entry CDF (present: a valid lane has one).
+  const auto mesh = hn::GatherIndex(di, as_i(lights.mesh.data()), light);
+  const auto count = hn::IfThenElse(
+      valid_i, hn::GatherIndex(di, as_i(scene.meshes.triangle_count.data()), mesh), one_i);
+  const auto cdf_at = hn::IfThenElseZero(
+      valid_i, hn::GatherIndex(di, as_i(lights.cdf_offset.data()), light));
+  const auto guide_at = hn::IfThenElseZero(
+      valid_i, hn::GatherIndex(di, as_i(lights.guide_offset.data()), light));
+  const float* cdf = lights.triangle_cdf.data();
+  const int32_t* guide = as_i(lights.triangle_guide.data());
+  const auto u = hn::LoadU(d, in.u_x + row);
+  const auto last = hn::Sub(count, one_i);
+  // GuidedUpperBound: bucket b, its range [lo, hi), the scan, the check.
+  const auto b = hn::Min(last, hn::ConvertTo(di, hn::Mul(hn::Max(zero, u), hn::ConvertTo(d, count))));
+  const auto lo = hn::Min(hn::GatherIndex(di, guide, hn::Add(guide_at, b)), count);
+  const auto hi =
+      hn::Min(count, hn::Add(hn::GatherIndex(di, guide, hn::Add(hn::Add(guide_at, b), one_i)), one_i));
+  auto k = lo;
+  for (auto scan = hn::Lt(k, hi); !hn::AllFalse(di, scan);) {
+    const auto c = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Min(k, last)));
+    const auto step = hn::AndNot(hn::RebindMask(di, hn::Gt(c, u)), scan);
+    k = hn::Add(k, hn::IfThenElseZero(step, one_i));
+    scan = hn::And(step, hn::Lt(k, hi));
+  }
+  const auto has_below = hn::Gt(k, zero_i);
+  const auto below = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Max(hn::Sub(k, one_i), zero_i)));
+  const auto at = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Min(k, last)));
+  const auto below_ok = hn::Or(hn::Not(has_below), hn::RebindMask(di, hn::Not(hn::Gt(below, u))));
+  const auto at_ok = hn::Or(hn::Eq(k, count), hn::RebindMask(di, hn::Gt(at, u)));
+  const auto exact = hn::And(below_ok, at_ok);
+  // The chosen triangle's CDF interval and u rescaled to it.
+  k = hn::Min(k, last);
+  const auto c_lo = hn::IfThenElseZero(
+      hn::RebindMask(d, hn::Gt(k, zero_i)),
+      hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Max(hn::Sub(k, one_i), zero_i))));
+  const auto width = hn::Sub(hn::GatherIndex(d, cdf, hn::Add(cdf_at, k)), c_lo);
+  const auto rescaled = hn::Min(hn::Div(hn::Sub(u, c_lo), width), hn::Set(d, 0x1.fffffep-1f));
+  const auto u_x = hn::Max(hn::IfThenElse(hn::Gt(width, zero), rescaled, hn::Set(d, 0.5f)), zero);
+  const auto first = hn::GatherIndex(di, as_i(scene.meshes.first_triangle.data()), mesh);
+  const auto tri = hn::IfThenElseZero(valid_i, hn::Add(first, k));
+  hn::Store(tri, di, l->tri);
+  hn::Store(hn::IfThenElse(valid, u_x, hn::Set(d, 0.5f)), d, l->u_x);
+  hn::Store(hn::IfThenElseZero(valid, hn::Div(hn::Set(d, 1.0f), area)), d, l->inv_area);
+  hn::Store(hn::IfThenElseZero(valid, hn::Set(d, 1.0f)), d, l->valid);
+  // A lane whose bucket misses the answer: the scalar pick.
+  const auto redo = hn::AndNot(exact, valid_i);
+  if (!hn::AllFalse(di, redo)) {
+    alignas(64) int32_t redo_lanes[8];
+    hn::Store(hn::VecFromMask(di, redo), di, redo_lanes);
+    for (size_t j = 0; j < lanes; ++j) {
+      if (redo_lanes[j] == 0) continue;
+      const AreaLightTrianglePick pick =
+          PickAreaLightTriangle(scene, in.light[row + j], in.u_x[row + j]);
+      l->tri[j] = int32_t(pick.tri), l->u_x[j] = pick.u_x;
+    }
+  }
+  // The vertex rows of the triangles' normals where the mesh has them.
+  const auto t = hn::Load(di, l->tri);
+  const auto v0 = hn::GatherIndex(di, as_i(sh.vertex0.data()), t);
+  const auto vertex_normal = hn::And(
+      valid_i, hn::Ne(v0, hn::Set(di, int32_t(kNoVertex))));
+  if (scene.vertices.n_x.empty() || hn::AllFalse(di, vertex_normal)) {
+    hn::Store(zero_i, di, l->i0), hn::Store(zero_i, di, l->i1), hn::Store(zero_i, di, l->i2);
+    hn::Store(zero, d, l->vertex_normal);
+    return true;
+  }
+  hn::Store(hn::IfThenElseZero(vertex_normal, v0), di, l->i0);
+  hn::Store(hn::IfThenElseZero(vertex_normal, hn::GatherIndex(di, as_i(sh.vertex1.data()), t)), di,
+            l->i1);
+  hn::Store(hn::IfThenElseZero(vertex_normal, hn::GatherIndex(di, as_i(sh.vertex2.data()), t)), di,
+            l->i2);
+  hn::Store(hn::IfThenElseZero(hn::RebindMask(d, vertex_normal), hn::Set(d, 1.0f)), d,
+            l->vertex_normal);
+  return true;
+}
+
+HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling mode, size_t n,
+                                           const AreaLightBatchInputs& in,
+                                           const AreaLightBatchOutputs& out) {
+  const hn::CappedTag<float, 8> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  const size_t lanes = hn::Lanes(d);
+  size_t i = 0;
+  if (mode == TriangleSampling::kArea) {
+    const TriangleTable& t = scene.triangles;
+    const VertexTable& vt = scene.vertices;
+    const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    AreaLightLanes l;
+    for (; i + lanes <= n; i += lanes) {
+      if (!PickLanes(d, scene, in, i, &l)) {
+        for (float* col : {out.p_x, out.p_y, out.p_z, out.n_x, out.n_y, out.n_z, out.ng_x,
+                           out.ng_y, out.ng_z, out.pdf})
+          hn::StoreU(zero, d, col + i);
+        continue;
+      }
+      const auto tri = hn::Load(di, l.tri);
+      const auto v0x = hn::GatherIndex(d, t.v0_x.data(), tri);
+      const auto v0y = hn::GatherIndex(d, t.v0_y.data(), tri);
+      const auto v0z = hn::GatherIndex(d, t.v0_z.data(), tri);
+      const auto v1x = hn::GatherIndex(d, t.v1_x.data(), tri);
+      const auto v1y = hn::GatherIndex(d, t.v1_y.data(), tri);
+      const auto v1z = hn::GatherIndex(d, t.v1_z.data(), tri);
+      const auto v2x = hn::GatherIndex(d, t.v2_x.data(), tri);
+      const auto v2y = hn::GatherIndex(d, t.v2_y.data(), tri);
+      const auto v2z = hn::GatherIndex(d, t.v2_z.data(), tri);
+      // SampleUniformTriangle, then p = V0 b0 + V1 b1 + V2 b2 with b0 = 1 - b1 - b2.
+      const auto su = hn::Sqrt(hn::Load(d, l.u_x));
+      const auto b1 = hn::Sub(one, su), b2 = hn::Mul(hn::LoadU(d, in.u_y + i), su);
+      const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
+      const auto px = hn::Add(hn::Add(hn::Mul(v0x, b0), hn::Mul(v1x, b1)), hn::Mul(v2x, b2));
+      const auto py = hn::Add(hn::Add(hn::Mul(v0y, b0), hn::Mul(v1y, b1)), hn::Mul(v2y, b2));
+      const auto pz = hn::Add(hn::Add(hn::Mul(v0z, b0), hn::Mul(v1z, b1)), hn::Mul(v2z, b2));
+      // The geometric normal Cross(V1 - V0, V2 - V0), unit where it has a length, else +z.
+      const auto e1x = hn::Sub(v1x, v0x), e1y = hn::Sub(v1y, v0y), e1z = hn::Sub(v1z, v0z);
+      const auto e2x = hn::Sub(v2x, v0x), e2y = hn::Sub(v2y, v0y), e2z = hn::Sub(v2z, v0z);
+      const auto cx = hn::Sub(hn::Mul(e1y, e2z), hn::Mul(e1z, e2y));
+      const auto cy = hn::Sub(hn::Mul(e1z, e2x), hn::Mul(e1x, e2z));
+      const auto cz = hn::Sub(hn::Mul(e1x, e2y), hn::Mul(e1y, e2x));
+      const auto glen =
+          hn::Sqrt(hn::Add(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)), hn::Mul(cz, cz)));
+      const auto ginv = hn::Div(one, glen);
+      const auto has_ng = hn::Gt(glen, zero);
+      const auto gx = hn::IfThenElseZero(has_ng, hn::Mul(cx, ginv));
+      const auto gy = hn::IfThenElseZero(has_ng, hn::Mul(cy, ginv));
+      const auto gz = hn::IfThenElse(has_ng, hn::Mul(cz, ginv), one);
+      // ShadingNormalAt: the interpolated vertex normal where the mesh has one of length > 0.
+      auto nx = gx, ny = gy, nz = gz;
+      const auto vertex_normal = hn::Gt(hn::Load(d, l.vertex_normal), zero);
+      if (!hn::AllFalse(d, vertex_normal)) {
+        const auto i0 = hn::Load(di, l.i0), i1 = hn::Load(di, l.i1), i2 = hn::Load(di, l.i2);
+        const auto sx = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, vt.n_x.data(), i0)),
+                                        hn::Mul(b1, hn::GatherIndex(d, vt.n_x.data(), i1))),
+                                hn::Mul(b2, hn::GatherIndex(d, vt.n_x.data(), i2)));
+        const auto sy = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, vt.n_y.data(), i0)),
+                                        hn::Mul(b1, hn::GatherIndex(d, vt.n_y.data(), i1))),
+                                hn::Mul(b2, hn::GatherIndex(d, vt.n_y.data(), i2)));
+        const auto sz = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, vt.n_z.data(), i0)),
+                                        hn::Mul(b1, hn::GatherIndex(d, vt.n_z.data(), i1))),
+                                hn::Mul(b2, hn::GatherIndex(d, vt.n_z.data(), i2)));
+        const auto slen =
+            hn::Sqrt(hn::Add(hn::Add(hn::Mul(sx, sx), hn::Mul(sy, sy)), hn::Mul(sz, sz)));
+        const auto sinv = hn::Div(one, slen);
+        const auto use = hn::And(vertex_normal, hn::Gt(slen, zero));
+        nx = hn::IfThenElse(use, hn::Mul(sx, sinv), gx);
+        ny = hn::IfThenElse(use, hn::Mul(sy, sinv), gy);
+        nz = hn::IfThenElse(use, hn::Mul(sz, sinv), gz);
+      }
+      // ng: the unit geometric normal, or n for a degenerate triangle.
+      const auto ngx = hn::IfThenElse(has_ng, gx, nx);
+      const auto ngy = hn::IfThenElse(has_ng, gy, ny);
+      const auto ngz = hn::IfThenElse(has_ng, gz, nz);
+      // AreaToSolidAngle(1 / area, p, n, ref).
+      const auto dx = hn::Sub(px, hn::LoadU(d, in.ref_x + i));
+      const auto dy = hn::Sub(py, hn::LoadU(d, in.ref_y + i));
+      const auto dz = hn::Sub(pz, hn::LoadU(d, in.ref_z + i));
+      const auto dist2 = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
+      const auto n_dot_d = hn::Add(hn::Add(hn::Mul(nx, dx), hn::Mul(ny, dy)), hn::Mul(nz, dz));
+      const auto cos_l = hn::Div(hn::Neg(n_dot_d), hn::Sqrt(dist2));
+      const auto solid = hn::And(hn::Gt(dist2, zero), hn::Gt(cos_l, zero));
+      const auto pdf = hn::Div(hn::Mul(hn::Load(d, l.inv_area), dist2), cos_l);
+      // Lanes of zero-area lights: AreaLightSample{} (all zero).
+      const auto valid = hn::Gt(hn::Load(d, l.valid), zero);
+      hn::StoreU(hn::IfThenElseZero(valid, px), d, out.p_x + i);
+      hn::StoreU(hn::IfThenElseZero(valid, py), d, out.p_y + i);
+      hn::StoreU(hn::IfThenElseZero(valid, pz), d, out.p_z + i);
+      hn::StoreU(hn::IfThenElseZero(valid, nx), d, out.n_x + i);
+      hn::StoreU(hn::IfThenElseZero(valid, ny), d, out.n_y + i);
+      hn::StoreU(hn::IfThenElseZero(valid, nz), d, out.n_z + i);
+      hn::StoreU(hn::IfThenElseZero(valid, ngx), d, out.ng_x + i);
+      hn::StoreU(hn::IfThenElseZero(valid, ngy), d, out.ng_y + i);
+      hn::StoreU(hn::IfThenElseZero(valid, ngz), d, out.ng_z + i);
+      hn::StoreU(hn::IfThenElseZero(hn::And(valid, solid), pdf), d, out.pdf + i);
+    }
+  }
+  // kSolidAngle, and the rows after the last full vector: the scalar code row by row.
+  for (; i < n; ++i) {
+    SetAreaLightRow(out, i,
+                    ptlab::SampleAreaLight(scene, in.light[i], AreaLightRowRef(in, i), mode,
+                                           AreaLightRowU(in, i)));
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ptlab::simd
+HWY_AFTER_NAMESPACE();
+
+#endif  // PTLAB_SIMD_EMITTER8_INL_H_
