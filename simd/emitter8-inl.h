@@ -14,6 +14,7 @@
 #include "engine/light/area_light.h"
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
+#include "simd/triangle_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -133,8 +134,6 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
   const size_t lanes = hn::Lanes(d);
   size_t i = 0;
   if (mode == TriangleSampling::kArea) {
-    const TriangleTable& t = scene.triangles;
-    const VertexTable& vt = scene.vertices;
     const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     AreaLightLanes l;
     for (; i + lanes <= n; i += lanes) {
@@ -145,57 +144,18 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
         continue;
       }
       const auto tri = hn::Load(di, l.tri);
-      const auto v0x = hn::GatherIndex(d, t.v0_x.data(), tri);
-      const auto v0y = hn::GatherIndex(d, t.v0_y.data(), tri);
-      const auto v0z = hn::GatherIndex(d, t.v0_z.data(), tri);
-      const auto v1x = hn::GatherIndex(d, t.v1_x.data(), tri);
-      const auto v1y = hn::GatherIndex(d, t.v1_y.data(), tri);
-      const auto v1z = hn::GatherIndex(d, t.v1_z.data(), tri);
-      const auto v2x = hn::GatherIndex(d, t.v2_x.data(), tri);
-      const auto v2y = hn::GatherIndex(d, t.v2_y.data(), tri);
-      const auto v2z = hn::GatherIndex(d, t.v2_z.data(), tri);
       // SampleUniformTriangle, then p = V0 b0 + V1 b1 + V2 b2 with b0 = 1 - b1 - b2.
       const auto su = hn::Sqrt(hn::Load(d, l.u_x));
       const auto b1 = hn::Sub(one, su), b2 = hn::Mul(hn::LoadU(d, in.u_y + i), su);
       const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
-      const auto px = hn::Add(hn::Add(hn::Mul(v0x, b0), hn::Mul(v1x, b1)), hn::Mul(v2x, b2));
-      const auto py = hn::Add(hn::Add(hn::Mul(v0y, b0), hn::Mul(v1y, b1)), hn::Mul(v2y, b2));
-      const auto pz = hn::Add(hn::Add(hn::Mul(v0z, b0), hn::Mul(v1z, b1)), hn::Mul(v2z, b2));
-      // The geometric normal Cross(V1 - V0, V2 - V0), unit where it has a length, else +z.
-      const auto e1x = hn::Sub(v1x, v0x), e1y = hn::Sub(v1y, v0y), e1z = hn::Sub(v1z, v0z);
-      const auto e2x = hn::Sub(v2x, v0x), e2y = hn::Sub(v2y, v0y), e2z = hn::Sub(v2z, v0z);
-      const auto cx = hn::Sub(hn::Mul(e1y, e2z), hn::Mul(e1z, e2y));
-      const auto cy = hn::Sub(hn::Mul(e1z, e2x), hn::Mul(e1x, e2z));
-      const auto cz = hn::Sub(hn::Mul(e1x, e2y), hn::Mul(e1y, e2x));
-      const auto glen =
-          hn::Sqrt(hn::Add(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)), hn::Mul(cz, cz)));
-      const auto ginv = hn::Div(one, glen);
-      const auto has_ng = hn::Gt(glen, zero);
-      const auto gx = hn::IfThenElseZero(has_ng, hn::Mul(cx, ginv));
-      const auto gy = hn::IfThenElseZero(has_ng, hn::Mul(cy, ginv));
-      const auto gz = hn::IfThenElse(has_ng, hn::Mul(cz, ginv), one);
-      // ShadingNormalAt: the interpolated vertex normal where the mesh has one of length > 0.
-      auto nx = gx, ny = gy, nz = gz;
       const auto vertex_normal = hn::Gt(hn::Load(d, l.vertex_normal), zero);
-      if (!hn::AllFalse(d, vertex_normal)) {
-        const auto i0 = hn::Load(di, l.i0), i1 = hn::Load(di, l.i1), i2 = hn::Load(di, l.i2);
-        const auto sx = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, vt.n_x.data(), i0)),
-                                        hn::Mul(b1, hn::GatherIndex(d, vt.n_x.data(), i1))),
-                                hn::Mul(b2, hn::GatherIndex(d, vt.n_x.data(), i2)));
-        const auto sy = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, vt.n_y.data(), i0)),
-                                        hn::Mul(b1, hn::GatherIndex(d, vt.n_y.data(), i1))),
-                                hn::Mul(b2, hn::GatherIndex(d, vt.n_y.data(), i2)));
-        const auto sz = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, vt.n_z.data(), i0)),
-                                        hn::Mul(b1, hn::GatherIndex(d, vt.n_z.data(), i1))),
-                                hn::Mul(b2, hn::GatherIndex(d, vt.n_z.data(), i2)));
-        const auto slen =
-            hn::Sqrt(hn::Add(hn::Add(hn::Mul(sx, sx), hn::Mul(sy, sy)), hn::Mul(sz, sz)));
-        const auto sinv = hn::Div(one, slen);
-        const auto use = hn::And(vertex_normal, hn::Gt(slen, zero));
-        nx = hn::IfThenElse(use, hn::Mul(sx, sinv), gx);
-        ny = hn::IfThenElse(use, hn::Mul(sy, sinv), gy);
-        nz = hn::IfThenElse(use, hn::Mul(sz, sinv), gz);
-      }
+      const auto i0 = hn::Load(di, l.i0), i1 = hn::Load(di, l.i1), i2 = hn::Load(di, l.i2);
+      // p, the geometric normal g (+z where degenerate) and ShadingNormalAt's n.
+      auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
+      auto nx = zero, ny = zero, nz = zero;
+      auto has_ng = hn::Gt(zero, zero);
+      TrianglePoint8(d, scene, tri, b0, b1, b2, vertex_normal, i0, i1, i2, px, py, pz, gx, gy,
+                     gz, nx, ny, nz, has_ng);
       // ng: the unit geometric normal, or n for a degenerate triangle.
       const auto ngx = hn::IfThenElse(has_ng, gx, nx);
       const auto ngy = hn::IfThenElse(has_ng, gy, ny);
