@@ -1,6 +1,8 @@
 // The shading point of a ray hit: position, normals and the components the hit refers to.
 #include "engine/render/interaction.h"
 
+#include <bit>
+
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/light/area_light.h"
 
@@ -39,6 +41,35 @@ SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit
   its.frame = Frame(ShadingNormalAt(scene, tri, hit.b1, hit.b2));
   its.material = scene.shading.material[tri];
   its.emitter = scene.meshes.emitter[scene.shading.mesh[tri]];
+  return its;
+}
+
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out) {
+  for (size_t k = 0; k < packets; ++k) {
+    for (Mask8 todo = hit_mask[k] & kAllLanes; todo != 0; todo &= todo - 1) {
+      const int j = std::countr_zero(todo);
+      const HitPacket8& h = hits[k];
+      const Hit hit{h.t[j], h.b1[j], h.b2[j], h.prim[j]};
+      SetInteractionRow(out, k * kPacketWidth + size_t(j),
+                        MakeInteraction(scene, GetLaneRay(rays[k], j), hit));
+    }
+  }
+}
+
+SurfaceInteraction InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q,
+                                 uint32_t prim) {
+  SurfaceInteraction its;
+  its.p = {in.p_x[q], in.p_y[q], in.p_z[q]};
+  its.ng = {in.ng_x[q], in.ng_y[q], in.ng_z[q]};
+  its.frame = Frame(Vec3f{in.n_x[q], in.n_y[q], in.n_z[q]});
+  its.prim = prim;
+  if (IsSphereHit(prim)) {
+    its.material = scene.spheres.material[SphereHitRow(prim)];
+  } else {
+    its.material = scene.shading.material[prim];
+    its.emitter = scene.meshes.emitter[scene.shading.mesh[prim]];
+  }
   return its;
 }
 

@@ -3,6 +3,7 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/core/frame.h"
+#include "engine/core/packet8.h"
 #include "engine/core/ray.h"
 #include "engine/scene/scene.h"
 
@@ -21,5 +22,32 @@ struct SurfaceInteraction {
 /// Builds the interaction for a hit of `ray` (hit.prim must be valid). A sphere hit's shading
 /// normal is (p - c)/r; spheres never emit.
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
+
+/// The interaction stage's SoA columns of shading points, world space, one row per queue entry
+/// (row q = lane q % 8 of packet q / 8): p, the unit geometric normal ng and the unit shading
+/// normal n (the z axis of SurfaceInteraction::frame).
+struct InteractionColumns {
+  float *p_x, *p_y, *p_z, *ng_x, *ng_y, *ng_z, *n_x, *n_y, *n_z;
+};
+
+/// MakeInteraction for every hit lane of `packets` ray/hit packets: row k * 8 + j is written
+/// when bit j of hit_mask[k] is set (hits[k] lane j valid), other rows are left as they are.
+/// The wavefront's interaction slot; SIMD twin: simd::MakeInteractionBatch.
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out);
+
+/// Writes row q of `out` from `its`.
+inline void SetInteractionRow(const InteractionColumns& out, size_t q,
+                              const SurfaceInteraction& its) {
+  out.p_x[q] = its.p.x, out.p_y[q] = its.p.y, out.p_z[q] = its.p.z;
+  out.ng_x[q] = its.ng.x, out.ng_y[q] = its.ng.y, out.ng_z[q] = its.ng.z;
+  out.n_x[q] = its.frame.n.x, out.n_y[q] = its.frame.n.y, out.n_z[q] = its.frame.n.z;
+}
+
+/// The SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim): the frame
+/// built from n, the material and emitter looked up by prim. Bit-identical to MakeInteraction
+/// when the row came from MakeInteractionBatch.
+SurfaceInteraction InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q,
+                                 uint32_t prim);
 
 }  // namespace ptlab

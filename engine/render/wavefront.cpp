@@ -237,6 +237,10 @@ class Wavefront {
   void Shade(int depth) {
     const size_t n = rays_.size();
     its_.resize(n), wo_.resize(n), goes_on_.assign(n, 0);
+    points_.Resize(rays_.packets.size() * kPacketWidth);
+    const InteractionColumns points = points_.View();
+    kernels_.interaction(scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(),
+                         rays_.packets.size(), points);
     for (size_t q = 0; q < n; ++q) {
       const uint32_t i = rays_.owner[q];
       const size_t k = q / kLanes, j = q % kLanes;
@@ -253,8 +257,7 @@ class Wavefront {
         }
         continue;
       }
-      const Hit hit{hits_[k].t[j], hits_[k].b1[j], hits_[k].b2[j], hits_[k].prim[j]};
-      const SurfaceInteraction its = MakeInteraction(scene_, rays_.At(q), hit);
+      const SurfaceInteraction its = InteractionAt(scene_, points, q, hits_[k].prim[j]);
       if (rules_.normals) {
         const Vec3f a = Abs(its.frame.n);
         L_[i] = {a.x, a.y, a.z};
@@ -611,6 +614,18 @@ class Wavefront {
     }
   };
 
+  /// The interaction stage's SoA columns: the shading point of each queue entry that hit.
+  struct PointColumns {
+    AlignedVector<float> p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z;
+    void Resize(size_t n) {
+      for (auto* v : {&p_x, &p_y, &p_z, &ng_x, &ng_y, &ng_z, &n_x, &n_y, &n_z}) v->resize(n);
+    }
+    InteractionColumns View() {
+      return {p_x.data(),  p_y.data(),  p_z.data(), ng_x.data(), ng_y.data(),
+              ng_z.data(), n_x.data(), n_y.data(), n_z.data()};
+    }
+  };
+
   /// The splat stage's SoA columns: film position and radiance of each finite sample.
   struct SplatColumns {
     AlignedVector<float> sx, sy, r, g, b;
@@ -657,6 +672,7 @@ class Wavefront {
   RayQueue rays_, next_rays_, shadows_;
   std::vector<HitPacket8> hits_;
   std::vector<Mask8> hit_mask_;
+  PointColumns points_;
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
   std::vector<uint8_t> goes_on_;
@@ -703,6 +719,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
+          .interaction = MakeInteractionBatch,
           .name = "scalar-oracle"};
 }
 

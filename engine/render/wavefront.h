@@ -13,6 +13,7 @@
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
+#include "engine/render/interaction.h"
 #include "engine/render/packet_render.h"
 
 namespace ptlab {
@@ -73,9 +74,17 @@ struct WavefrontKernels {
   void (*area_light)(const Scene& scene, TriangleSampling mode, size_t n,
                      const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) = nullptr;
 
-  // Planned slots (issue 11, the SIMD shading stage), each a batch over a wave's SoA columns
-  // with its scalar twin in this table's oracle:
-  //   interaction: hit records -> shading points (p, n, frame, uv, material ref), wo;
+  // Interaction stage: a wave's hit records -> shading points (p, ng, shading normal) as SoA
+  // columns, row = queue entry, written for the hit lanes of each packet only; the wavefront
+  // builds each SurfaceInteraction from its row with InteractionAt (frame, material, emitter).
+  // Oracle: ptlab::MakeInteractionBatch (MakeInteraction per row, so the oracle table keeps the
+  // scalar path's bits); SIMD: simd::MakeInteractionBatch (simd/interaction8.h).
+  void (*interaction)(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                      const Mask8* hit_mask, size_t packets,
+                      const InteractionColumns& out) = nullptr;
+
+  // Planned slot (issue 11, the SIMD shading stage), a batch over a wave's SoA columns with its
+  // scalar twin in this table's oracle:
   //   emitter:     the other emitters' samples (environment map, distant disk, point) and the
   //                MIS weights and shadow rays' setup.
 

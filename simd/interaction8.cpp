@@ -1,0 +1,42 @@
+// Vectorized interaction stage: per-target instantiation and dispatch of simd/interaction8-inl.h.
+#include "simd/targets.h"  // first: the target policy
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/interaction8.cpp"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+#include "simd/interaction8-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace ptlab::simd {
+namespace HWY_NAMESPACE {
+
+void MakeInteractionBatchTarget(const Scene& scene, const RayPacket8* rays,
+                                const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+                                const InteractionColumns& out) {
+  MakeInteractionBatchKernel(scene, rays, hits, hit_mask, packets, out);
+}
+const char* Interaction8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ptlab::simd
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include "simd/interaction8.h"
+
+namespace ptlab::simd {
+
+HWY_EXPORT(MakeInteractionBatchTarget);
+HWY_EXPORT(Interaction8TargetNameTarget);
+
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out) {
+  if (packets == 0) return;
+  HWY_DYNAMIC_DISPATCH(MakeInteractionBatchTarget)(scene, rays, hits, hit_mask, packets, out);
+}
+
+const char* Interaction8TargetName() { return HWY_DYNAMIC_DISPATCH(Interaction8TargetNameTarget)(); }
+
+}  // namespace ptlab::simd
+#endif  // HWY_ONCE

@@ -1,0 +1,26 @@
+// Vectorized interaction stage: hit records -> shading points for a wave's packets (plain API).
+#pragma once
+
+#include <cstddef>
+
+#include "engine/core/packet8.h"
+#include "engine/render/interaction.h"
+#include "engine/scene/scene.h"
+
+namespace ptlab::simd {
+
+/// ptlab::MakeInteractionBatch, eight lanes per step (hn::CappedTag<float, 8>): for the triangle
+/// hits of a packet the vertices, the vertex normals (where the mesh has them) and the
+/// interpolation and normalizations of MakeInteraction / ShadingNormalAt run as vectors over
+/// gathered triangle data; sphere hits take the scalar MakeInteraction lane by lane. Rows of
+/// lanes that did not hit are not written.
+/// Oracle: ptlab::MakeInteractionBatch. Contract: every output bit-identical to the oracle's on
+/// every target (its float operations in its order; FMA contraction is off, and Highway's Sqrt
+/// and Div are correctly rounded); tests/simd/interaction8_test.cpp.
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out);
+
+/// Name of the Highway target MakeInteractionBatch dispatches to now; for logs and tests.
+const char* Interaction8TargetName();
+
+}  // namespace ptlab::simd
