@@ -130,16 +130,13 @@ inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
   return req;
 }
 
-/// PrepareEmitterSample with its numbers given: u_pick picks the emitter, u the point on it.
-inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
+/// The request of emitter `emitter`, picked with probability pick_pmf > 0, sampled with u.
+inline EmitterSampleRequest PrepareEmitterSampleFrom(const Scene& scene,
                                                      const SurfaceInteraction& its,
-                                                     const Vec3f& wo, bool mis, float u_pick,
+                                                     const Vec3f& wo, bool mis,
+                                                     EmitterRef emitter, float pick_pmf,
                                                      const Vec2f& u) {
   EmitterSampleRequest req;
-  if (scene.emitters.empty()) return req;
-  float pick_pmf = 0.0f;
-  const EmitterRef emitter = SelectEmitter(scene, u_pick, &pick_pmf);
-  if (!(pick_pmf > 0)) return req;
   if (IsInfiniteLight(emitter)) {
     EnvironmentSample es;
     if (!SampleInfiniteLight(scene, emitter, u, &es)) return req;
@@ -176,28 +173,51 @@ inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
       pick_pmf);
 }
 
+/// PrepareEmitterSample with its numbers given: u_pick picks the emitter, u the point on it.
+inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
+                                                     const SurfaceInteraction& its,
+                                                     const Vec3f& wo, bool mis, float u_pick,
+                                                     const Vec2f& u) {
+  if (scene.emitters.empty()) return {};
+  float pick_pmf = 0.0f;
+  const EmitterRef emitter = SelectEmitter(scene, u_pick, &pick_pmf);
+  if (!(pick_pmf > 0)) return {};
+  return PrepareEmitterSampleFrom(scene, its, wo, mis, emitter, pick_pmf, u);
+}
+
+/// The numbers of emitter sample `sub` of `sub_count` at vertex `depth`, in the one order every
+/// path draws them: the emitter pick, then the point on the emitter.
+inline void DrawEmitterNumbers(PathSampler& sampler, int depth, uint32_t sub, uint32_t sub_count,
+                               float* u_pick, Vec2f* u) {
+  *u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), sub, sub_count);
+  *u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), sub, sub_count);
+}
+
 inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const SurfaceInteraction& its,
                                                  const Vec3f& wo, bool mis, PathSampler& sampler,
                                                  int depth, uint32_t sub = 0,
                                                  uint32_t sub_count = 1) {
   if (scene.emitters.empty()) return {};  // draws nothing
-  const float u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), sub, sub_count);
-  const Vec2f u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), sub, sub_count);
+  float u_pick;
+  Vec2f u;
+  DrawEmitterNumbers(sampler, depth, sub, sub_count, &u_pick, &u);
   return PrepareEmitterSampleWith(scene, its, wo, mis, u_pick, u);
 }
 
-/// Samples the BSDF at its (wo local) with u1 for the lobe and u2 for the direction.
-inline bool SampleBsdfWith(const Scene& scene, const SurfaceInteraction& its, const Vec3f& wo,
-                           float u1, const Vec2f& u2, BsdfSample* bs) {
-  return BsdfSampleDirection(scene.materials, its.material, wo, u1, u2, bs);
+/// The BSDF numbers of vertex `depth`, in the one order every path draws them: the lobe, then
+/// the direction.
+inline void DrawBsdfNumbers(PathSampler& sampler, int depth, float* u_lobe, Vec2f* u_dir) {
+  *u_lobe = sampler.Get1D(DecisionDimension(depth, Decision::kBsdfLobe));
+  *u_dir = sampler.Get2D(DecisionDimension(depth, Decision::kBsdfDirection));
 }
 
 /// Samples the BSDF at its (wo local) with the lobe and direction dimensions of vertex depth.
 inline bool SampleBsdf(const Scene& scene, const SurfaceInteraction& its, const Vec3f& wo,
                        PathSampler& sampler, int depth, BsdfSample* bs) {
-  const float u1 = sampler.Get1D(DecisionDimension(depth, Decision::kBsdfLobe));
-  const Vec2f u2 = sampler.Get2D(DecisionDimension(depth, Decision::kBsdfDirection));
-  return SampleBsdfWith(scene, its, wo, u1, u2, bs);
+  float u_lobe;
+  Vec2f u_dir;
+  DrawBsdfNumbers(sampler, depth, &u_lobe, &u_dir);
+  return BsdfSampleDirection(scene.materials, its.material, wo, u_lobe, u_dir, bs);
 }
 
 /// What a prepared emitter sample adds once its shadow ray's visibility is known (the scalar

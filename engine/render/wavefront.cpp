@@ -20,17 +20,19 @@ namespace ptlab {
 namespace {
 
 using integrator::AreaEmitterSampleRequest;
+using integrator::DrawBsdfNumbers;
+using integrator::DrawEmitterNumbers;
 using integrator::Emitted;
 using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
 using integrator::EmitterSampleResult;
 using integrator::Escaped;
+using integrator::MisWeight;
+using integrator::PrepareEmitterSampleFrom;
+using integrator::SpawnOrigin;
 using integrator::kInfinity;
 using integrator::kWhittedContinuation;
 using integrator::kWhittedMaxDepth;
-using integrator::MisWeight;
-using integrator::PrepareEmitterSampleWith;
-using integrator::SpawnOrigin;
 using Type = IntegratorDesc::Type;
 using Clock = std::chrono::steady_clock;
 
@@ -111,7 +113,6 @@ struct RayQueue {
     const size_t j = q % kLanes;
     return {p.dir_x[j], p.dir_y[j], p.dir_z[j]};
   }
-  Ray At(size_t q) const { return GetLaneRay(packets[q / kLanes], int(q % kLanes)); }
   /// Active lanes of packet k: all eight except in the last, partial packet.
   Mask8 Active(size_t k) const {
     const size_t n = std::min<size_t>(kLanes, size() - k * kLanes);
@@ -310,28 +311,27 @@ class Wavefront {
             requests_.push_back({});
             continue;
           }
-          // PrepareEmitterSample's numbers (pick, then point); area-light picks go to the
-          // emitter stage's batch, the others are prepared here.
+          // PrepareEmitterSample's numbers and pick; area-light picks go to the emitter
+          // stage's batch, the others are prepared here.
           float u_pick;
           Vec2f u;
           if (sobol_) {
             const size_t at = size_t(s) * m + k;
             u_pick = light_pick_[at], u = light_point_[at];
           } else {
-            u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), uint32_t(s),
-                                   uint32_t(n_light));
-            u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), uint32_t(s),
-                              uint32_t(n_light));
+            DrawEmitterNumbers(sampler, depth, uint32_t(s), uint32_t(n_light), &u_pick, &u);
           }
           float pick_pmf = 0.0f;
           const EmitterRef emitter = SelectEmitter(scene_, u_pick, &pick_pmf);
-          if (pick_pmf > 0 && emitter.tag() == EmitterTag::kArea) {
+          if (!(pick_pmf > 0)) {
+            requests_.push_back({});
+          } else if (emitter.tag() == EmitterTag::kArea) {
             area_.Push(uint32_t(requests_.size()), uint32_t(q), emitter.index(), pick_pmf, its.p,
                        u);
             requests_.push_back({});
           } else {
             requests_.push_back(
-                PrepareEmitterSampleWith(scene_, its, wo, rules_.mis, u_pick, u));
+                PrepareEmitterSampleFrom(scene_, its, wo, rules_.mis, emitter, pick_pmf, u));
           }
         }
         nee_paths_.push_back(i);
@@ -358,8 +358,7 @@ class Wavefront {
       if (sobol_) {
         u_lobe = bsdf_lobe_[k], u_dir = bsdf_direction_[k];
       } else {
-        u_lobe = sampler.Get1D(DecisionDimension(depth, Decision::kBsdfLobe));
-        u_dir = sampler.Get2D(DecisionDimension(depth, Decision::kBsdfDirection));
+        DrawBsdfNumbers(sampler, depth, &u_lobe, &u_dir);
       }
       bsdf_.Push(i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
     }

@@ -55,7 +55,9 @@ TEST(PixelFilter, TableMatchesAnalyticFilter) {
       const float x = (r + 0.5f) * (2.0f * float(k) / kSteps - 1.0f);
       const float table = f.Eval(x), exact = f.EvalExact(x);
       ASSERT_TRUE(std::isfinite(table) && table >= 0) << x;
-      if (std::fabs(x) > r) ASSERT_EQ(table, 0.0f) << x;
+      if (std::fabs(x) > r) {
+        ASSERT_EQ(table, 0.0f) << x;
+      }
       worst = std::max(worst, std::fabs(double(table) - double(exact)));
     }
     EXPECT_LE(worst, c.tol);
