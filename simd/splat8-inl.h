@@ -27,16 +27,16 @@ namespace hn = hwy::HWY_NAMESPACE;
 HWY_INLINE void SplatOne(const PixelFilter& filter, float sx, float sy, const float* rgb1,
                          FilmBlock* block) {
   const hn::CappedTag<float, 4> d;
-  const SplatFootprint f = block->Footprint(filter.radius(), sx, sy);
-  const int nx = std::min(kMaxFilterTaps, f.ix1 - f.ix0 + 1);
-  if (nx <= 0) return;
-  float wx[kMaxFilterTaps];
-  for (int i = 0; i < nx; ++i) wx[i] = filter.Eval(float(f.ix0 + i) + 0.5f - sx);
   if (hn::Lanes(d) != 4) {
     // A target with fewer than four lanes: FilmBlock::Splat itself.
     block->Splat(filter, sx, sy, Color3f{rgb1[0], rgb1[1], rgb1[2]});
     return;
   }
+  const SplatFootprint f = block->Footprint(filter.radius(), sx, sy);
+  const int nx = std::min(kMaxFilterTaps, f.ix1 - f.ix0 + 1);
+  if (nx <= 0) return;
+  float wx[kMaxFilterTaps];
+  for (int i = 0; i < nx; ++i) wx[i] = filter.Eval(float(f.ix0 + i) + 0.5f - sx);
   const auto radiance = hn::LoadU(d, rgb1);
   for (int j = f.iy0; j <= f.iy1; ++j) {
     const float wy = filter.Eval(float(j) + 0.5f - sy);
