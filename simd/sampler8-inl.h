@@ -35,8 +35,26 @@ HWY_INLINE VU Hash32(DU d, VU x) {
   return hn::Xor(x, hn::ShiftRight<16>(x));
 }
 
-/// ReverseBits32: swap halves of ever smaller fields.
+/// ReverseBits32. With byte shuffles (every target but HWY_SCALAR): each byte's two nibbles
+/// reversed by a 16-entry table lookup and swapped, then the four bytes of each lane reversed.
+/// Otherwise: swap halves of ever smaller fields.
 HWY_INLINE VU ReverseBits(DU d, VU v) {
+#if HWY_TARGET != HWY_SCALAR
+  const hn::Repartition<uint8_t, DU> d8;
+  // Nibble n reversed, in the low (kLow) or high (kHigh) half of a byte.
+  alignas(16) static constexpr uint8_t kLow[16] = {0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe,
+                                                   0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7, 0xf};
+  alignas(16) static constexpr uint8_t kHigh[16] = {0x00, 0x80, 0x40, 0xc0, 0x20, 0xa0, 0x60, 0xe0,
+                                                    0x10, 0x90, 0x50, 0xd0, 0x30, 0xb0, 0x70, 0xf0};
+  alignas(16) static constexpr uint8_t kByteSwap[16] = {3, 2, 1, 0, 7, 6, 5, 4,
+                                                        11, 10, 9, 8, 15, 14, 13, 12};
+  const auto bytes = hn::BitCast(d8, v);
+  const auto low_nibble = hn::And(bytes, hn::Set(d8, uint8_t{0x0f}));
+  const auto high_nibble = hn::BitCast(d8, hn::And(hn::ShiftRight<4>(v), hn::Set(d, 0x0f0f0f0fu)));
+  const auto reversed = hn::Or(hn::TableLookupBytes(hn::LoadDup128(d8, kHigh), low_nibble),
+                               hn::TableLookupBytes(hn::LoadDup128(d8, kLow), high_nibble));
+  return hn::BitCast(d, hn::TableLookupBytes(reversed, hn::LoadDup128(d8, kByteSwap)));
+#else
   const auto swap = [d](VU x, uint32_t mask, auto shift) {
     constexpr int kShift = decltype(shift)::value;
     const VU m = hn::Set(d, mask);
@@ -47,6 +65,7 @@ HWY_INLINE VU ReverseBits(DU d, VU v) {
   v = swap(v, 0x0f0f0f0fu, std::integral_constant<int, 4>());
   v = swap(v, 0x00ff00ffu, std::integral_constant<int, 8>());
   return hn::Or(hn::ShiftRight<16>(v), hn::ShiftLeft<16>(v));
+#endif
 }
 
 /// LaineKarrasPermutation.
@@ -58,15 +77,13 @@ HWY_INLINE VU LaineKarras(DU d, VU x, VU seed) {
   return hn::Xor(x, hn::Mul(x, hn::Set(d, 0x8d22f6e6u)));
 }
 
-/// SobolDimension1Reversed: four table gathers.
+/// SobolDimension1Reversed: the five butterfly steps.
 HWY_INLINE VU Dimension1Reversed(DU d, VU i) {
-  const DI di;
-  const VU byte = hn::Set(d, 255u);
-  const auto& t = kSobolDimension1ReversedBytes;
-  VU r = hn::GatherIndex(d, t[0].data(), hn::BitCast(di, hn::And(i, byte)));
-  r = hn::Xor(r, hn::GatherIndex(d, t[1].data(), hn::BitCast(di, hn::And(hn::ShiftRight<8>(i), byte))));
-  r = hn::Xor(r, hn::GatherIndex(d, t[2].data(), hn::BitCast(di, hn::And(hn::ShiftRight<16>(i), byte))));
-  return hn::Xor(r, hn::GatherIndex(d, t[3].data(), hn::BitCast(di, hn::ShiftRight<24>(i))));
+  i = hn::Xor(i, hn::And(hn::ShiftRight<1>(i), hn::Set(d, 0x55555555u)));
+  i = hn::Xor(i, hn::And(hn::ShiftRight<2>(i), hn::Set(d, 0x33333333u)));
+  i = hn::Xor(i, hn::And(hn::ShiftRight<4>(i), hn::Set(d, 0x0f0f0f0fu)));
+  i = hn::Xor(i, hn::And(hn::ShiftRight<8>(i), hn::Set(d, 0x00ff00ffu)));
+  return hn::Xor(i, hn::ShiftRight<16>(i));
 }
 
 /// FixedPointToFloat: the top 24 bits, exact in float.

@@ -184,8 +184,9 @@ class Wavefront {
     if (sobol_) {
       all_paths_.resize(id);
       for (uint32_t i = 0; i < id; ++i) all_paths_[i] = i;
-      DrawSobol2D(all_paths_, kDimensionPixel, 0, 1, jitter_.data());
-      DrawSobol2D(all_paths_, kDimensionLens, 0, 1, lens_.data());
+      FillSobolRows(all_paths_, 0, 1);
+      DrawSobol2D(kDimensionPixel, jitter_.data());
+      DrawSobol2D(kDimensionLens, lens_.data());
     } else {
       for (uint32_t i = 0; i < id; ++i) {
         jitter_[i] = sampler_[i].Get2D(kDimensionPixel);
@@ -446,28 +447,28 @@ class Wavefront {
     if (rules_.nee && !scene_.emitters.empty()) {
       light_pick_.resize(m * n_light), light_point_.resize(m * n_light);
       for (uint32_t s = 0; s < n_light; ++s) {
-        DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kLightPick), s, n_light,
-                    light_pick_.data() + s * m);
-        DrawSobol2D(continuing_, DecisionDimension(depth, Decision::kLightPoint), s, n_light,
-                    light_point_.data() + s * m);
+        FillSobolRows(continuing_, s, n_light);
+        DrawSobol1D(DecisionDimension(depth, Decision::kLightPick), light_pick_.data() + s * m);
+        DrawSobol2D(DecisionDimension(depth, Decision::kLightPoint), light_point_.data() + s * m);
       }
     }
     if (!rules_.bsdf_sampling) return;
+    // With one emitter sample per vertex, its rows (sub 0 of 1) are the BSDF decisions' rows.
+    const bool emitter_rows_fit = rules_.nee && !scene_.emitters.empty() && n_light == 1;
+    if (!emitter_rows_fit) FillSobolRows(continuing_, 0, 1);
     roulette_.resize(m), bsdf_lobe_.resize(m), bsdf_direction_.resize(m);
     // Roulette numbers only where Sample reads them (Nori's from depth 3, Whitted's always).
     const bool roulette = rules_.roulette == VertexRules::Roulette::kWhitted ||
                           (rules_.roulette == VertexRules::Roulette::kNori && depth >= 3);
     if (roulette)
-      DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kRoulette), 0, 1,
-                  roulette_.data());
-    DrawSobol1D(continuing_, DecisionDimension(depth, Decision::kBsdfLobe), 0, 1,
-                bsdf_lobe_.data());
-    DrawSobol2D(continuing_, DecisionDimension(depth, Decision::kBsdfDirection), 0, 1,
-                bsdf_direction_.data());
+      DrawSobol1D(DecisionDimension(depth, Decision::kRoulette), roulette_.data());
+    DrawSobol1D(DecisionDimension(depth, Decision::kBsdfLobe), bsdf_lobe_.data());
+    DrawSobol2D(DecisionDimension(depth, Decision::kBsdfDirection), bsdf_direction_.data());
   }
 
-  // Dimension `dim` of the given paths' samples (sub-sample sub of sub_count), by the
-  // kernel table's batch kernel.
+  // The rows of the next draws: the given paths' pixel seeds and sample indices (sub-sample
+  // sub of sub_count); each DrawSobol then draws one dimension for all of them with the kernel
+  // table's batch kernel.
   void FillSobolRows(const std::vector<uint32_t>& paths, uint32_t sub, uint32_t sub_count) {
     const size_t m = paths.size();
     draw_seed_.resize(m), draw_index_.resize(m), draw_x_.resize(m), draw_y_.resize(m);
@@ -477,17 +478,14 @@ class Wavefront {
       draw_index_[k] = p.index() * sub_count + sub;
     }
   }
-  void DrawSobol1D(const std::vector<uint32_t>& paths, uint32_t dim, uint32_t sub,
-                   uint32_t sub_count, float* out) {
-    FillSobolRows(paths, sub, sub_count);
-    kernels_.sobol1d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), out);
+  void DrawSobol1D(uint32_t dim, float* out) {
+    kernels_.sobol1d(draw_seed_.data(), draw_index_.data(), dim, draw_seed_.size(), out);
   }
-  void DrawSobol2D(const std::vector<uint32_t>& paths, uint32_t dim, uint32_t sub,
-                   uint32_t sub_count, Vec2f* out) {
-    FillSobolRows(paths, sub, sub_count);
-    kernels_.sobol2d(draw_seed_.data(), draw_index_.data(), dim, paths.size(), draw_x_.data(),
+  void DrawSobol2D(uint32_t dim, Vec2f* out) {
+    const size_t m = draw_seed_.size();
+    kernels_.sobol2d(draw_seed_.data(), draw_index_.data(), dim, m, draw_x_.data(),
                      draw_y_.data());
-    for (size_t k = 0; k < paths.size(); ++k) out[k] = {draw_x_[k], draw_y_[k]};
+    for (size_t k = 0; k < m; ++k) out[k] = {draw_x_[k], draw_y_[k]};
   }
 
   void TraceShadows() {

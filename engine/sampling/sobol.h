@@ -6,7 +6,6 @@
 // decision) gives every 1-D or 2-D decision of a path its own well-stratified points.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -79,18 +78,17 @@ constexpr SobolSeeds DimensionSeeds(uint32_t pixel_seed, uint32_t dim) {
   return {base, Hash32(base ^ 0x85ebca6bu), Hash32(base ^ 0xc2b2ae35u)};
 }
 
-/// Sobol' dimension 1 with its bits reversed, from four byte tables (dimension 1 is linear over
-/// GF(2) in the index bits): ReverseBits32(SobolDimension1(i)) without a loop over the bits.
-inline constexpr std::array<std::array<uint32_t, 256>, 4> kSobolDimension1ReversedBytes = [] {
-  std::array<std::array<uint32_t, 256>, 4> t{};
-  for (uint32_t byte = 0; byte < 4; ++byte)
-    for (uint32_t v = 0; v < 256; ++v) t[byte][v] = ReverseBits32(SobolDimension1(v << (8 * byte)));
-  return t;
-}();
-
+/// Sobol' dimension 1 with its bits reversed, without a loop over the index bits: the
+/// generator matrix of dimension 1 is Pascal's triangle mod 2, so bit j of the reversed value is
+/// the parity of the index bits k whose positions are supersets of j (j & k == j, Lucas), a
+/// superset sum over GF(2) that five butterfly steps compute (one per bit of the position).
+/// Equal to ReverseBits32(SobolDimension1(i)) for every i (tests/engine/sampling/sobol_test).
 constexpr uint32_t SobolDimension1Reversed(uint32_t i) {
-  const auto& t = kSobolDimension1ReversedBytes;
-  return t[0][i & 255u] ^ t[1][(i >> 8) & 255u] ^ t[2][(i >> 16) & 255u] ^ t[3][i >> 24];
+  i ^= (i >> 1) & 0x55555555u;
+  i ^= (i >> 2) & 0x33333333u;
+  i ^= (i >> 4) & 0x0f0f0f0fu;
+  i ^= (i >> 8) & 0x00ff00ffu;
+  return i ^ (i >> 16);
 }
 
 /// Point `index` of the shuffled, Owen-scrambled (0,2)-sequence with these seeds: the same bits

@@ -53,6 +53,10 @@ TEST(Sobol, FirstPointsOfTheTwoDimensions) {
 }
 
 TEST(Sobol, FastFormsEqualTheDefinitions) {
+  // Every single index bit (each column of the generator matrix) and all of them at once.
+  for (int bit = 0; bit < 32; ++bit)
+    ASSERT_EQ(SobolDimension1Reversed(1u << bit), ReverseBits32(SobolDimension1(1u << bit))) << bit;
+  ASSERT_EQ(SobolDimension1Reversed(~0u), ReverseBits32(SobolDimension1(~0u)));
   Pcg32 rng(8, 9);
   for (int k = 0; k < 100000; ++k) {
     const uint32_t index = k < 1000 ? uint32_t(k) : rng.NextUint();
