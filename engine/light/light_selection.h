@@ -30,7 +30,10 @@ inline float EmitterSelectionPmf(const Scene& scene, EmitterRef e) {
   return 0.0f;
 }
 
-/// Picks an emitter with u in [0, 1) (the scene must have one); *pmf = its probability.
-EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf);
+/// Picks an emitter with u in [0, 1) (the scene must have one); *pmf = its probability. With
+/// `u_remapped`, also u stretched back to [0, 1) over the picked emitter's interval of [0, 1),
+/// a number independent of the pick (the Sobol' sampler reuses it for the point on the emitter,
+/// so the points that land on each emitter are themselves stratified).
+EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf, float* u_remapped = nullptr);
 
 }  // namespace ptlab

@@ -173,24 +173,44 @@ inline EmitterSampleRequest PrepareEmitterSampleFrom(const Scene& scene,
       pick_pmf);
 }
 
-/// PrepareEmitterSample with its numbers given: u_pick picks the emitter, u the point on it.
+/// The numbers of an emitter sample. With the independent sampler, `pick` picks the emitter and
+/// `point` the point on it. The Sobol' sampler has no pick number of its own (folded): point.x
+/// picks the emitter and is then stretched back to [0, 1) over the emitter's interval, so the
+/// stratified 2-D points of a pixel that land on each emitter are themselves stratified.
+struct EmitterNumbers {
+  float pick = 0.0f;
+  Vec2f point;
+  bool folded = false;
+};
+
+/// The emitter of an emitter sample with these numbers (the scene must have one), *pmf its
+/// probability; leaves in n->point the numbers of the point on it.
+inline EmitterRef PickEmitter(const Scene& scene, EmitterNumbers* n, float* pmf) {
+  if (n->folded) return SelectEmitter(scene, n->point.x, pmf, &n->point.x);
+  return SelectEmitter(scene, n->pick, pmf);
+}
+
+/// PrepareEmitterSample with its numbers given.
 inline EmitterSampleRequest PrepareEmitterSampleWith(const Scene& scene,
                                                      const SurfaceInteraction& its,
-                                                     const Vec3f& wo, bool mis, float u_pick,
-                                                     const Vec2f& u) {
+                                                     const Vec3f& wo, bool mis,
+                                                     EmitterNumbers numbers) {
   if (scene.emitters.empty()) return {};
   float pick_pmf = 0.0f;
-  const EmitterRef emitter = SelectEmitter(scene, u_pick, &pick_pmf);
+  const EmitterRef emitter = PickEmitter(scene, &numbers, &pick_pmf);
   if (!(pick_pmf > 0)) return {};
-  return PrepareEmitterSampleFrom(scene, its, wo, mis, emitter, pick_pmf, u);
+  return PrepareEmitterSampleFrom(scene, its, wo, mis, emitter, pick_pmf, numbers.point);
 }
 
 /// The numbers of emitter sample `sub` of `sub_count` at vertex `depth`, in the one order every
-/// path draws them: the emitter pick, then the point on the emitter.
-inline void DrawEmitterNumbers(PathSampler& sampler, int depth, uint32_t sub, uint32_t sub_count,
-                               float* u_pick, Vec2f* u) {
-  *u_pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), sub, sub_count);
-  *u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), sub, sub_count);
+/// path draws them: the emitter pick (independent sampler only), then the point on the emitter.
+inline EmitterNumbers DrawEmitterNumbers(PathSampler& sampler, int depth, uint32_t sub,
+                                         uint32_t sub_count) {
+  EmitterNumbers n;
+  n.folded = sampler.type() == SamplerType::kSobol;
+  if (!n.folded) n.pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick), sub, sub_count);
+  n.point = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), sub, sub_count);
+  return n;
 }
 
 inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const SurfaceInteraction& its,
@@ -198,10 +218,8 @@ inline EmitterSampleRequest PrepareEmitterSample(const Scene& scene, const Surfa
                                                  int depth, uint32_t sub = 0,
                                                  uint32_t sub_count = 1) {
   if (scene.emitters.empty()) return {};  // draws nothing
-  float u_pick;
-  Vec2f u;
-  DrawEmitterNumbers(sampler, depth, sub, sub_count, &u_pick, &u);
-  return PrepareEmitterSampleWith(scene, its, wo, mis, u_pick, u);
+  return PrepareEmitterSampleWith(scene, its, wo, mis,
+                                  DrawEmitterNumbers(sampler, depth, sub, sub_count));
 }
 
 /// The BSDF numbers of vertex `depth`, in the one order every path draws them: the lobe, then

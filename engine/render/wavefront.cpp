@@ -23,11 +23,13 @@ using integrator::AreaEmitterSampleRequest;
 using integrator::DrawBsdfNumbers;
 using integrator::DrawEmitterNumbers;
 using integrator::Emitted;
+using integrator::EmitterNumbers;
 using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
 using integrator::EmitterSampleResult;
 using integrator::Escaped;
 using integrator::MisWeight;
+using integrator::PickEmitter;
 using integrator::PrepareEmitterSampleFrom;
 using integrator::SpawnOrigin;
 using integrator::kInfinity;
@@ -314,16 +316,15 @@ class Wavefront {
           }
           // PrepareEmitterSample's numbers and pick; area-light picks go to the emitter
           // stage's batch, the others are prepared here.
-          float u_pick;
-          Vec2f u;
+          EmitterNumbers numbers;
           if (sobol_) {
-            const size_t at = size_t(s) * m + k;
-            u_pick = light_pick_[at], u = light_point_[at];
+            numbers.point = light_point_[size_t(s) * m + k], numbers.folded = true;
           } else {
-            DrawEmitterNumbers(sampler, depth, uint32_t(s), uint32_t(n_light), &u_pick, &u);
+            numbers = DrawEmitterNumbers(sampler, depth, uint32_t(s), uint32_t(n_light));
           }
           float pick_pmf = 0.0f;
-          const EmitterRef emitter = SelectEmitter(scene_, u_pick, &pick_pmf);
+          const EmitterRef emitter = PickEmitter(scene_, &numbers, &pick_pmf);
+          const Vec2f& u = numbers.point;
           if (!(pick_pmf > 0)) {
             requests_.push_back({});
           } else if (emitter.tag() == EmitterTag::kArea) {
@@ -445,10 +446,10 @@ class Wavefront {
     const size_t m = continuing_.size();
     const uint32_t n_light = uint32_t(rules_.light_samples);
     if (rules_.nee && !scene_.emitters.empty()) {
-      light_pick_.resize(m * n_light), light_point_.resize(m * n_light);
+      // No pick numbers: the pick is folded into the point's x (EmitterNumbers).
+      light_point_.resize(m * n_light);
       for (uint32_t s = 0; s < n_light; ++s) {
         FillSobolRows(continuing_, s, n_light);
-        DrawSobol1D(DecisionDimension(depth, Decision::kLightPick), light_pick_.data() + s * m);
         DrawSobol2D(DecisionDimension(depth, Decision::kLightPoint), light_point_.data() + s * m);
       }
     }
@@ -655,7 +656,7 @@ class Wavefront {
   std::vector<int> gen_px_, gen_py_;
   std::vector<Vec2f> jitter_, lens_;
   std::vector<uint32_t> all_paths_, continuing_;
-  std::vector<float> light_pick_, roulette_, bsdf_lobe_;
+  std::vector<float> roulette_, bsdf_lobe_;
   std::vector<Vec2f> light_point_, bsdf_direction_;
   std::vector<uint32_t> draw_seed_, draw_index_;
   std::vector<float> draw_x_, draw_y_;

@@ -27,7 +27,8 @@ bool SamplerTypeFromName(std::string_view name, SamplerType* type);
 /// vertex (depth 0 = the camera ray's hit): DecisionDimension(depth, decision). With several
 /// emitter samples per vertex, sample i of n reads point index * n + i of the light dimensions.
 enum class Decision : uint32_t {
-  kLightPick,       // 1-D: which emitter
+  kLightPick,       // 1-D: which emitter (independent only: `sobol` folds the pick into the
+                    //      point's x, integrator::EmitterNumbers, and leaves this one unused)
   kLightPoint,      // 2-D: the point on it (x also picks an area light's triangle), or the
                     //      direction to an infinite light
   kBsdfLobe,        // 1-D: the BSDF's component

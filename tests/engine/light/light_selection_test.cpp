@@ -102,6 +102,42 @@ TEST(LightSelection, PickFrequenciesMatchThePmf) {
   }
 }
 
+// The remapped number (the Sobol' sampler's folded pick): within each emitter's interval of
+// [0, 1) it runs over [0, 1) uniformly, in order, so a stratified set of u gives each emitter a
+// stratified set of its own; the extreme u stay in [0, 1).
+TEST(LightSelection, RemappedNumberIsUniformOverEachEmittersInterval) {
+  for (const char* rule : {"uniform", "power"}) {
+    const Scene scene =
+        TwoQuadsAndAPoint(std::string(R"(<string name="lightSelection" value=")") + rule + R"("/>)");
+    const int n = 90000;
+    std::vector<std::vector<float>> remapped(3);
+    for (int i = 0; i < n; ++i) {
+      float pmf = 0, r = -1;
+      const EmitterRef e = SelectEmitter(scene, (float(i) + 0.5f) / float(n), &pmf, &r);
+      float pmf_alone = 0;
+      ASSERT_TRUE(e == SelectEmitter(scene, (float(i) + 0.5f) / float(n), &pmf_alone));
+      ASSERT_EQ(pmf, pmf_alone);
+      for (size_t k = 0; k < 3; ++k)
+        if (scene.emitters[k] == e) remapped[k].push_back(r);
+    }
+    for (size_t k = 0; k < 3; ++k) {
+      const std::vector<float>& r = remapped[k];
+      ASSERT_GT(r.size(), 100u) << rule << " emitter " << k;
+      // Increasing, and the j-th of m lies near the middle of the j-th of m equal strata.
+      for (size_t j = 0; j < r.size(); ++j) {
+        if (j > 0) ASSERT_GT(r[j], r[j - 1]) << rule << " emitter " << k << " j " << j;
+        ASSERT_NEAR(r[j], (float(j) + 0.5f) / float(r.size()), 2.0f / float(r.size()))
+            << rule << " emitter " << k << " j " << j;
+      }
+    }
+    for (float u : {0.0f, 1e-7f, 0.5f, 0x1.fffffep-1f}) {
+      float pmf = 0, r = -1;
+      SelectEmitter(scene, u, &pmf, &r);
+      EXPECT_TRUE(r >= 0.0f && r < 1.0f) << rule << " u " << u << " -> " << r;
+    }
+  }
+}
+
 TEST(LightSelection, ZeroPowerEmittersAreNeverPicked) {
   Scene scene = TwoQuadsAndAPoint("");
   scene.area_lights.radiance[0] = {0, 0, 0};
