@@ -62,7 +62,8 @@ HWY_INLINE void SamplePiecewiseConstant8(D d, const float* cdf, VI row, int n, V
     const auto down = hn::And(hn::RebindMask(di, hn::Gt(v, zero)),
                               hn::Gt(PiecewiseConstantBin8(d, v, float(n)), i));
     if (hn::AllFalse(di, down)) break;
-    v = hn::BitCast(d, hn::IfThenElse(down, hn::Sub(hn::BitCast(di, v), one_i), hn::BitCast(di, v)));
+    v = hn::BitCast(d,
+                    hn::IfThenElse(down, hn::Sub(hn::BitCast(di, v), one_i), hn::BitCast(di, v)));
   }
   for (;;) {
     const auto up = hn::Lt(PiecewiseConstantBin8(d, v, float(n)), i);

@@ -48,10 +48,10 @@ HWY_INLINE void EnvironmentLookup8(D d, const float* r, const float* g, const fl
   const V sx = hn::Sub(one, tx), sy = hn::Sub(one, ty);
   // (1 − ty)((1 − tx) c00 + tx c10) + ty((1 − tx) c01 + tx c11), per channel.
   const auto channel = [&](const float* c) {
-    const V top = hn::Add(hn::Mul(sx, hn::GatherIndex(d, c, k00)),
-                          hn::Mul(tx, hn::GatherIndex(d, c, k10)));
-    const V bottom = hn::Add(hn::Mul(sx, hn::GatherIndex(d, c, k01)),
-                             hn::Mul(tx, hn::GatherIndex(d, c, k11)));
+    const V top =
+        hn::Add(hn::Mul(sx, hn::GatherIndex(d, c, k00)), hn::Mul(tx, hn::GatherIndex(d, c, k10)));
+    const V bottom =
+        hn::Add(hn::Mul(sx, hn::GatherIndex(d, c, k01)), hn::Mul(tx, hn::GatherIndex(d, c, k11)));
     return hn::Add(hn::Mul(sy, top), hn::Mul(ty, bottom));
   };
   *out_r = channel(r), *out_g = channel(g), *out_b = channel(b);
@@ -84,8 +84,8 @@ HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, u
       SamplePiecewiseConstant8(d, dist.marginal_cdf, hn::Zero(di), dist.nv,
                                hn::LoadU(d, in.u_y + i), &y, &row, &pdf_y);
       const auto row_at = hn::Mul(row, stride);
-      SamplePiecewiseConstant8(d, dist.conditional_cdf, row_at, dist.nu,
-                               hn::LoadU(d, in.u_x + i), &x, &column, &pdf_x);
+      SamplePiecewiseConstant8(d, dist.conditional_cdf, row_at, dist.nu, hn::LoadU(d, in.u_x + i),
+                               &x, &column, &pdf_x);
       const auto pdf_uv = hn::Mul(pdf_y, pdf_x);
       // A row without mass gives no sample (it is never picked: the marginal skips it).
       const auto valid = hn::Gt(

@@ -120,8 +120,8 @@ bool ForceScalar();
 /// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
 /// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
 /// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
-/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF kernel differs from its
-/// oracle by a few ulp (simd/shade8.h), so the image agrees with the oracle's within the render
+/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF and environment kernels
+/// differ from their oracles by a few ulp (simd/shade8.h, simd/environment8.h), so the image agrees with the oracle's within the render
 /// contract of tests/simd/traverse8_test.cpp (relMSE, block means) but not bit for bit. Every
 /// integrator type is supported.
 void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,

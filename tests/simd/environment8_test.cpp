@@ -44,7 +44,8 @@ struct Outputs {
 // plateaus (black rows and columns: equal entries) and bin edges are hit.
 void MakeRows(const EnvironmentMapTable& table, uint32_t map, size_t random, Pcg32& rng,
               std::vector<float>* u_x, std::vector<float>* u_y) {
-  for (size_t i = 0; i < random; ++i) u_x->push_back(rng.NextFloat()), u_y->push_back(rng.NextFloat());
+  for (size_t i = 0; i < random; ++i)
+    u_x->push_back(rng.NextFloat()), u_y->push_back(rng.NextFloat());
   std::vector<float> edges = {0.0f, -0.0f, 0x1.fffffep-1f, 1.0f, 2.0f, -1.0f, 1e-40f, 0.5f};
   if (table.sampling[map] == EnvironmentSampling::kImportance) {
     // Importance sampling clamps its numbers to [0, 1) and NaN to 0 (uniform sampling does not).
@@ -112,7 +113,8 @@ void ExpectBatchMatchesOracle(const EnvironmentMapTable& table, uint32_t map, si
   });
 }
 
-EnvironmentMapTable OneMap(const Image& image, EnvironmentSampling sampling = EnvironmentSampling::kImportance,
+EnvironmentMapTable OneMap(const Image& image,
+                           EnvironmentSampling sampling = EnvironmentSampling::kImportance,
                            const Frame& to_world = Frame{}) {
   EnvironmentMapTable table;
   EnvironmentMapDesc desc;
@@ -157,8 +159,8 @@ TEST(Environment8, BatchMatchesOracleOnBlackRowsAndColumnsRotated) {
   Frame f;
   f.s = rotate.ApplyVector({1, 0, 0}), f.t = rotate.ApplyVector({0, 1, 0});
   f.n = rotate.ApplyVector({0, 0, 1});
-  ExpectBatchMatchesOracle(OneMap(RandomMap(37, 23, true, rng), EnvironmentSampling::kImportance, f),
-                           0, 1000003);
+  ExpectBatchMatchesOracle(
+      OneMap(RandomMap(37, 23, true, rng), EnvironmentSampling::kImportance, f), 0, 1000003);
 }
 
 TEST(Environment8, BatchMatchesOracleOnTinyMaps) {

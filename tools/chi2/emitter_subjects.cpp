@@ -110,7 +110,8 @@ void AddMeshLight(Scene* scene, MaterialRef material, const std::vector<Triangle
     for (AlignedVector<uint32_t>* column :
          {&scene->shading.vertex0, &scene->shading.vertex1, &scene->shading.vertex2}) {
       column->push_back(has_normals ? uint32_t(v.n_x.size()) : kNoVertex);
-      if (has_normals) v.n_x.push_back(normal.x), v.n_y.push_back(normal.y), v.n_z.push_back(normal.z);
+      if (has_normals)
+        v.n_x.push_back(normal.x), v.n_y.push_back(normal.y), v.n_z.push_back(normal.z);
     }
   }
   meshes.material.push_back(material);
