@@ -1,8 +1,9 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
-// simd/splat8, simd/emitter8, simd/interaction8.
+// simd/splat8, simd/emitter8, simd/environment8, simd/interaction8.
 #include "simd/wavefront_kernels.h"
 
 #include "simd/emitter8.h"
+#include "simd/environment8.h"
 #include "simd/interaction8.h"
 #include "simd/sampler8.h"
 #include "simd/shade8.h"
@@ -32,6 +33,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
+          .environment = SampleEnvironmentBatch,
           .interaction = MakeInteractionBatch,
           .name = Traverse8TargetName()};
 }

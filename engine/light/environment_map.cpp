@@ -15,8 +15,6 @@
 namespace ptlab {
 namespace {
 
-constexpr float kTwoPiSquared = 19.739208802178716f;  // 2π²: the Jacobian of (u, v) -> ω / sinθ
-
 const char* ChannelName(int c) { return c == 0 ? "R" : (c == 1 ? "G" : "B"); }
 
 std::string FormatValue(float v) {
@@ -214,7 +212,7 @@ bool SampleEnvironment(const EnvironmentMapTable& t, uint32_t row, const Vec2f& 
   const float phi = 2 * kPi * uv.x;
   const Vec3f d{sin_theta * std::sin(phi), cos_theta, -sin_theta * std::cos(phi)};
   *out = {t.to_world[row].ToWorld(d), Lookup(Pixels(t, row), uv),
-          pdf_uv / (kTwoPiSquared * sin_theta)};
+          pdf_uv / (kEnvironmentTwoPiSquared * sin_theta)};
   return true;
 }
 
@@ -227,7 +225,7 @@ float EnvironmentPdf(const EnvironmentMapTable& t, uint32_t row, const Vec3f& w_
   const float sin_theta = r / std::sqrt(r * r + d.y * d.y);
   const float pdf_uv =
       Distribution2DPdf(EnvironmentDistribution(t, row), EnvironmentDirectionToUv(d));
-  return pdf_uv / (kTwoPiSquared * sin_theta);
+  return pdf_uv / (kEnvironmentTwoPiSquared * sin_theta);
 }
 
 Image EnvironmentPdfDebugImage(const EnvironmentMapTable& t, uint32_t row) {

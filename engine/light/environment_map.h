@@ -28,6 +28,9 @@ namespace ptlab {
 // The solid-angle pdf is exactly that of the sampled (u, v):
 //   pdf(ω) = p(u, v) / (2π² sinθ),  p(u, v) = W·H · P(cell)  (density on the unit square).
 
+/// 2π²: the Jacobian of (u, v) -> ω divided by sinθ.
+inline constexpr float kEnvironmentTwoPiSquared = 19.739208802178716f;
+
 /// The per-emitter parameters of an environment map.
 struct EnvironmentMapDesc {
   float scale = 1.0f;  // finite, >= 0; multiplies every pixel

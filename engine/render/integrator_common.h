@@ -130,6 +130,26 @@ inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
   return req;
 }
 
+/// The rest of PrepareEmitterSampleWith once the infinite light's sample es is drawn (the
+/// light picked with probability pick_pmf): the shadow ray and the contribution, if any. The
+/// wavefront draws its environment-map samples as a batch (SampleEnvironmentBatch) and
+/// finishes each returned one with this.
+inline EmitterSampleRequest InfiniteEmitterSampleRequest(const Scene& scene,
+                                                         const SurfaceInteraction& its,
+                                                         const Vec3f& wo, bool mis,
+                                                         const EnvironmentSample& es,
+                                                         float pick_pmf) {
+  EmitterSampleRequest req;
+  const Vec3f wi_local = its.frame.ToLocal(es.wi);
+  const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+  if (IsBlack(f)) return req;
+  req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
+  req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f, es.radiance,
+                                             es.pdf * pick_pmf, mis);
+  req.traced = true;
+  return req;
+}
+
 /// The request of emitter `emitter`, picked with probability pick_pmf > 0, sampled with u.
 inline EmitterSampleRequest PrepareEmitterSampleFrom(const Scene& scene,
                                                      const SurfaceInteraction& its,
@@ -140,14 +160,7 @@ inline EmitterSampleRequest PrepareEmitterSampleFrom(const Scene& scene,
   if (IsInfiniteLight(emitter)) {
     EnvironmentSample es;
     if (!SampleInfiniteLight(scene, emitter, u, &es)) return req;
-    const Vec3f wi_local = its.frame.ToLocal(es.wi);
-    const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
-    if (IsBlack(f)) return req;
-    req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
-    req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
-                                               es.radiance, es.pdf * pick_pmf, mis);
-    req.traced = true;
-    return req;
+    return InfiniteEmitterSampleRequest(scene, its, wo, mis, es, pick_pmf);
   }
   if (IsDeltaLight(emitter)) {
     // Picked with probability pick_pmf; no MIS (BSDF sampling never reaches a delta light).

@@ -28,6 +28,7 @@ using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
 using integrator::EmitterSampleResult;
 using integrator::Escaped;
+using integrator::InfiniteEmitterSampleRequest;
 using integrator::MisWeight;
 using integrator::PickEmitter;
 using integrator::PrepareEmitterSampleFrom;
@@ -126,13 +127,21 @@ double Seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
+// Gives each column at least `capacity` rows (columns written in place only grow, so a wave
+// sizes them once).
+template <class... Columns>
+void GrowColumns(size_t capacity, Columns*... columns) {
+  ((columns->size() < capacity ? columns->resize(capacity) : void()), ...);
+}
+
 /// One tile's paths, wave by wave. Path state is SoA, indexed by path id (generation order);
 /// the per-bounce scratch (hits, interactions) is indexed by queue entry.
 class Wavefront {
  public:
   Wavefront(const RenderContext& ctx, const WavefrontKernels& kernels, TileSampleStats* stats)
       : scene_(ctx.scene), kernels_(kernels), rules_(RulesFor(ctx.scene.integrator)),
-        stats_(stats), sobol_(ctx.scene.sampler.type == SamplerType::kSobol) {}
+        stats_(stats), sobol_(ctx.scene.sampler.type == SamplerType::kSobol),
+        environment_(ctx.scene.environment_maps.size()) {}
 
   void RenderTile(const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
                   uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
@@ -295,7 +304,9 @@ class Wavefront {
     next_rays_.Clear(), shadows_.Clear();
     requests_.clear(), nee_paths_.clear();
     bsdf_.Clear();
-    area_.Clear(rules_.nee ? rays_.size() * size_t(n_light) : 0);
+    const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
+    area_.Clear(emitter_rows);
+    for (EnvironmentColumns& e : environment_) e.Clear(emitter_rows);
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_.emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
@@ -314,8 +325,8 @@ class Wavefront {
             requests_.push_back({});
             continue;
           }
-          // PrepareEmitterSample's numbers and pick; area-light picks go to the emitter
-          // stage's batch, the others are prepared here.
+          // PrepareEmitterSample's numbers and pick; area-light and environment-map picks go to
+          // the emitter stage's batches, the others are prepared here.
           EmitterNumbers numbers;
           if (sobol_) {
             numbers.point = light_point_[size_t(s) * m + k], numbers.folded = true;
@@ -330,6 +341,10 @@ class Wavefront {
           } else if (emitter.tag() == EmitterTag::kArea) {
             area_.Push(uint32_t(requests_.size()), uint32_t(q), emitter.index(), pick_pmf, its.p,
                        u);
+            requests_.push_back({});
+          } else if (emitter.tag() == EmitterTag::kEnvironment) {
+            environment_[emitter.index()].Push(uint32_t(requests_.size()), uint32_t(q), pick_pmf,
+                                               u);
             requests_.push_back({});
           } else {
             requests_.push_back(
@@ -365,6 +380,7 @@ class Wavefront {
       bsdf_.Push(i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
     }
     SampleAreaLights();
+    SampleEnvironmentMaps();
     for (size_t r = 0; r < requests_.size(); ++r)
       if (requests_[r].traced) shadows_.Push(requests_[r].shadow, uint32_t(r));
     SampleBsdfs();
@@ -392,6 +408,28 @@ class Wavefront {
       const size_t q = a.entry[c];
       requests_[a.request[c]] =
           AreaEmitterSampleRequest(scene_, its_[q], wo_[q], rules_.mis, ls, a.pick_pmf[c]);
+    }
+  }
+
+  // The emitter stage's environment maps: the kernel table's environment slot over each map's
+  // picks, then each returned sample's request as PrepareEmitterSample finishes it (a row
+  // without a sample, pdf 0, keeps its empty request).
+  void SampleEnvironmentMaps() {
+    for (uint32_t map = 0; map < environment_.size(); ++map) {
+      EnvironmentColumns& e = environment_[map];
+      const size_t n = e.size();
+      if (n == 0) continue;
+      const EnvironmentBatchOutputs out{e.wi_x.data(), e.wi_y.data(), e.wi_z.data(), e.r.data(),
+                                        e.g.data(),    e.b.data(),    e.pdf.data()};
+      kernels_.environment(scene_.environment_maps, map, n, {e.u_x.data(), e.u_y.data()}, out);
+      for (size_t c = 0; c < n; ++c) {
+        if (!(e.pdf[c] > 0)) continue;
+        const EnvironmentSample es{
+            {e.wi_x[c], e.wi_y[c], e.wi_z[c]}, {e.r[c], e.g[c], e.b[c]}, e.pdf[c]};
+        const size_t q = e.entry[c];
+        requests_[e.request[c]] =
+            InfiniteEmitterSampleRequest(scene_, its_[q], wo_[q], rules_.mis, es, e.pick_pmf[c]);
+      }
     }
   }
 
@@ -596,19 +634,36 @@ class Wavefront {
     /// The columns only grow, so a wave sizes them once.
     void Clear(size_t capacity) {
       rows = 0;
-      const auto grow = [capacity](auto* v) {
-        if (v->size() < capacity) v->resize(capacity);
-      };
-      grow(&request), grow(&entry), grow(&light), grow(&pick_pmf);
-      for (auto* v : {&ref_x, &ref_y, &ref_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z,
-                      &ng_x, &ng_y, &ng_z, &pdf})
-        grow(v);
+      GrowColumns(capacity, &request, &entry, &light, &pick_pmf, &ref_x, &ref_y, &ref_z, &u_x, &u_y,
+                  &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z, &pdf);
     }
     void Push(uint32_t r, uint32_t queue_entry, uint32_t light_row, float pmf, const Vec3f& ref,
               const Vec2f& u) {
       const size_t c = rows++;
       request[c] = r, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
       ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
+    }
+  };
+
+  /// The emitter stage's SoA columns of one environment map, one row per emitter sample that
+  /// picked it (in request order): its request, queue entry, pick probability and numbers
+  /// (inputs); the sample (outputs, written by the environment slot).
+  struct EnvironmentColumns {
+    std::vector<uint32_t> request, entry;
+    std::vector<float> pick_pmf;
+    AlignedVector<float> u_x, u_y, wi_x, wi_y, wi_z, r, g, b, pdf;
+    size_t rows = 0;
+
+    size_t size() const { return rows; }
+    /// As EmitterColumns::Clear: room for `capacity` rows, written in place; only grows.
+    void Clear(size_t capacity) {
+      rows = 0;
+      GrowColumns(capacity, &request, &entry, &pick_pmf, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &r, &g,
+                  &b, &pdf);
+    }
+    void Push(uint32_t req, uint32_t queue_entry, float pmf, const Vec2f& u) {
+      const size_t c = rows++;
+      request[c] = req, entry[c] = queue_entry, pick_pmf[c] = pmf, u_x[c] = u.x, u_y[c] = u.y;
     }
   };
 
@@ -679,6 +734,7 @@ class Wavefront {
   std::vector<uint32_t> nee_paths_;
   BsdfColumns bsdf_;
   EmitterColumns area_;
+  std::vector<EnvironmentColumns> environment_;  // one per environment map of the scene
   ShadeScratch shade_scratch_;
   SplatColumns splat_;
 };
@@ -717,6 +773,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
+          .environment = SampleEnvironmentBatch,
           .interaction = MakeInteractionBatch,
           .name = "scalar-oracle"};
 }

@@ -9,6 +9,7 @@
 #include "engine/bvh/bvh.h"
 #include "engine/core/packet8.h"
 #include "engine/light/area_light.h"
+#include "engine/light/environment_batch.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
@@ -74,6 +75,17 @@ struct WavefrontKernels {
   void (*area_light)(const Scene& scene, TriangleSampling mode, size_t n,
                      const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) = nullptr;
 
+  // Emitter stage, environment maps: the wave's samples of one map (every emitter sample whose
+  // pick is environment map `map`) as one batch over SoA columns (engine/light/
+  // environment_batch.h), one call per map picked; the wavefront finishes each returned sample
+  // (pdf > 0) with integrator::InfiniteEmitterSampleRequest. Oracle:
+  // ptlab::SampleEnvironmentBatch (SampleEnvironment per row); SIMD:
+  // simd::SampleEnvironmentBatch, radiance bit-identical, wi and pdf within 2e-6
+  // (simd/environment8.h).
+  void (*environment)(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                      const EnvironmentBatchInputs& in,
+                      const EnvironmentBatchOutputs& out) = nullptr;
+
   // Interaction stage: a wave's hit records -> shading points (p, ng, shading normal) as SoA
   // columns, row = queue entry, written for the hit lanes of each packet only; the wavefront
   // builds each SurfaceInteraction from its row with InteractionAt (frame, material, emitter).
@@ -85,8 +97,8 @@ struct WavefrontKernels {
 
   // Planned slot (issue 11, the SIMD shading stage), a batch over a wave's SoA columns with its
   // scalar twin in this table's oracle:
-  //   emitter:     the other emitters' samples (environment map, distant disk, point) and the
-  //                MIS weights and shadow rays' setup.
+  //   emitter:     the other emitters' samples (distant disk, point) and the MIS weights and
+  //                shadow rays' setup.
 
   /// For logs: "scalar-oracle" or the Highway target the SIMD kernels dispatch to.
   const char* name = "";
@@ -108,8 +120,8 @@ bool ForceScalar();
 /// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
 /// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
 /// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
-/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF kernel differs from its
-/// oracle by a few ulp (simd/shade8.h), so the image agrees with the oracle's within the render
+/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF and environment kernels
+/// differ from their oracles by a few ulp (simd/shade8.h, simd/environment8.h), so the image agrees with the oracle's within the render
 /// contract of tests/simd/traverse8_test.cpp (relMSE, block means) but not bit for bit. Every
 /// integrator type is supported.
 void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,

@@ -13,6 +13,7 @@
 #include "engine/light/light_selection.h"
 #include "engine/sampling/spherical_triangle.h"
 #include "engine/scene/scene.h"
+#include "simd/emitter8.h"
 
 namespace ptlab {
 namespace {
@@ -89,38 +90,70 @@ struct QuadLight {
   Color3f radiance;
 };
 
+// Appends an emitting mesh of `triangles` with `material` (each triangle emits on the side of
+// (v1 - v0) × (v2 - v0)); a non-zero `normal` is every vertex's shading normal (the mesh then
+// has vertex normals). Call FinalizeAreaLights once every light is in.
+void AddMeshLight(Scene* scene, MaterialRef material, const std::vector<Triangle>& triangles,
+                  const Color3f& radiance, const Vec3f& normal) {
+  const uint32_t light = uint32_t(scene->area_lights.size());
+  const uint32_t mesh = uint32_t(scene->meshes.first_triangle.size());
+  const bool has_normals = normal.x != 0 || normal.y != 0 || normal.z != 0;
+  const EmitterRef emitter = EmitterRef::Make(EmitterTag::kArea, light);
+  MeshTable& meshes = scene->meshes;
+  meshes.first_triangle.push_back(uint32_t(scene->triangles.size()));
+  meshes.triangle_count.push_back(uint32_t(triangles.size()));
+  VertexTable& v = scene->vertices;
+  for (const Triangle& t : triangles) {
+    scene->triangles.Append(t[0], t[1], t[2]);
+    scene->shading.mesh.push_back(mesh);
+    scene->shading.material.push_back(material);
+    for (AlignedVector<uint32_t>* column :
+         {&scene->shading.vertex0, &scene->shading.vertex1, &scene->shading.vertex2}) {
+      column->push_back(has_normals ? uint32_t(v.n_x.size()) : kNoVertex);
+      if (has_normals)
+        v.n_x.push_back(normal.x), v.n_y.push_back(normal.y), v.n_z.push_back(normal.z);
+    }
+  }
+  meshes.material.push_back(material);
+  meshes.emitter.push_back(emitter);
+  meshes.has_normals.push_back(has_normals ? 1 : 0);
+  meshes.has_uvs.push_back(0);
+  meshes.name.push_back("chi2 light " + std::to_string(light));
+  scene->area_lights.radiance.push_back(radiance);
+  scene->area_lights.mesh.push_back(mesh);
+  scene->emitters.push_back(emitter);
+}
+
 // Quad lights around the origin (each two triangles, no vertex normals); the origin is on
 // their emitting sides.
 std::shared_ptr<Scene> QuadLightsScene(const std::vector<QuadLight>& quads) {
   auto scene = std::make_shared<Scene>();
   const MaterialRef material = scene->materials.AddDiffuse({0.5f, 0.5f, 0.5f});
   for (const QuadLight& q : quads) {
-    const uint32_t light = uint32_t(scene->area_lights.size());
-    const uint32_t first = uint32_t(scene->triangles.size());
     const Vec3f a = q.corner, b = q.corner + q.edge_u, c = b + q.edge_v, d = q.corner + q.edge_v;
-    scene->triangles.Append(a, b, c);
-    scene->triangles.Append(a, c, d);
-    const EmitterRef emitter = EmitterRef::Make(EmitterTag::kArea, light);
-    for (int i = 0; i < 2; ++i) {
-      scene->shading.material.push_back(material);
-      scene->shading.vertex0.push_back(kNoVertex);
-      scene->shading.vertex1.push_back(kNoVertex);
-      scene->shading.vertex2.push_back(kNoVertex);
-    }
-    MeshTable& meshes = scene->meshes;
-    meshes.first_triangle.push_back(first);
-    meshes.triangle_count.push_back(2);
-    meshes.material.push_back(material);
-    meshes.emitter.push_back(emitter);
-    meshes.has_normals.push_back(0);
-    meshes.has_uvs.push_back(0);
-    meshes.name.push_back("chi2 light " + std::to_string(light));
-    scene->area_lights.radiance.push_back(q.radiance);
-    scene->area_lights.mesh.push_back(light);
-    scene->emitters.push_back(emitter);
+    AddMeshLight(scene.get(), material, {Triangle{a, b, c}, Triangle{a, c, d}}, q.radiance,
+                 Vec3f{});
   }
   FinalizeAreaLights(scene.get());
   return scene;
+}
+
+// Solid-angle density at the origin of the direction p (any length) when each light is picked
+// with probability pmf(light) and sampled by `mode`: Σ over the triangles the ray hits.
+template <typename Pmf>
+double LightsPdfFromOrigin(const Scene& scene, TriangleSampling mode, const Chi2Point& p, Pmf pmf) {
+  const D3 w = Unit({p.x, p.y, p.z});
+  double pdf = 0;
+  for (uint32_t tri = 0; tri < scene.triangles.size(); ++tri) {
+    const Triangle t{scene.triangles.V0(tri), scene.triangles.V1(tri), scene.triangles.V2(tri)};
+    const double dist = HitDistance(t, w);
+    if (!(dist > 0)) continue;
+    const uint32_t light = scene.meshes.emitter[scene.shading.mesh[tri]].index();
+    const Vec3f at{float(w.x * dist), float(w.y * dist), float(w.z * dist)};
+    const Vec3f n = Normalize(Cross(t[1] - t[0], t[2] - t[0]));
+    pdf += double(pmf(light)) * double(AreaLightPdf(scene, light, tri, at, n, Vec3f{}, mode));
+  }
+  return pdf;
 }
 
 // Directions from the origin towards the scene's lights, picked by the scene's light selection
@@ -147,22 +180,77 @@ Chi2Subject EmitterSelectionSubject(std::string name, std::shared_ptr<const Scen
     return true;
   };
   s.pdf = [scene, claim_uniform_pmf](const Chi2Point& p) {
-    const D3 w = Unit({p.x, p.y, p.z});
-    double pdf = 0;
-    for (uint32_t tri = 0; tri < scene->triangles.size(); ++tri) {
-      const Triangle t{scene->triangles.V0(tri), scene->triangles.V1(tri), scene->triangles.V2(tri)};
-      const double dist = HitDistance(t, w);
-      if (!(dist > 0)) continue;
-      const uint32_t light = tri / 2;
-      const Vec3f at{float(w.x * dist), float(w.y * dist), float(w.z * dist)};
-      const Vec3f n = Normalize(Cross(t[1] - t[0], t[2] - t[0]));
-      const float pmf = claim_uniform_pmf
-                            ? 1.0f / float(scene->emitters.size())
-                            : EmitterSelectionPmf(*scene, scene->emitters[light]);
-      pdf += double(pmf) * double(AreaLightPdf(*scene, light, tri, at, n, Vec3f{},
-                                               scene->integrator.triangle_sampling));
+    return LightsPdfFromOrigin(*scene, scene->integrator.triangle_sampling, p,
+                               [&scene, claim_uniform_pmf](uint32_t light) {
+                                 return claim_uniform_pmf
+                                            ? 1.0f / float(scene->emitters.size())
+                                            : EmitterSelectionPmf(*scene, scene->emitters[light]);
+                               });
+  };
+  s.expect = expect;
+  return s;
+}
+
+// A star-shaped polygon in the plane z = 0.7 above the origin, facing it (normal -z): a fan of
+// twelve 30° triangles of uneven radii around (0.15, -0.1, 0.7), so the triangle pick meets
+// CDF steps of different widths. Every triangle subtends 0.03 to 0.2 sr from the origin: the
+// solid-angle mode samples each by solid angle.
+std::vector<Triangle> FanLight() {
+  constexpr float kRadius[12] = {0.9f, 0.5f, 0.7f, 0.35f, 0.8f, 0.6f,
+                                 1.0f, 0.45f, 0.75f, 0.55f, 0.65f, 0.4f};
+  const Vec3f centre{0.15f, -0.1f, 0.7f};
+  const auto rim = [&](int k) {
+    const float a = float(k % 12) * (2.0f * 3.14159265f / 12.0f);
+    return centre + Vec3f{kRadius[k % 12] * std::cos(a), kRadius[k % 12] * std::sin(a), 0.0f};
+  };
+  std::vector<Triangle> fan;
+  for (int k = 0; k < 12; ++k) fan.push_back({centre, rim(k + 1), rim(k)});  // (e1 × e2).z < 0
+  return fan;
+}
+
+// Rows of one call of the batch.
+constexpr int kBatchRows = 1024;
+
+// simd::SampleAreaLightBatch from the origin, `mode`: u1 picks one of the scene's lights
+// uniformly (rows of a batch mix lights; one light: u1 unused), u2 goes to the batch. The pdf
+// is AreaLightPdf under `claimed_mode` (the scalar oracle's density when it is `mode`).
+Chi2Subject SimdAreaLightSubject(std::string name, std::shared_ptr<const Scene> scene,
+                                 TriangleSampling mode, TriangleSampling claimed_mode,
+                                 Chi2Expect expect) {
+  const uint32_t lights = uint32_t(scene->area_lights.size());
+  Chi2Subject s;
+  s.name = std::move(name);
+  s.domain = Chi2Domain::Sphere();
+  s.uniform_dims = lights > 1 ? 3 : 2;
+  s.params = std::to_string(lights) + " light(s), uniform pick, triangles=" +
+             (mode == TriangleSampling::kSolidAngle ? "solidAngle" : "area") +
+             " target=" + simd::Emitter8TargetName();
+  s.sample_batch = [scene, mode, lights](const float* u1, const Vec2f* u2, int n, Chi2Point* p,
+                                         uint8_t* ok) {
+    uint32_t light[kBatchRows];
+    float zero[kBatchRows] = {}, u_x[kBatchRows], u_y[kBatchRows];
+    float p_x[kBatchRows], p_y[kBatchRows], p_z[kBatchRows], n_x[kBatchRows], n_y[kBatchRows],
+        n_z[kBatchRows], ng_x[kBatchRows], ng_y[kBatchRows], ng_z[kBatchRows], pdf[kBatchRows];
+    for (int begin = 0; begin < n; begin += kBatchRows) {
+      const int count = std::min(kBatchRows, n - begin);
+      for (int i = 0; i < count; ++i) {
+        light[i] = std::min(uint32_t(u1[begin + i] * float(lights)), lights - 1);
+        u_x[i] = u2[begin + i].x, u_y[i] = u2[begin + i].y;
+      }
+      AreaLightBatchInputs in;
+      in.light = light, in.ref_x = zero, in.ref_y = zero, in.ref_z = zero;
+      in.u_x = u_x, in.u_y = u_y;
+      const AreaLightBatchOutputs out{p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf};
+      simd::SampleAreaLightBatch(*scene, mode, size_t(count), in, out);
+      for (int i = 0; i < count; ++i) {
+        ok[begin + i] = pdf[i] > 0 ? 1 : 0;
+        p[begin + i] = Direction({p_x[i], p_y[i], p_z[i]});
+      }
     }
-    return pdf;
+  };
+  s.pdf = [scene, claimed_mode, lights](const Chi2Point& p) {
+    return LightsPdfFromOrigin(*scene, claimed_mode, p,
+                               [lights](uint32_t) { return 1.0f / float(lights); });
   };
   s.expect = expect;
   return s;
@@ -205,6 +293,23 @@ void RegisterEmitterSubjects(Chi2Registry* r) {
                                  Chi2Expect::kPass));
   r->Add(EmitterSelectionSubject("broken/power_selection_claims_uniform_pmf", power, true,
                                  Chi2Expect::kFail));
+
+  // The SIMD area-light batch: the fan (vertex normals) in both modes, and the quads with a
+  // light per row (no vertex normals). Broken: area samples claimed to be solid-angle ones
+  // (both integrate to 1 over the fan's solid angle; only the histogram can tell).
+  auto fan = std::make_shared<Scene>();
+  AddMeshLight(fan.get(), fan->materials.AddDiffuse({0.5f, 0.5f, 0.5f}), FanLight(),
+               {1.0f, 1.0f, 1.0f}, {0.0f, 0.0f, -1.0f});
+  FinalizeAreaLights(fan.get());
+  constexpr TriangleSampling kArea = TriangleSampling::kArea;
+  constexpr TriangleSampling kSolidAngle = TriangleSampling::kSolidAngle;
+  r->Add(SimdAreaLightSubject("simd/area_light_fan_area", fan, kArea, kArea, Chi2Expect::kPass));
+  r->Add(SimdAreaLightSubject("simd/area_light_fan_solid_angle", fan, kSolidAngle, kSolidAngle,
+                              Chi2Expect::kPass));
+  r->Add(SimdAreaLightSubject("simd/area_light_four_quads_area", power, kArea, kArea,
+                              Chi2Expect::kPass));
+  r->Add(SimdAreaLightSubject("broken/simd_area_light_fan_claims_solid_angle_pdf", fan, kArea,
+                              kSolidAngle, Chi2Expect::kFail));
 }
 
 }  // namespace ptlab

@@ -15,7 +15,13 @@ namespace ptlab {
 ///   area) around the origin, and a fourth, small and far, that solid-angle mode samples by area; u1 picks the light by power (and, rescaled, its triangle), u2 the
 ///   point by solid angle; pdf = Σ pmf(light) × AreaLightPdf;
 /// - "emitter/uniform_selection_area_sampling": the same scene, uniform pick, area sampling;
-/// - "broken/power_selection_claims_uniform_pmf": power picks with a pdf built on 1/3 per light.
+/// - "broken/power_selection_claims_uniform_pmf": power picks with a pdf built on 1/3 per light;
+/// - "simd/area_light_fan_{area,solid_angle}": simd::SampleAreaLightBatch on one light of twelve
+///   uneven triangles with vertex normals (a planar fan facing the origin), by area and by solid
+///   angle; "simd/area_light_four_quads_area": the four quads, u1 picking a light per row
+///   uniformly; pdf = AreaLightPdf (× 1/4 for the quads), the scalar oracle's density;
+/// - "broken/simd_area_light_fan_claims_solid_angle_pdf": the fan's area samples against the
+///   solid-angle pdf.
 void RegisterEmitterSubjects(Chi2Registry* registry);
 
 }  // namespace ptlab

@@ -13,8 +13,10 @@
 #include "engine/core/transform.h"
 #include "engine/image/image_io.h"
 #include "engine/light/distant_disk.h"
+#include "engine/light/environment_batch.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/distribution2d.h"
+#include "simd/environment8.h"
 
 namespace ptlab {
 namespace {
@@ -100,6 +102,50 @@ Chi2Subject EnvSubject(std::string name, EnvTable table, std::string params,
   return s;
 }
 
+constexpr int kRows = 1024;  // rows of one call of the SIMD batch
+
+// `s` with its samples drawn by simd::SampleEnvironmentBatch on row 0 of `table` (1024 rows
+// a call) instead of SampleEnvironment; renamed `name`. The pdf stays the scalar one.
+Chi2Subject DrawnBySimdBatch(Chi2Subject s, std::string name, EnvTable table) {
+  s.name = std::move(name);
+  s.params += std::string(" target=") + simd::Environment8TargetName();
+  s.sample_batch = [table](const float*, const Vec2f* u, int n, Chi2Point* p, uint8_t* ok) {
+    float u_x[kRows], u_y[kRows], wi_x[kRows], wi_y[kRows], wi_z[kRows], r[kRows], g[kRows],
+        b[kRows], pdf[kRows];
+    for (int begin = 0; begin < n; begin += kRows) {
+      const int count = std::min(kRows, n - begin);
+      for (int i = 0; i < count; ++i) u_x[i] = u[begin + i].x, u_y[i] = u[begin + i].y;
+      simd::SampleEnvironmentBatch(*table, 0, size_t(count), {u_x, u_y},
+                                   {wi_x, wi_y, wi_z, r, g, b, pdf});
+      for (int i = 0; i < count; ++i) {
+        ok[begin + i] = pdf[i] > 0 ? 1 : 0;
+        p[begin + i] = {wi_x[i], wi_y[i], wi_z[i]};
+      }
+    }
+  };
+  return s;
+}
+
+// Broken: the pdf of `table` (the gradient map under y_to_z) read half a cell off in φ (a
+// rotation about the map's up axis: the mass stays 1, only the χ² statistic can see it).
+Chi2Subject HalfPixelShiftSubject(std::string name, EnvTable table) {
+  const float half_cell = kPi / float(table->width[0]);
+  const float c = std::cos(half_cell), sn = std::sin(half_cell);
+  Chi2Subject s = DirectionWarpSubject(
+      std::move(name), Chi2Domain::Sphere(),
+      [table](const Vec2f& u) {
+        EnvironmentSample es;
+        return SampleEnvironment(*table, 0, u, &es) ? es.wi : Vec3f{};
+      },
+      [table, c, sn](const Vec3f& w) {
+        // A rotation about world z = the map's up axis under y_to_z.
+        return EnvironmentPdf(*table, 0, {c * w.x - sn * w.y, sn * w.x + c * w.y, w.z});
+      },
+      Chi2Expect::kFail);
+  s.params = "16x8 gradient, pdf turned by pi/16 about the up axis";
+  return s;
+}
+
 Chi2Subject DiskSubject(std::string name, std::shared_ptr<const DistantDiskTable> table,
                         std::string params) {
   Chi2Subject s = DirectionWarpSubject(
@@ -155,18 +201,25 @@ void RegisterLightSubjects(Chi2Registry* r, const std::string& data_dir) {
   Frame y_to_minus_z;
   y_to_minus_z.s = {0, 1, 0}, y_to_minus_z.t = {0, 0, -1}, y_to_minus_z.n = {-1, 0, 0};
 
+  // Each importance map twice: "envmap/<what>" drawn by SampleEnvironment and
+  // "simd/env_<what>" drawn by simd::SampleEnvironmentBatch, against the same scalar pdf.
+  const auto add_importance = [r](const std::string& what, const EnvTable& table,
+                                  const std::string& params) {
+    const Chi2Subject scalar = EnvSubject("envmap/" + what, table, params);
+    r->Add(scalar);
+    r->Add(DrawnBySimdBatch(scalar, "simd/env_" + what, table));
+  };
   const EnvTable gradient = MakeEnv(GradientMap(), kImportance, y_to_z);
-  r->Add(EnvSubject("envmap/importance_gradient", gradient, "16x8 gradient, up -> +z"));
-  r->Add(EnvSubject("envmap/importance_hot_pixel", MakeEnv(HotPixelMap(), kImportance, y_to_z),
-                    "32x16, one hot pixel at (21, 5), up -> +z"));
-  r->Add(EnvSubject("envmap/importance_pole_rows", MakeEnv(PoleRowsMap(), kImportance, y_to_z),
-                    "16x8, bright rows 0 and 7 (at the poles), up -> +z"));
+  add_importance("importance_gradient", gradient, "16x8 gradient, up -> +z");
+  add_importance("importance_hot_pixel", MakeEnv(HotPixelMap(), kImportance, y_to_z),
+                 "32x16, one hot pixel at (21, 5), up -> +z");
+  add_importance("importance_pole_rows", MakeEnv(PoleRowsMap(), kImportance, y_to_z),
+                 "16x8, bright rows 0 and 7 (at the poles), up -> +z");
   Image one(1, 1);
   one.Set(0, 0, {0.3f, 0.6f, 0.9f});
-  r->Add(EnvSubject("envmap/importance_1x1", MakeEnv(one, kImportance, y_to_z), "1x1, up -> +z"));
-  r->Add(EnvSubject("envmap/importance_rotated_gradient",
-                    MakeEnv(GradientMap(), kImportance, y_to_minus_z),
-                    "16x8 gradient, up -> -z, local x -> +y"));
+  add_importance("importance_1x1", MakeEnv(one, kImportance, y_to_z), "1x1, up -> +z");
+  add_importance("importance_rotated_gradient", MakeEnv(GradientMap(), kImportance, y_to_minus_z),
+                 "16x8 gradient, up -> -z, local x -> +y");
   // Uniform sampling has no singularity: the map keeps its default orientation.
   r->Add(EnvSubject("envmap/uniform_gradient",
                     MakeEnv(GradientMap(), EnvironmentSampling::kUniform, identity),
@@ -175,9 +228,9 @@ void RegisterLightSubjects(Chi2Registry* r, const std::string& data_dir) {
   if (std::filesystem::exists(venice)) {
     const StatusOr<Image> image = ReadImage(venice);
     if (image.ok())
-      r->Add(EnvSubject("envmap/importance_venice_32x16",
-                        MakeEnv(Downsample(*image, 32, 16), kImportance, y_to_z),
-                        "venice_sunset_1k.exr box-filtered to 32x16, up -> +z"));
+      add_importance("importance_venice_32x16",
+                     MakeEnv(Downsample(*image, 32, 16), kImportance, y_to_z),
+                     "venice_sunset_1k.exr box-filtered to 32x16, up -> +z");
   }
 
   r->Add(DiskSubject("distantdisk/cone_10deg_rotated",
@@ -216,25 +269,9 @@ void RegisterLightSubjects(Chi2Registry* r, const std::string& data_dir) {
     r->Add(std::move(s));
   }
 
-  // Broken: the pdf of the gradient map read half a cell off in φ (a rotation about the map's
-  // up axis: the mass stays 1, only the χ² statistic can see it).
-  {
-    const float half_cell = kPi / float(gradient->width[0]);
-    const float c = std::cos(half_cell), sn = std::sin(half_cell);
-    Chi2Subject s = DirectionWarpSubject(
-        "broken/envmap_pdf_half_pixel_shift", Chi2Domain::Sphere(),
-        [gradient](const Vec2f& u) {
-          EnvironmentSample es;
-          return SampleEnvironment(*gradient, 0, u, &es) ? es.wi : Vec3f{};
-        },
-        [gradient, c, sn](const Vec3f& w) {
-          // A rotation about world z = the map's up axis under y_to_z.
-          return EnvironmentPdf(*gradient, 0, {c * w.x - sn * w.y, sn * w.x + c * w.y, w.z});
-        },
-        Chi2Expect::kFail);
-    s.params = "16x8 gradient, pdf turned by pi/16 about the up axis";
-    r->Add(std::move(s));
-  }
+  r->Add(HalfPixelShiftSubject("broken/envmap_pdf_half_pixel_shift", gradient));
+  r->Add(DrawnBySimdBatch(HalfPixelShiftSubject("", gradient),
+                          "broken/simd_env_pdf_half_pixel_shift", gradient));
   // Broken: uniform samples in a 60° cone claimed to be cosine-weighted (also mass 1).
   {
     const auto disk = MakeDisk(60, identity);

@@ -24,10 +24,13 @@ std::string DefaultLightDataDir();
 /// - "envmap/importance_venice_32x16": venice_sunset_1k.exr box-filtered to 32x16 (a real map at
 ///   a resolution whose cells the pdf integration can resolve), only when the file is present
 ///   under data_dir;
+/// - "simd/env_<what>" for each "envmap/importance_<what>" above (venice when present): the same
+///   map and pdf, samples drawn by simd::SampleEnvironmentBatch;
 /// - "distantdisk/{cone_10deg_rotated,cone_90deg,full_sphere}";
 /// - "distribution/{1d,2d}": Distribution1D (x; y uniform) and Distribution2D on the unit square,
 ///   random weights with zero bins and rows;
-/// - "broken/envmap_pdf_half_pixel_shift" (the pdf read half a cell off in u: mass 1 but wrong)
+/// - "broken/envmap_pdf_half_pixel_shift" (the pdf read half a cell off in u: mass 1 but wrong),
+///   "broken/simd_env_pdf_half_pixel_shift" (the same, drawn by the SIMD batch)
 ///   and "broken/distantdisk_pdf_cos_weighted" (cosine-weighted claim for uniform samples).
 /// The black map has no subject (it never samples: the lab needs mass); unit tests cover it.
 void RegisterLightSubjects(Chi2Registry* registry, const std::string& data_dir);

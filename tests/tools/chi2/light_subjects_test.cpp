@@ -41,6 +41,17 @@ TEST(StatLightChi2Registry, HoldsTheSyntheticAndRealMaps) {
     EXPECT_NE(Registry().Find(name), nullptr) << name;
   EXPECT_EQ(Registry().Find("envmap/importance_venice_32x16") != nullptr,
             std::filesystem::exists(VenicePath()));
+  // Every importance map also drawn by the SIMD batch, and its broken variant.
+  for (const char* name :
+       {"simd/env_importance_gradient", "simd/env_importance_hot_pixel", "simd/env_importance_1x1",
+        "simd/env_importance_pole_rows", "simd/env_importance_rotated_gradient"}) {
+    const Chi2Subject* s = Registry().Find(name);
+    ASSERT_NE(s, nullptr) << name;
+    EXPECT_TRUE(bool(s->sample_batch)) << name;
+  }
+  EXPECT_EQ(Registry().Find("simd/env_importance_venice_32x16") != nullptr,
+            std::filesystem::exists(VenicePath()));
+  EXPECT_NE(Registry().Find("broken/simd_env_pdf_half_pixel_shift"), nullptr);
   for (const Chi2Subject& s : Registry().subjects())
     EXPECT_EQ(s.name.rfind("broken/", 0) == 0, s.expect == Chi2Expect::kFail) << s.name;
 }

@@ -1,0 +1,193 @@
+// simd::SampleEnvironmentBatch against its oracle ptlab::SampleEnvironmentBatch
+// (SampleEnvironment per row), on every compiled target: radiance bit-identical, wi and pdf
+// within simd/environment8.h's contract, for 10^6 random rows and the hard cases (u = 0, the
+// largest float below 1, CDF entries and plateaus of black rows and columns, tiny maps, out-of-
+// range numbers and NaN where the map clamps them, batch tails), and no NaN or Inf out.
+#include "simd/targets.h"  // first: the same target policy as simd/
+#include "simd/environment8.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "engine/core/rng.h"
+#include "engine/core/transform.h"
+#include "engine/image/image_io.h"
+#include "engine/light/environment_batch.h"
+#include "engine/light/environment_map.h"
+#include "tests/simd/for_each_target.h"
+
+namespace ptlab {
+namespace {
+
+// The contract of simd/environment8.h.
+constexpr float kWiTolerance = 2e-6f;   // |Δ| per component
+constexpr float kPdfTolerance = 2e-6f;  // relative
+
+struct Outputs {
+  explicit Outputs(size_t n) : col(7, std::vector<float>(n)) {}
+  std::vector<std::vector<float>> col;  // wi x, y, z, r, g, b, pdf
+  EnvironmentBatchOutputs Out() {
+    return {col[0].data(), col[1].data(), col[2].data(), col[3].data(),
+            col[4].data(), col[5].data(), col[6].data()};
+  }
+};
+
+// `random` random rows, then the hard cases: both numbers on the ends of [0, 1) and beyond it,
+// on every CDF entry of the map (marginal and conditional) and one float below it, so that
+// plateaus (black rows and columns: equal entries) and bin edges are hit.
+void MakeRows(const EnvironmentMapTable& table, uint32_t map, size_t random, Pcg32& rng,
+              std::vector<float>* u_x, std::vector<float>* u_y) {
+  for (size_t i = 0; i < random; ++i)
+    u_x->push_back(rng.NextFloat()), u_y->push_back(rng.NextFloat());
+  std::vector<float> edges = {0.0f, -0.0f, 0x1.fffffep-1f, 1.0f, 2.0f, -1.0f, 1e-40f, 0.5f};
+  if (table.sampling[map] == EnvironmentSampling::kImportance) {
+    // Importance sampling clamps its numbers to [0, 1) and NaN to 0 (uniform sampling does not).
+    edges.push_back(std::numeric_limits<float>::quiet_NaN());
+    const Distribution2DView d = EnvironmentDistribution(table, map);
+    const size_t entries = size_t(d.nv) + 1 + size_t(d.nv) * size_t(d.nu + 1);
+    const size_t step = std::max<size_t>(1, entries / 4000);  // every entry of small maps
+    for (size_t k = 0; k < entries; k += step) {
+      const float c = k <= size_t(d.nv) ? d.marginal_cdf[k] : d.conditional_cdf[k - d.nv - 1];
+      edges.push_back(c), edges.push_back(std::nextafter(c, 0.0f));
+    }
+  }
+  for (float a : edges) {
+    u_x->push_back(a), u_y->push_back(rng.NextFloat());
+    u_x->push_back(rng.NextFloat()), u_y->push_back(a);
+  }
+  for (float a : {0.0f, 0x1.fffffep-1f, 1.0f})
+    for (float b : {0.0f, 0x1.fffffep-1f, 1.0f}) u_x->push_back(a), u_y->push_back(b);
+}
+
+void ExpectBatchMatchesOracle(const EnvironmentMapTable& table, uint32_t map, size_t random) {
+  Pcg32 rng(7, 11);
+  std::vector<float> u_x, u_y;
+  MakeRows(table, map, random, rng, &u_x, &u_y);
+  const size_t n = u_x.size();
+  const EnvironmentBatchInputs in{u_x.data(), u_y.data()};
+  Outputs want(n);
+  SampleEnvironmentBatch(table, map, n, in, want.Out());
+  test::ForEachTarget(simd::Environment8TargetName, [&](const char* target) {
+    // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
+    float seen_wi = 0, seen_pdf = 0;
+    for (size_t cut = 0; cut < 8; ++cut) {
+      const size_t m = n - cut;
+      Outputs got(m);
+      simd::SampleEnvironmentBatch(table, map, m, in, got.Out());
+      size_t radiance_differ = 0, wi_off = 0, pdf_off = 0, nonfinite = 0, first = m;
+      for (size_t i = 0; i < m; ++i) {
+        bool off = false;
+        for (size_t c = 0; c < 7; ++c) nonfinite += !std::isfinite(got.col[c][i]);
+        for (size_t c = 3; c < 6; ++c)
+          if (std::bit_cast<uint32_t>(got.col[c][i]) != std::bit_cast<uint32_t>(want.col[c][i]))
+            ++radiance_differ, off = true;
+        for (size_t c = 0; c < 3; ++c) {
+          const float e = std::fabs(got.col[c][i] - want.col[c][i]);
+          seen_wi = std::max(seen_wi, e);
+          if (!(e <= kWiTolerance)) ++wi_off, off = true;
+        }
+        const float p = got.col[6][i], q = want.col[6][i];
+        if (q > 0) seen_pdf = std::max(seen_pdf, std::fabs(p - q) / q);
+        if (!(std::fabs(p - q) <= kPdfTolerance * q) || ((p > 0) != (q > 0))) ++pdf_off, off = true;
+        if (off) first = std::min(first, i);
+      }
+      EXPECT_EQ(radiance_differ, 0u) << "first differing row " << first << " of " << m;
+      EXPECT_EQ(wi_off, 0u) << "first differing row " << first << " of " << m;
+      EXPECT_EQ(pdf_off, 0u) << "first differing row " << first << " of " << m;
+      EXPECT_EQ(nonfinite, 0u);
+      if (first < m) {
+        ADD_FAILURE() << "row " << first << " u = (" << u_x[first] << ", " << u_y[first]
+                      << "): pdf " << got.col[6][first] << " want " << want.col[6][first];
+        break;
+      }
+    }
+    std::printf("  %s: %zu rows, seen |Δwi| %.3g, pdf rel %.3g\n", target, n, double(seen_wi),
+                double(seen_pdf));
+  });
+}
+
+EnvironmentMapTable OneMap(const Image& image,
+                           EnvironmentSampling sampling = EnvironmentSampling::kImportance,
+                           const Frame& to_world = Frame{}) {
+  EnvironmentMapTable table;
+  EnvironmentMapDesc desc;
+  desc.sampling = sampling;
+  desc.to_world = to_world;
+  const StatusOr<uint32_t> row = AddEnvironmentMap(image, desc, "test", &table);
+  EXPECT_TRUE(row.ok() && *row == 0);
+  return table;
+}
+
+// A w × h map of random colours with black rows and columns (CDF plateaus) where asked.
+Image RandomMap(int w, int h, bool black_lines, Pcg32& rng) {
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool black = black_lines && (y % 4 == 1 || x % 5 == 2 || (y >= h / 2 && y < h / 2 + 3));
+      const float s = black ? 0.0f : 10.0f * rng.NextFloat() * rng.NextFloat();
+      image.Set(x, y, {s * rng.NextFloat(), s * rng.NextFloat(), s * rng.NextFloat()});
+    }
+  return image;
+}
+
+const std::string kEnvmaps = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/envmaps/";
+
+void ExpectMatchesOnFile(const std::string& file) {
+  const std::string path = kEnvmaps + file;
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  const StatusOr<Image> image = ReadImage(path);
+  ASSERT_TRUE(image.ok()) << image.status().message();
+  ExpectBatchMatchesOracle(OneMap(*image), 0, 1000003);
+}
+
+TEST(Environment8, BatchMatchesOracleOnVenice) { ExpectMatchesOnFile("venice_sunset_1k.exr"); }
+
+TEST(Environment8, BatchMatchesOracleOnPedestrianOverpass) {
+  ExpectMatchesOnFile("pedestrian_overpass_1k.exr");
+}
+
+TEST(Environment8, BatchMatchesOracleOnBlackRowsAndColumnsRotated) {
+  Pcg32 rng(3, 5);
+  const Transform rotate = Transform::Rotate(Normalize(Vec3f{1, 2, 3}), 40);
+  Frame f;
+  f.s = rotate.ApplyVector({1, 0, 0}), f.t = rotate.ApplyVector({0, 1, 0});
+  f.n = rotate.ApplyVector({0, 0, 1});
+  ExpectBatchMatchesOracle(
+      OneMap(RandomMap(37, 23, true, rng), EnvironmentSampling::kImportance, f), 0, 1000003);
+}
+
+TEST(Environment8, BatchMatchesOracleOnTinyMaps) {
+  Pcg32 rng(9, 1);
+  for (const auto& [w, h] : {std::pair{1, 1}, {2, 1}, {1, 2}, {3, 2}, {2, 3}, {1, 7}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    ExpectBatchMatchesOracle(OneMap(RandomMap(w, h, false, rng)), 0, 100003);
+  }
+  // One hot pixel in black: every other cell is a plateau.
+  Image hot(16, 8);
+  hot.Set(11, 3, {50.0f, 40.0f, 30.0f});
+  ExpectBatchMatchesOracle(OneMap(hot), 0, 100003);
+}
+
+TEST(Environment8, UniformAndBlackMapsTakeTheScalarRows) {
+  Pcg32 rng(4, 4);
+  ExpectBatchMatchesOracle(OneMap(RandomMap(8, 4, false, rng), EnvironmentSampling::kUniform), 0,
+                           10003);
+  // A black map gives no sample: every row all zero on both paths.
+  const EnvironmentMapTable black = OneMap(Image(8, 4));
+  ExpectBatchMatchesOracle(black, 0, 10003);
+  std::vector<float> u(17, 0.25f), pdf(17, -1.0f), wi(17 * 6, -1.0f);
+  simd::SampleEnvironmentBatch(black, 0, 17, {u.data(), u.data()},
+                               {wi.data(), wi.data() + 17, wi.data() + 34, wi.data() + 51,
+                                wi.data() + 68, wi.data() + 85, pdf.data()});
+  for (float p : pdf) EXPECT_EQ(p, 0.0f);
+}
+
+}  // namespace
+}  // namespace ptlab
