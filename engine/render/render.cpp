@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include <time.h>
+
 #include "engine/core/check.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
@@ -40,11 +42,24 @@ bool PixelConverged(const PixelMoments& m, float tolerance) {
   return 1.96 * std::sqrt(variance / n) <= double(tolerance) * mean;
 }
 
+namespace {
+
+// CPU time of the whole process (every thread) in seconds: what a render costs however busy the
+// machine is with other work, unlike wall time.
+double ProcessCpuSeconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return 0.0;
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+}  // namespace
+
 RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& options) {
   // A Bvh built without the scene's spheres (BuildBvh(triangles) alone) would drop them.
   PTLAB_CHECK(bvh.spheres.size() == scene.spheres.size());
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
+  const double cpu_start = ProcessCpuSeconds();
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
   const RenderContext ctx{scene, bvh};
@@ -86,6 +101,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
 
   const RenderDistribution* dist = options.distribution;
   double on_pass_seconds = 0;  // time spent in options.on_pass, left out of RenderPass::seconds
+  double on_pass_cpu_seconds = 0;  // the same as CPU time, left out of RenderPass::cpu_seconds
   auto reset_block = [&](size_t i) {
     const Tile& t = tiles[i];
     blocks[i].Reset(t.x0 - border, t.y0 - border, t.x1 - t.x0 + 2 * border,
@@ -206,16 +222,19 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     }
     if (options.on_pass && (dist == nullptr || dist->keeps_film)) {
       const auto pass_start = Clock::now();
+      const double pass_cpu_start = ProcessCpuSeconds();
       RenderPass info;
       info.index = pass;
       info.spp_done = s1;
       info.seconds =
           std::chrono::duration<double>(pass_start - start).count() - on_pass_seconds;
+      info.cpu_seconds = pass_cpu_start - cpu_start - on_pass_cpu_seconds;
       info.film = &film;
       info.blocks = &blocks;
       info.pixels = adaptive ? &moments_done : nullptr;
       options.on_pass(info);
       on_pass_seconds += std::chrono::duration<double>(Clock::now() - pass_start).count();
+      on_pass_cpu_seconds += ProcessCpuSeconds() - pass_cpu_start;
     }
     if (options.on_progress) {
       progress.seconds = std::chrono::duration<double>(Clock::now() - start).count();

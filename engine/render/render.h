@@ -61,6 +61,10 @@ struct RenderPass {
   /// Render time since the start, without the time spent in on_pass itself (so that a caller
   /// measuring error after each pass does not slow the clock it reports).
   double seconds = 0;
+  /// CPU time of the process (all threads) since the start, on_pass left out likewise: the
+  /// render's cost without the noise of other work on the machine (this process only when the
+  /// render is distributed).
+  double cpu_seconds = 0;
   const FilmBlock* film = nullptr;                 // every completed pass, merged
   const std::vector<FilmBlock>* blocks = nullptr;  // this pass's tile blocks, in merge order
   /// Adaptive sampling: every pixel's moments after this pass (row-major); else null.

@@ -200,14 +200,14 @@ std::vector<VariantSummary> Summarize(const std::vector<ConvergencePoint>& point
 Status WriteConvergeCsv(const std::string& path, const std::vector<ConvergencePoint>& points) {
   std::ostringstream o;
   o << "scene,variant,seed,pass,spp,mean_spp,seconds,rel_mse,rmse,mae,bias_r,bias_g,bias_b,parity_share,"
-       "estimated_rel_mse\n";
+       "estimated_rel_mse,cpu_seconds\n";
   for (const ConvergencePoint& p : points) {
     // Variant specs hold commas: quote them (RFC 4180).
     o << JsonString(p.scene) << "," << JsonString(p.variant) << "," << p.seed << "," << p.pass
       << "," << p.spp << "," << Num(p.mean_spp) << "," << Num(p.seconds) << "," << Num(p.rel_mse) << "," << Num(p.rmse)
       << "," << Num(p.mae) << "," << Num(p.bias[0]) << "," << Num(p.bias[1]) << ","
-      << Num(p.bias[2]) << "," << Num(p.parity_share) << "," << Num(p.estimated_rel_mse)
-      << "\n";
+      << Num(p.bias[2]) << "," << Num(p.parity_share) << "," << Num(p.estimated_rel_mse) << ","
+      << Num(p.cpu_seconds) << "\n";
   }
   return WriteFileAtomically(path, o.str());
 }
@@ -228,7 +228,8 @@ Status WriteConvergeJson(const std::string& path, const std::vector<std::string>
       << ", \"rmse\": " << JsonNum(p.rmse) << ", \"mae\": " << JsonNum(p.mae)
       << ", \"bias\": [" << JsonNum(p.bias[0]) << ", " << JsonNum(p.bias[1]) << ", "
       << JsonNum(p.bias[2]) << "], \"parity_share\": " << JsonNum(p.parity_share)
-      << ", \"estimated_rel_mse\": " << JsonNum(p.estimated_rel_mse) << "}"
+      << ", \"estimated_rel_mse\": " << JsonNum(p.estimated_rel_mse)
+      << ", \"cpu_seconds\": " << JsonNum(p.cpu_seconds) << "}"
       << (i + 1 < points.size() ? "," : "") << "\n";
   }
   o << "  ],\n  \"summary\": [\n";

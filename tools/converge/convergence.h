@@ -18,6 +18,7 @@ struct ConvergencePoint {
   uint32_t pass = 0, spp = 0;  // spp: samples per pixel so far (the most any pixel took)
   double mean_spp = 0;          // samples taken / pixels (below spp with adaptive sampling)
   double seconds = 0;  // render time so far (measurement time excluded)
+  double cpu_seconds = 0;  // CPU time of the render so far, all threads (RenderPass::cpu_seconds)
   double rel_mse = 0, rmse = 0, mae = 0;  // over the three channels (imgdiff's definitions)
   std::array<double, 3> bias{};           // (mean render - mean reference) / mean reference
   double parity_share = 0;                // PARITY.md block share (32 px blocks within 5 %)

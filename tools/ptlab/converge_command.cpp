@@ -102,6 +102,7 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
       p.mean_spp = taken / double(pass.pixels->size());
     }
     p.seconds = pass.seconds;
+    p.cpu_seconds = pass.cpu_seconds;
     p.rel_mse = d.rel_mse_all, p.rmse = d.rmse_all, p.mae = d.mae_all;
     p.bias = d.mean_rel_diff;
     p.parity_share = d.blocks.share;

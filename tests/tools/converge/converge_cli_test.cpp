@@ -87,8 +87,11 @@ TEST(ConvergeCli, WritesCsvJsonSummaryAndPlots) {
   ASSERT_EQ(rows.size(), 4u);  // 2 variants x 2 passes of 16 spp
   for (const char* column : {"scene", "variant", "seed", "pass", "spp", "seconds", "rel_mse",
                              "rmse", "mae", "bias_r", "bias_g", "bias_b", "parity_share",
-                             "estimated_rel_mse"})
+                             "estimated_rel_mse", "cpu_seconds"})
     EXPECT_TRUE(rows[0].count(column)) << column;
+  // CPU time of the render: positive and growing pass by pass within a run.
+  EXPECT_GT(std::stod(rows[0]["cpu_seconds"]), 0.0);
+  EXPECT_GT(std::stod(rows[1]["cpu_seconds"]), std::stod(rows[0]["cpu_seconds"]));
   EXPECT_EQ(rows[3]["variant"], "integrator=direct_ems,lightSamples=2");
   EXPECT_EQ(rows[3]["spp"], "32");
   EXPECT_EQ(rows[0]["estimated_rel_mse"], "nan");  // one pass: no two halves yet
