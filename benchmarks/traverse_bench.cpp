@@ -625,9 +625,12 @@ int RegisterAll() {
       for (const CaseName& cn : cases) {
         if (cn.c == Case::kIntersectStream && st_name == "coherent") continue;
         const Case c = cn.c;
+        // Each packet kernel with its own defaults.
+        const simd::Traverse8Options o =
+            c == Case::kOccluded8 ? simd::kOccluded8Options : simd::Traverse8Options{};
         benchmark::RegisterBenchmark(
             ("BM_Traverse_" + std::string(cn.name) + "/" + sc + "/" + st_name).c_str(),
-            [sc, st_name, c](benchmark::State& st) { RunCase(st, sc, st_name, c, {}); })
+            [sc, st_name, c, o](benchmark::State& st) { RunCase(st, sc, st_name, c, o); })
             ->Unit(benchmark::kMillisecond);
       }
       // Leaf merging in the collapse (merge_leaf_size), for Intersect8 and single rays.
@@ -646,19 +649,20 @@ int RegisterAll() {
         }
       }
       // Tuning sweeps (run with --benchmark_filter=BM_Tune): the hybrid switch threshold
-      // and the leaf strategy of Intersect8.
-      for (uint32_t k = 0; k <= 8; ++k) {
-        for (const int variant : {0, 1, 2}) {
-          // 0: default leaves and octant fallback; 1: per-lane leaves; 2: no octant fallback.
-          const simd::Traverse8Options o{k, variant != 1, variant != 2};
-          benchmark::RegisterBenchmark(
-              ("BM_Tune_Intersect8/" + sc + "/" + st_name + "/switch:" + std::to_string(k) +
-               (variant == 0 ? "/default" : (variant == 1 ? "/per_lane_leaves" : "/no_octant")))
-                  .c_str(),
-              [sc, st_name, o](benchmark::State& st) {
-                RunCase(st, sc, st_name, Case::kIntersect8, o);
-              })
-              ->Unit(benchmark::kMillisecond);
+      // and the leaf strategy of Intersect8 and Occluded8.
+      for (const Case c : {Case::kIntersect8, Case::kOccluded8}) {
+        const std::string cname = c == Case::kIntersect8 ? "Intersect8" : "Occluded8";
+        for (uint32_t k = 0; k <= 8; ++k) {
+          for (const int variant : {0, 1, 2}) {
+            // 0: default leaves and octant fallback; 1: per-lane leaves; 2: no octant fallback.
+            const simd::Traverse8Options o{k, variant != 1, variant != 2};
+            benchmark::RegisterBenchmark(
+                ("BM_Tune_" + cname + "/" + sc + "/" + st_name + "/switch:" + std::to_string(k) +
+                 (variant == 0 ? "/default" : (variant == 1 ? "/per_lane_leaves" : "/no_octant")))
+                    .c_str(),
+                [sc, st_name, c, o](benchmark::State& st) { RunCase(st, sc, st_name, c, o); })
+                ->Unit(benchmark::kMillisecond);
+          }
         }
       }
     }

@@ -360,6 +360,7 @@ TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
     CompareAll(bvh8, some, some_expected, {"packet, per-lane leaves", {0, false, false}}, false,
                &mm);
     CompareAll(bvh8, some, some_expected, {"mostly single-ray", {7, true, false}}, false, &mm);
+    CompareAll(bvh8, some, some_expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
     EXPECT_EQ(mm.count, 0);
   });
 }
