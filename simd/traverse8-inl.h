@@ -60,7 +60,7 @@ HWY_INLINE MF MaskFromBits(DF d, uint32_t bits) {
 }
 
 // The per-ray constants of the watertight test, one lane per ray of a packet (a single ray
-// fills every lane with its own); kernels load them as vectors where they need them.
+// fills lane 0 only and is broadcast); kernels load them as vectors where they need them.
 struct WatertightLanes {
   alignas(32) float ox[8], oy[8], oz[8];  // origin permuted to the lane's (kx, ky, kz)
   alignas(32) float sx[8], sy[8], sz[8];  // shear constants
@@ -102,16 +102,27 @@ HWY_NOINLINE void EdgeFallback(DF d, MF on_edge, VF a_x, VF a_y, VF b_x, VF b_y,
   *u = hn::Load(d, uu), *v = hn::Load(d, vv), *w = hn::Load(d, ww);
 }
 
+// One ray constant for a vector of tests: lanes [i, i + Lanes(d)) of a packet's column, or
+// (kOneRay) the single ray's value in lane 0, broadcast.
+template <bool kOneRay>
+HWY_INLINE VF RayConstant(DF d, const float* column, size_t i) {
+  if constexpr (kOneRay) return hn::Set(d, column[0]);
+  return hn::Load(d, column + i);
+}
+
 // IntersectTriangleWatertightPermuted, lane-wise: the same float operations in the same
 // order (the including .cpp disables FMA contraction), so every lane's decision and t, b1, b2
 // equal the scalar test's bit for bit. Vertices are permuted to (kx, ky, kz) already. Returns
 // the lanes of `valid` that hit; *t, *b1, *b2 are meaningful in those lanes only. The rays
-// are lanes [i, i + Lanes(d)) of `r`.
+// are lanes [i, i + Lanes(d)) of `r`, or with kOneRay the one ray in lane 0 of `r` against
+// a vector of triangles.
+template <bool kOneRay = false>
 HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF ay, VF az, VF bx,
                              VF by, VF bz, VF cx, VF cy, VF cz, MF valid, VF* t_out, VF* b1_out,
                              VF* b2_out) {
-  const VF ox = hn::Load(d, r.ox + i), oy = hn::Load(d, r.oy + i), oz = hn::Load(d, r.oz + i);
-  const VF sx = hn::Load(d, r.sx + i), sy = hn::Load(d, r.sy + i);
+  const VF ox = RayConstant<kOneRay>(d, r.ox, i), oy = RayConstant<kOneRay>(d, r.oy, i);
+  const VF oz = RayConstant<kOneRay>(d, r.oz, i);
+  const VF sx = RayConstant<kOneRay>(d, r.sx, i), sy = RayConstant<kOneRay>(d, r.sy, i);
   const VF a_kx = hn::Sub(ax, ox), a_ky = hn::Sub(ay, oy), a_kz = hn::Sub(az, oz);
   const VF b_kx = hn::Sub(bx, ox), b_ky = hn::Sub(by, oy), b_kz = hn::Sub(bz, oz);
   const VF c_kx = hn::Sub(cx, ox), c_ky = hn::Sub(cy, oy), c_kz = hn::Sub(cz, oz);
@@ -136,12 +147,13 @@ HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF
   const VF det = hn::Add(hn::Add(u, v), w);
   ok = hn::AndNot(hn::Eq(det, zero), ok);
   if (hn::AllFalse(d, ok)) return ok;
-  const VF sz = hn::Load(d, r.sz + i);
+  const VF sz = RayConstant<kOneRay>(d, r.sz, i);
   const VF s_az = hn::Mul(sz, a_kz), s_bz = hn::Mul(sz, b_kz), s_cz = hn::Mul(sz, c_kz);
   const VF t_scaled = hn::Add(hn::Add(hn::Mul(u, s_az), hn::Mul(v, s_bz)), hn::Mul(w, s_cz));
   const VF abs_det = hn::Abs(det);
   const VF signed_t = hn::IfThenElse(hn::Lt(det, zero), hn::Neg(t_scaled), t_scaled);
-  const VF t_min = hn::Load(d, r.t_min + i), t_max = hn::Load(d, r.t_max + i);
+  const VF t_min = RayConstant<kOneRay>(d, r.t_min, i);
+  const VF t_max = RayConstant<kOneRay>(d, r.t_max, i);
   ok = hn::And(ok, hn::And(hn::Gt(signed_t, hn::Mul(t_min, abs_det)),
                            hn::Lt(signed_t, hn::Mul(t_max, abs_det))));
   if (hn::AllFalse(d, ok)) return ok;
@@ -186,12 +198,12 @@ HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, 
   return r;
 }
 
-// The single ray's watertight constants in every lane.
-HWY_INLINE void BroadcastWatertight(const SingleRay& r, WatertightLanes* out) {
-  std::fill_n(out->ox, 8, r.wt.ox), std::fill_n(out->oy, 8, r.wt.oy);
-  std::fill_n(out->oz, 8, r.wt.oz), std::fill_n(out->sx, 8, r.wt.sx);
-  std::fill_n(out->sy, 8, r.wt.sy), std::fill_n(out->sz, 8, r.wt.sz);
-  std::fill_n(out->t_min, 8, r.t_min), std::fill_n(out->t_max, 8, r.t_max);
+// The single ray's watertight constants in lane 0 (WatertightTest<true> broadcasts them):
+// eight scalar stores per traversal instead of 64.
+HWY_INLINE void OneRayWatertight(const SingleRay& r, WatertightLanes* out) {
+  out->ox[0] = r.wt.ox, out->oy[0] = r.wt.oy, out->oz[0] = r.wt.oz;
+  out->sx[0] = r.wt.sx, out->sy[0] = r.wt.sy, out->sz[0] = r.wt.sz;
+  out->t_min[0] = r.t_min, out->t_max[0] = r.t_max;
 }
 
 // Starts loading a child before it is visited: traversal of large scenes waits on memory.
@@ -227,7 +239,7 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const SingleRay&
   const uint32_t lanes = static_cast<uint32_t>(hn::Lanes(d));
   for (uint32_t i = 0; i < n; i += lanes) {
     VF t = hn::Zero(d), b1 = t, b2 = t;
-    const MF hit = WatertightTest(d, rv, 0, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i),
+    const MF hit = WatertightTest<true>(d, rv, 0, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i),
                                   hn::LoadU(d, az + i), hn::LoadU(d, bx + i), hn::LoadU(d, by + i),
                                   hn::LoadU(d, bz + i), hn::LoadU(d, cx + i), hn::LoadU(d, cy + i),
                                   hn::LoadU(d, cz + i), hn::FirstN(d, n - i), &t, &b1, &b2);
@@ -259,7 +271,7 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
   const DF d;
   const size_t lanes = hn::Lanes(d);
   WatertightLanes rv;
-  BroadcastWatertight(r, &rv);
+  OneRayWatertight(r, &rv);
   const VF ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
   const VF ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
   const VF t_min = hn::Set(d, r.t_min), scale = hn::Set(d, kRobustFarScale);
@@ -686,7 +698,7 @@ HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState*
     const int j = std::countr_zero(bits);
     const SingleRay r = LaneSingleRay(*s, j);
     WatertightLanes rv;
-    BroadcastWatertight(r, &rv);
+    OneRayWatertight(r, &rv);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
     if (LeafSingle<kAnyHit>(d, bvh, leaf, r, rv, &best)) hit_lanes |= LaneBit(j);
