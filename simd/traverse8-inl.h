@@ -398,6 +398,36 @@ HWY_INLINE float ReduceLive(DF d, VF v, MF live) {
   return hn::GetLane(kMax ? hn::MaxOfLanes(d, x) : hn::MinOfLanes(d, x));
 }
 
+// Smallest (kMax: largest) value of a packet column among the lanes of `live`: the vectors
+// are folded lane-wise first, so there is one reduction per column.
+template <bool kMax>
+HWY_INLINE float FoldLive(DF d, const float* column, uint32_t live) {
+  const size_t lanes = hn::Lanes(d);
+  const uint32_t half_mask = (1u << lanes) - 1;
+  const VF fill = hn::Set(d, kMax ? -kInf : kInf);
+  VF acc = fill;
+  for (size_t i = 0; i < 8; i += lanes) {
+    const VF v = hn::IfThenElse(MaskFromBits(d, (live >> i) & half_mask), hn::Load(d, column + i),
+                                fill);
+    acc = kMax ? hn::Max(acc, v) : hn::Min(acc, v);
+  }
+  return hn::GetLane(kMax ? hn::MaxOfLanes(d, acc) : hn::MinOfLanes(d, acc));
+}
+
+// The packet's frustum (interval bounds of origins, 1/d and t_min over the live lanes),
+// written straight into *s: scalar results gathered in locals and copied as pairs stalled on
+// store forwarding (measured, 14 % of Occluded8's setup on coherent rays).
+HWY_INLINE void SetupFrustum(DF d, uint32_t live, PacketState* s) {
+  const float* o[3] = {s->o_x, s->o_y, s->o_z};
+  const float* inv[3] = {s->inv_x, s->inv_y, s->inv_z};
+  for (int a = 0; a < 3; ++a) {
+    s->o_lo[a] = FoldLive<false>(d, o[a], live), s->o_hi[a] = FoldLive<true>(d, o[a], live);
+    s->inv_lo[a] = FoldLive<false>(d, inv[a], live);
+    s->inv_hi[a] = FoldLive<true>(d, inv[a], live);
+  }
+  s->t_min_lo = FoldLive<false>(d, s->wt.t_min, live);
+}
+
 // Per-lane setup, vectorised: the oracle's per-ray precomputation (1/d, the watertight axes
 // kx, ky, kz by MakeWatertightRay's rule, the shear constants and the permuted origin) with
 // the same IEEE divisions, so every value equals the scalar one. Returns the lanes that can
@@ -409,9 +439,6 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   const VF zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   Mask8 live = 0;
   uint32_t kz0_bits = 0, kz1_bits = 0, swap_bits = 0, finite_bits = 0;
-  float o_lo[3] = {kInf, kInf, kInf}, o_hi[3] = {-kInf, -kInf, -kInf};
-  float inv_lo[3] = {kInf, kInf, kInf}, inv_hi[3] = {-kInf, -kInf, -kInf};
-  float t_min_lo = kInf;
   s->neg_bits[0] = s->neg_bits[1] = s->neg_bits[2] = 0;
   for (size_t i = 0; i < 8; i += lanes) {
     const VF t_min = hn::Load(d, rays.t_min + i), t_max = hn::Load(d, rays.t_max + i);
@@ -490,30 +517,9 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   }
   s->coherent = live != 0 && uniform;
   s->frustum = s->coherent && (finite_bits & live) == live;
-  if (s->frustum) {
-    // The frustum's interval bounds, only for packets that will use them (incoherent packets
-    // go to single rays and skip these thirteen reductions).
-    for (size_t i = 0; i < 8; i += lanes) {
-      const uint32_t on_bits = (live >> i) & half_mask;
-      if (on_bits == 0) continue;
-      const MF on = MaskFromBits(d, on_bits);
-      const float* o[3] = {s->o_x + i, s->o_y + i, s->o_z + i};
-      const float* inv[3] = {s->inv_x + i, s->inv_y + i, s->inv_z + i};
-      for (int a = 0; a < 3; ++a) {
-        const VF ov = hn::Load(d, o[a]), iv = hn::Load(d, inv[a]);
-        o_lo[a] = std::min(o_lo[a], ReduceLive<false>(d, ov, on));
-        o_hi[a] = std::max(o_hi[a], ReduceLive<true>(d, ov, on));
-        inv_lo[a] = std::min(inv_lo[a], ReduceLive<false>(d, iv, on));
-        inv_hi[a] = std::max(inv_hi[a], ReduceLive<true>(d, iv, on));
-      }
-      t_min_lo = std::min(t_min_lo, ReduceLive<false>(d, hn::Load(d, s->wt.t_min + i), on));
-    }
-    for (int a = 0; a < 3; ++a) {
-      s->o_lo[a] = o_lo[a], s->o_hi[a] = o_hi[a];
-      s->inv_lo[a] = inv_lo[a], s->inv_hi[a] = inv_hi[a];
-    }
-    s->t_min_lo = t_min_lo;
-  }
+  // The frustum's bounds only for packets that will use them (incoherent packets skip these
+  // thirteen reductions).
+  if (s->frustum) SetupFrustum(d, live, s);
   return live;
 }
 
