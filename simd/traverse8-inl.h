@@ -366,7 +366,6 @@ struct PacketState {
   int uniform_k[3];               // the (kx, ky, kz) shared by all live lanes; kx = -1 if mixed
   bool coherent;                  // all live lanes share the sign of 1/d on every axis (one octant)
   bool frustum;                   // coherent, and every 1/d finite
-  bool shared_origin;             // frustum, and all live lanes start at one point
   // Interval bounds of the live lanes (the packet's frustum), valid when `frustum` is set.
   float o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], t_min_lo;
 };
@@ -520,12 +519,7 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   s->frustum = s->coherent && (finite_bits & live) == live;
   // The frustum's bounds only for packets that will use them (incoherent packets skip these
   // thirteen reductions).
-  s->shared_origin = false;
-  if (s->frustum) {
-    SetupFrustum(d, live, s);
-    s->shared_origin = s->o_lo[0] == s->o_hi[0] && s->o_lo[1] == s->o_hi[1] &&
-                       s->o_lo[2] == s->o_hi[2];
-  }
+  if (s->frustum) SetupFrustum(d, live, s);
   return live;
 }
 
@@ -648,16 +642,6 @@ HWY_INLINE void PacketChildren(DF d, const PacketState& s, const Bvh8Node& node,
       cbits[c] |= bits << i;
     }
   }
-}
-
-// Any hit, packets from one origin (a pinhole camera's): every lane of m goes to every child
-// the frustum keeps. Only 1/d varies across such a packet, so the frustum's interval bounds
-// are nearly as tight as the lanes' own boxes, and skipping the per-lane box tests is faster
-// (measured: coherent Occluded8 +10-13 %; for packets with spread origins, like shadow rays, the
-// interval bounds are loose and this is 3-5x slower). A lane may then test a leaf its own box
-// test would have rejected; that changes no answer, as a box only prunes what cannot be hit.
-HWY_INLINE void FrustumLanes(uint32_t m, uint32_t candidates, uint32_t* cbits) {
-  for (uint32_t c = 0; c < 8; ++c) cbits[c] = LaneActive(candidates, c) ? m : 0;
 }
 
 // One triangle at a time against all lanes of m (the lanes share the permutation k).
@@ -811,11 +795,7 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
         uint32_t cbits[8];
         alignas(32) float t_near[8][8];
         float key[8];
-        if (kAnyHit && s->shared_origin) {
-          FrustumLanes(m, candidates, cbits);
-        } else {
-          PacketChildren<kAnyHit>(d, *s, node, m, candidates, cbits, t_near, key);
-        }
+        PacketChildren<kAnyHit>(d, *s, node, m, candidates, cbits, t_near, key);
         // The children hit by any lane, farthest (by the key) first; any hit keeps the
         // children's order.
         int order[8], n = 0;

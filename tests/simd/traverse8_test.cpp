@@ -365,10 +365,9 @@ TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
   });
 }
 
-// Packets from one origin into one octant, whose lanes' intervals end before, exactly at,
-// just after and well after their oracle hit (the interval is open), so that the lanes of a
-// packet stop at different times. Occluded8 sends such packets down the children its
-// frustum keeps without per-lane box tests (FrustumLanes); its answers must not change.
+// Packets from one origin into one octant (coherent: the frustum and broadcast-leaf paths),
+// whose lanes' intervals end before, exactly at, just after and well after their oracle hit
+// (the interval is open), so that the lanes of an any-hit packet stop at different times.
 std::vector<Ray> MakeSharedOriginRays(const TriangleTable& table, const Bvh& bvh, size_t count,
                                       uint64_t seed) {
   const Vec3f lo = bvh.nodes[0].bounds_min, hi = bvh.nodes[0].bounds_max;
