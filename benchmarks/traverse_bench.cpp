@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -328,7 +329,7 @@ void Finish(benchmark::State& state, size_t rays, int64_t hits) {
 }
 
 void RunCase(benchmark::State& state, const std::string& scene_name, const std::string& set_name,
-             Case c, simd::Traverse8Options options, int merge_leaf_size = -1) {
+             Case c, std::optional<simd::Traverse8Options> tuning, int merge_leaf_size = -1) {
   BenchScene* s = GetScene(scene_name);
   if (!s->error.empty()) {
     state.SkipWithError(s->error.c_str());
@@ -342,6 +343,10 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
       it = s->merged.emplace(merge, simd::BuildBvh8(s->bvh, {merge})).first;
     bvh8 = &it->second;
   }
+  // Without a tuning, each kernel runs with its defaults (Occluded8's depend on the BVH).
+  const simd::Traverse8Options options =
+      tuning ? *tuning
+             : (c == Case::kOccluded8 ? simd::Occluded8Options(*bvh8) : simd::Traverse8Options{});
   const RaySet& set = GetRays(*s, set_name);
   const size_t n = set.rays.size();
   int64_t hits = 0;
@@ -625,12 +630,9 @@ int RegisterAll() {
       for (const CaseName& cn : cases) {
         if (cn.c == Case::kIntersectStream && st_name == "coherent") continue;
         const Case c = cn.c;
-        // Each packet kernel with its own defaults.
-        const simd::Traverse8Options o =
-            c == Case::kOccluded8 ? simd::kOccluded8Options : simd::Traverse8Options{};
         benchmark::RegisterBenchmark(
             ("BM_Traverse_" + std::string(cn.name) + "/" + sc + "/" + st_name).c_str(),
-            [sc, st_name, c, o](benchmark::State& st) { RunCase(st, sc, st_name, c, o); })
+            [sc, st_name, c](benchmark::State& st) { RunCase(st, sc, st_name, c, std::nullopt); })
             ->Unit(benchmark::kMillisecond);
       }
       // Leaf merging in the collapse (merge_leaf_size), for Intersect8 and single rays.

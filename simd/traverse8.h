@@ -45,20 +45,22 @@ struct Traverse8Options {
 Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacket8* hits,
                  const Traverse8Options& options = {});
 
-/// Occluded8's tuning (measured best, BM_Tune_Occluded8 in benchmarks/traverse_bench.cpp):
-/// any hit gains from the packet's shared box tests near the root even when its lanes span
-/// several octants, and a lane ends at its first hit, so the packet thins out quickly; lanes
-/// go single as soon as six or fewer need a subtree. Against the closest-hit defaults: table
-/// incoherent +11 %, shadow +14 %, veach incoherent +16 %, coherent rows unchanged.
-inline constexpr Traverse8Options kOccluded8Options{/*single_ray_lanes=*/6,
-                                                    /*broadcast_leaves=*/true,
-                                                    /*octant_fallback=*/false};
+/// Occluded8's tuning for `bvh` (measured, BM_Tune_Occluded8 in benchmarks/traverse_bench.cpp).
+/// A BVH8 of at most kCacheResidentBvh8Nodes nodes (2 MB of nodes; the Nori table has 1180,
+/// veach 310) stays in cache: any hit then gains from a packet's shared box tests near the
+/// root even when its lanes span several octants, and lanes go single once six or fewer need
+/// a subtree (table incoherent +15 %, shadow +13 %, veach incoherent +25 %). A larger one (the
+/// 1 M-triangle terrain, 45515 nodes) waits on memory, and the closest-hit defaults are best
+/// (the small-scene options there: incoherent -15 %, coherent -12 %).
+inline constexpr size_t kCacheResidentBvh8Nodes = 8192;
+Traverse8Options Occluded8Options(const Bvh8& bvh);
 
 /// Lanes of `active` whose ray hits any triangle with t in (t_min, t_max); any-hit traversal
 /// that stops a lane at its first hit and returns when every active lane is done. Same
-/// per-lane answer as ptlab::Occluded1.
+/// per-lane answer as ptlab::Occluded1. Without `options`: Occluded8Options(bvh).
+Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active);
 Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
-                const Traverse8Options& options = kOccluded8Options);
+                const Traverse8Options& options);
 
 /// Single-ray closest hit on the BVH8 (one ray, eight child boxes or up to eight leaf
 /// triangles per vector). Same contract as ptlab::Intersect1, bit-identical.
