@@ -49,9 +49,9 @@ Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacke
 /// A BVH8 of at most kCacheResidentBvh8Nodes nodes (2 MB of nodes; the Nori table has 1180,
 /// veach 310) stays in cache: any hit then gains from a packet's shared box tests near the
 /// root even when its lanes span several octants, and lanes go single once six or fewer need
-/// a subtree (table incoherent +15 %, shadow +13 %, veach incoherent +25 %). A larger one (the
+/// a subtree (table incoherent +11 %, shadow +14 %, veach incoherent +16 %). A larger one (the
 /// 1 M-triangle terrain, 45515 nodes) waits on memory, and the closest-hit defaults are best
-/// (the small-scene options there: incoherent -15 %, coherent -12 %).
+/// (the small-scene options there: coherent -11 %, incoherent and shadow -8 %).
 inline constexpr size_t kCacheResidentBvh8Nodes = 8192;
 Traverse8Options Occluded8Options(const Bvh8& bvh);
 
