@@ -364,6 +364,7 @@ struct PacketState {
   uint32_t neg_bits[3];           // lanes whose 1/d is negative, per axis
   int uniform_neg[3];             // -1 mixed, else 0/1 shared by all live lanes
   int uniform_k[3];               // the (kx, ky, kz) shared by all live lanes; kx = -1 if mixed
+  uint32_t k_is[3][2];            // lanes whose kx (ky, kz) is axis 0 / axis 1 (else axis 2)
   bool coherent;                  // all live lanes share the sign of 1/d on every axis (one octant)
   bool frustum;                   // coherent, and every 1/d finite
   // Interval bounds of the live lanes (the packet's frustum), valid when `frustum` is set.
@@ -500,6 +501,12 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
     s->k_z[j] = static_cast<int8_t>(kz);
     s->best_prim[j] = LaneActive(live, j) ? static_cast<int32_t>(kNoHit) : -1;
   }
+  // The same axes as lane masks: kz = 0 (kz0), 1 (kz1) or 2; (kx, ky) = (kz + 1, kz + 2)
+  // mod 3, exchanged where swap is set.
+  const uint32_t z0 = kz0_bits, z1 = kz1_bits, z2 = ~(kz0_bits | kz1_bits), sw = swap_bits;
+  s->k_is[0][0] = (~sw & z2) | (sw & z1), s->k_is[0][1] = (~sw & z0) | (sw & z2);
+  s->k_is[1][0] = (~sw & z1) | (sw & z2), s->k_is[1][1] = (~sw & z2) | (sw & z0);
+  s->k_is[2][0] = z0, s->k_is[2][1] = z1;
   bool uniform = true;
   for (int a = 0; a < 3; ++a) {
     const uint32_t neg = s->neg_bits[a] & live;
@@ -644,29 +651,57 @@ HWY_INLINE void PacketChildren(DF d, const PacketState& s, const Bvh8Node& node,
   }
 }
 
-// One triangle at a time against all lanes of m (the lanes share the permutation k).
-// Closest hit: updates the lanes' best hits. Any hit: returns the lanes that hit.
-template <bool kAnyHit>
+// Coordinate k of a broadcast point, per lane: x where k = 0 (is0), y where k = 1 (is1), else z.
+HWY_INLINE VF LaneAxis(MF is0, MF is1, VF x, VF y, VF z) {
+  return hn::IfThenElse(is0, x, hn::IfThenElse(is1, y, z));
+}
+
+// Vertex v (0, 1, 2) of leaf triangle j (of n), permuted to each lane's (kx, ky, kz): with
+// kMixedK by the lanes' masks (lanes [i, i + Lanes(d)) of s->k_is), else by the packet's
+// shared s->uniform_k.
+template <bool kMixedK>
+HWY_INLINE void PermutedVertex(DF d, const PacketState& s, size_t i, const float* base, uint32_t n,
+                               uint32_t j, int v, const uint32_t* k_n, VF* px, VF* py, VF* pz) {
+  const float* col = base + 3 * v * n + j;
+  if constexpr (!kMixedK) {
+    *px = hn::Set(d, col[k_n[0]]), *py = hn::Set(d, col[k_n[1]]), *pz = hn::Set(d, col[k_n[2]]);
+  } else {
+    const VF x = hn::Set(d, col[0]), y = hn::Set(d, col[n]), z = hn::Set(d, col[2 * n]);
+    VF* out[3] = {px, py, pz};
+    for (int a = 0; a < 3; ++a) {
+      *out[a] = LaneAxis(MaskFromBits(d, s.k_is[a][0] >> i), MaskFromBits(d, s.k_is[a][1] >> i),
+                         x, y, z);
+    }
+  }
+}
+
+// One triangle at a time against all lanes of m, each lane with its own axis permutation
+// (kMixedK: blended per lane, bit for bit the values a lane's own test would load) or the
+// packet's shared one. Closest hit: updates the lanes' best hits. Any hit: returns the lanes
+// that hit.
+template <bool kAnyHit, bool kMixedK>
 HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState* s, uint32_t m) {
   const DI di;
   const size_t lanes = hn::Lanes(d);
   const uint32_t half_mask = (1u << lanes) - 1;
   const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
   const float* base = bvh.tris.data() + size_t{9} * first;
-  const int kx = s->uniform_k[0], ky = s->uniform_k[1], kz = s->uniform_k[2];
+  // The shared permutation's column offsets (unused with kMixedK).
+  const uint32_t k_n[3] = {kMixedK ? 0 : s->uniform_k[0] * n, kMixedK ? 0 : s->uniform_k[1] * n,
+                           kMixedK ? 0 : s->uniform_k[2] * n};
   uint32_t hit_lanes = 0;
   for (size_t i = 0; i < 8; i += lanes) {
     uint32_t half = (m >> i) & half_mask;
     if (half == 0) continue;
     for (uint32_t j = 0; j < n && half != 0; ++j) {
       const MF act = MaskFromBits(d, half);
+      VF ax, ay, az, bx, by, bz, cx, cy, cz;
+      PermutedVertex<kMixedK>(d, *s, i, base, n, j, 0, k_n, &ax, &ay, &az);
+      PermutedVertex<kMixedK>(d, *s, i, base, n, j, 1, k_n, &bx, &by, &bz);
+      PermutedVertex<kMixedK>(d, *s, i, base, n, j, 2, k_n, &cx, &cy, &cz);
       VF t = hn::Zero(d), b1 = t, b2 = t;
       const MF hit =
-          WatertightTest(d, s->wt, i, hn::Set(d, base[kx * n + j]), hn::Set(d, base[ky * n + j]),
-                         hn::Set(d, base[kz * n + j]), hn::Set(d, base[(3 + kx) * n + j]),
-                         hn::Set(d, base[(3 + ky) * n + j]), hn::Set(d, base[(3 + kz) * n + j]),
-                         hn::Set(d, base[(6 + kx) * n + j]), hn::Set(d, base[(6 + ky) * n + j]),
-                         hn::Set(d, base[(6 + kz) * n + j]), act, &t, &b1, &b2);
+          WatertightTest(d, s->wt, i, ax, ay, az, bx, by, bz, cx, cy, cz, act, &t, &b1, &b2);
       if (hn::AllFalse(d, hit)) continue;
       if constexpr (kAnyHit) {
         const uint32_t bits = MaskBits(d, hit);
@@ -691,13 +726,21 @@ HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketSta
   return hit_lanes;
 }
 
+// Out of line: mixed permutations are the incoherent packets' case, so the coherent packets'
+// traversal loop keeps only the shared-permutation copy of the leaf loop.
+template <bool kAnyHit>
+HWY_NOINLINE uint32_t LeafBroadcastMixedK(const Bvh8& bvh, Bvh8Ref leaf, PacketState* s,
+                                          uint32_t m) {
+  return LeafBroadcast<kAnyHit, true>(DF(), bvh, leaf, s, m);
+}
+
 template <bool kAnyHit>
 HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState* s, uint32_t m,
                                const Traverse8Options& options) {
   const uint32_t n = LeafCount(leaf);
-  if (options.broadcast_leaves && s->uniform_k[0] >= 0 &&
-      n < static_cast<uint32_t>(std::popcount(m))) {
-    return LeafBroadcast<kAnyHit>(d, bvh, leaf, s, m);
+  if (options.broadcast_leaves && n < static_cast<uint32_t>(std::popcount(m))) {
+    if (s->uniform_k[0] >= 0) return LeafBroadcast<kAnyHit, false>(d, bvh, leaf, s, m);
+    return LeafBroadcastMixedK<kAnyHit>(bvh, leaf, s, m);
   }
   uint32_t hit_lanes = 0;
   for (uint32_t bits = m; bits != 0; bits &= bits - 1) {

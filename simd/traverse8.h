@@ -28,9 +28,9 @@ struct Traverse8Options {
   /// them traverses it alone (single-ray BVH8 traversal, all eight child boxes in one vector)
   /// instead of the packet testing every child box for 8 lanes. 0 = pure packet traversal.
   uint32_t single_ray_lanes = 2;
-  /// In a leaf reached by a packet whose lanes share the watertight axis permutation, test
-  /// one triangle against all lanes at a time when the leaf has fewer triangles than active
-  /// lanes (else each active lane tests the whole leaf in one vector).
+  /// In a leaf with fewer triangles than active lanes, test one triangle against all lanes at
+  /// a time (each lane's vertices permuted to its own watertight axes, blended per lane when
+  /// the lanes' permutations differ); else each active lane tests the whole leaf in one vector.
   bool broadcast_leaves = true;
   /// A packet whose lanes point into different direction octants is incoherent: each lane
   /// traverses alone from the root (else the packet starts and the switch above applies).
