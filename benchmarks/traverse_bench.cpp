@@ -343,10 +343,10 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
       it = s->merged.emplace(merge, simd::BuildBvh8(s->bvh, {merge})).first;
     bvh8 = &it->second;
   }
-  // Without a tuning, each kernel runs with its defaults (Occluded8's depend on the BVH).
+  // Without a tuning, each kernel runs with its defaults.
   const simd::Traverse8Options options =
       tuning ? *tuning
-             : (c == Case::kOccluded8 ? simd::Occluded8Options(*bvh8) : simd::Traverse8Options{});
+             : (c == Case::kOccluded8 ? simd::kOccluded8Options : simd::Traverse8Options{});
   const RaySet& set = GetRays(*s, set_name);
   const size_t n = set.rays.size();
   int64_t hits = 0;

@@ -367,6 +367,7 @@ struct PacketState {
   uint32_t k_is[3][2];            // lanes whose kx (ky, kz) is axis 0 / axis 1 (else axis 2)
   bool coherent;                  // all live lanes share the sign of 1/d on every axis (one octant)
   bool frustum;                   // coherent, and every 1/d finite
+  bool shared_origin;             // frustum, and all live lanes start at one point
   // Interval bounds of the live lanes (the packet's frustum), valid when `frustum` is set.
   float o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], t_min_lo;
 };
@@ -526,7 +527,12 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   s->frustum = s->coherent && (finite_bits & live) == live;
   // The frustum's bounds only for packets that will use them (incoherent packets skip these
   // thirteen reductions).
-  if (s->frustum) SetupFrustum(d, live, s);
+  s->shared_origin = false;
+  if (s->frustum) {
+    SetupFrustum(d, live, s);
+    s->shared_origin = s->o_lo[0] == s->o_hi[0] && s->o_lo[1] == s->o_hi[1] &&
+                       s->o_lo[2] == s->o_hi[2];
+  }
   return live;
 }
 
@@ -815,13 +821,17 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
   Entry stack[kStackSize];
   int sp = 0;
   uint32_t done = 0;  // any hit: lanes already occluded
+  const uint32_t single_ray_lanes =
+      s->shared_origin && options.shared_origin_single_ray_lanes >= 0
+          ? static_cast<uint32_t>(options.shared_origin_single_ray_lanes)
+          : options.single_ray_lanes;
   // The subtree being visited and its lanes. The nearest child hit is visited next without a
   // round trip through the stack: its lanes were just tested against their closest hits.
   Bvh8Ref ref = 0;
   uint32_t m = live;
   for (;;) {
     bool descend = false;
-    if (static_cast<uint32_t>(std::popcount(m)) <= options.single_ray_lanes) {
+    if (static_cast<uint32_t>(std::popcount(m)) <= single_ray_lanes) {
       // Too few rays left to fill a vector: each finishes this subtree alone.
       done |= SingleRayLanes<kAnyHit>(bvh, ref, s, m);
       if (kAnyHit && done == live) return done;

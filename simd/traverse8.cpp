@@ -82,15 +82,6 @@ Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacke
   return HWY_DYNAMIC_DISPATCH(Intersect8Impl)(bvh, rays, active, hits, options);
 }
 
-Traverse8Options Occluded8Options(const Bvh8& bvh) {
-  if (bvh.nodes.size() > kCacheResidentBvh8Nodes) return {};
-  return {.single_ray_lanes = 6, .broadcast_leaves = true, .octant_fallback = false};
-}
-
-Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active) {
-  return Occluded8(bvh, rays, active, Occluded8Options(bvh));
-}
-
 Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
                 const Traverse8Options& options) {
   return HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);

@@ -360,7 +360,7 @@ TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
     CompareAll(bvh8, some, some_expected, {"packet, per-lane leaves", {0, false, false}}, false,
                &mm);
     CompareAll(bvh8, some, some_expected, {"mostly single-ray", {7, true, false}}, false, &mm);
-    CompareAll(bvh8, some, some_expected, {"occlusion defaults", Occluded8Options(bvh8)}, false, &mm);
+    CompareAll(bvh8, some, some_expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
     EXPECT_EQ(mm.count, 0);
   });
 }
@@ -441,7 +441,7 @@ TEST(Traverse8, OcclusionOfSharedOriginPacketsMatchesOracle) {
   EXPECT_LT(occluded, rays.size() * 7 / 8);
   ForEachTarget([&] {
     Mismatches mm;
-    CompareAll(bvh8, rays, expected, {"occlusion defaults", Occluded8Options(bvh8)}, false, &mm);
+    CompareAll(bvh8, rays, expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
     CompareAll(bvh8, rays, expected, {"hybrid", {}}, /*single_ray=*/true, &mm);
     CompareAll(bvh8, rays, expected, {"packet, broadcast leaves", {0, true, false}}, false, &mm);
     EXPECT_EQ(mm.count, 0);
