@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -328,7 +329,7 @@ void Finish(benchmark::State& state, size_t rays, int64_t hits) {
 }
 
 void RunCase(benchmark::State& state, const std::string& scene_name, const std::string& set_name,
-             Case c, simd::Traverse8Options options, int merge_leaf_size = -1) {
+             Case c, std::optional<simd::Traverse8Options> tuning, int merge_leaf_size = -1) {
   BenchScene* s = GetScene(scene_name);
   if (!s->error.empty()) {
     state.SkipWithError(s->error.c_str());
@@ -342,6 +343,10 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
       it = s->merged.emplace(merge, simd::BuildBvh8(s->bvh, {merge})).first;
     bvh8 = &it->second;
   }
+  // Without a tuning, each kernel runs with its defaults.
+  const simd::Traverse8Options options =
+      tuning ? *tuning
+             : (c == Case::kOccluded8 ? simd::kOccluded8Options : simd::Traverse8Options{});
   const RaySet& set = GetRays(*s, set_name);
   const size_t n = set.rays.size();
   int64_t hits = 0;
@@ -627,7 +632,7 @@ int RegisterAll() {
         const Case c = cn.c;
         benchmark::RegisterBenchmark(
             ("BM_Traverse_" + std::string(cn.name) + "/" + sc + "/" + st_name).c_str(),
-            [sc, st_name, c](benchmark::State& st) { RunCase(st, sc, st_name, c, {}); })
+            [sc, st_name, c](benchmark::State& st) { RunCase(st, sc, st_name, c, std::nullopt); })
             ->Unit(benchmark::kMillisecond);
       }
       // Leaf merging in the collapse (merge_leaf_size), for Intersect8 and single rays.
@@ -646,19 +651,20 @@ int RegisterAll() {
         }
       }
       // Tuning sweeps (run with --benchmark_filter=BM_Tune): the hybrid switch threshold
-      // and the leaf strategy of Intersect8.
-      for (uint32_t k = 0; k <= 8; ++k) {
-        for (const int variant : {0, 1, 2}) {
-          // 0: default leaves and octant fallback; 1: per-lane leaves; 2: no octant fallback.
-          const simd::Traverse8Options o{k, variant != 1, variant != 2};
-          benchmark::RegisterBenchmark(
-              ("BM_Tune_Intersect8/" + sc + "/" + st_name + "/switch:" + std::to_string(k) +
-               (variant == 0 ? "/default" : (variant == 1 ? "/per_lane_leaves" : "/no_octant")))
-                  .c_str(),
-              [sc, st_name, o](benchmark::State& st) {
-                RunCase(st, sc, st_name, Case::kIntersect8, o);
-              })
-              ->Unit(benchmark::kMillisecond);
+      // and the leaf strategy of Intersect8 and Occluded8.
+      for (const Case c : {Case::kIntersect8, Case::kOccluded8}) {
+        const std::string cname = c == Case::kIntersect8 ? "Intersect8" : "Occluded8";
+        for (uint32_t k = 0; k <= 8; ++k) {
+          for (const int variant : {0, 1, 2}) {
+            // 0: default leaves and octant fallback; 1: per-lane leaves; 2: no octant fallback.
+            const simd::Traverse8Options o{k, variant != 1, variant != 2};
+            benchmark::RegisterBenchmark(
+                ("BM_Tune_" + cname + "/" + sc + "/" + st_name + "/switch:" + std::to_string(k) +
+                 (variant == 0 ? "/default" : (variant == 1 ? "/per_lane_leaves" : "/no_octant")))
+                    .c_str(),
+                [sc, st_name, c, o](benchmark::State& st) { RunCase(st, sc, st_name, c, o); })
+                ->Unit(benchmark::kMillisecond);
+          }
         }
       }
     }

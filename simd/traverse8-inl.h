@@ -60,7 +60,7 @@ HWY_INLINE MF MaskFromBits(DF d, uint32_t bits) {
 }
 
 // The per-ray constants of the watertight test, one lane per ray of a packet (a single ray
-// fills every lane with its own); kernels load them as vectors where they need them.
+// fills lane 0 only and is broadcast); kernels load them as vectors where they need them.
 struct WatertightLanes {
   alignas(32) float ox[8], oy[8], oz[8];  // origin permuted to the lane's (kx, ky, kz)
   alignas(32) float sx[8], sy[8], sz[8];  // shear constants
@@ -102,16 +102,27 @@ HWY_NOINLINE void EdgeFallback(DF d, MF on_edge, VF a_x, VF a_y, VF b_x, VF b_y,
   *u = hn::Load(d, uu), *v = hn::Load(d, vv), *w = hn::Load(d, ww);
 }
 
+// One ray constant for a vector of tests: lanes [i, i + Lanes(d)) of a packet's column, or
+// (kOneRay) the single ray's value in lane 0, broadcast.
+template <bool kOneRay>
+HWY_INLINE VF RayConstant(DF d, const float* column, size_t i) {
+  if constexpr (kOneRay) return hn::Set(d, column[0]);
+  return hn::Load(d, column + i);
+}
+
 // IntersectTriangleWatertightPermuted, lane-wise: the same float operations in the same
 // order (the including .cpp disables FMA contraction), so every lane's decision and t, b1, b2
 // equal the scalar test's bit for bit. Vertices are permuted to (kx, ky, kz) already. Returns
 // the lanes of `valid` that hit; *t, *b1, *b2 are meaningful in those lanes only. The rays
-// are lanes [i, i + Lanes(d)) of `r`.
+// are lanes [i, i + Lanes(d)) of `r`, or with kOneRay the one ray in lane 0 of `r` against
+// a vector of triangles.
+template <bool kOneRay = false>
 HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF ay, VF az, VF bx,
                              VF by, VF bz, VF cx, VF cy, VF cz, MF valid, VF* t_out, VF* b1_out,
                              VF* b2_out) {
-  const VF ox = hn::Load(d, r.ox + i), oy = hn::Load(d, r.oy + i), oz = hn::Load(d, r.oz + i);
-  const VF sx = hn::Load(d, r.sx + i), sy = hn::Load(d, r.sy + i);
+  const VF ox = RayConstant<kOneRay>(d, r.ox, i), oy = RayConstant<kOneRay>(d, r.oy, i);
+  const VF oz = RayConstant<kOneRay>(d, r.oz, i);
+  const VF sx = RayConstant<kOneRay>(d, r.sx, i), sy = RayConstant<kOneRay>(d, r.sy, i);
   const VF a_kx = hn::Sub(ax, ox), a_ky = hn::Sub(ay, oy), a_kz = hn::Sub(az, oz);
   const VF b_kx = hn::Sub(bx, ox), b_ky = hn::Sub(by, oy), b_kz = hn::Sub(bz, oz);
   const VF c_kx = hn::Sub(cx, ox), c_ky = hn::Sub(cy, oy), c_kz = hn::Sub(cz, oz);
@@ -136,12 +147,13 @@ HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF
   const VF det = hn::Add(hn::Add(u, v), w);
   ok = hn::AndNot(hn::Eq(det, zero), ok);
   if (hn::AllFalse(d, ok)) return ok;
-  const VF sz = hn::Load(d, r.sz + i);
+  const VF sz = RayConstant<kOneRay>(d, r.sz, i);
   const VF s_az = hn::Mul(sz, a_kz), s_bz = hn::Mul(sz, b_kz), s_cz = hn::Mul(sz, c_kz);
   const VF t_scaled = hn::Add(hn::Add(hn::Mul(u, s_az), hn::Mul(v, s_bz)), hn::Mul(w, s_cz));
   const VF abs_det = hn::Abs(det);
   const VF signed_t = hn::IfThenElse(hn::Lt(det, zero), hn::Neg(t_scaled), t_scaled);
-  const VF t_min = hn::Load(d, r.t_min + i), t_max = hn::Load(d, r.t_max + i);
+  const VF t_min = RayConstant<kOneRay>(d, r.t_min, i);
+  const VF t_max = RayConstant<kOneRay>(d, r.t_max, i);
   ok = hn::And(ok, hn::And(hn::Gt(signed_t, hn::Mul(t_min, abs_det)),
                            hn::Lt(signed_t, hn::Mul(t_max, abs_det))));
   if (hn::AllFalse(d, ok)) return ok;
@@ -186,12 +198,12 @@ HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, 
   return r;
 }
 
-// The single ray's watertight constants in every lane.
-HWY_INLINE void BroadcastWatertight(const SingleRay& r, WatertightLanes* out) {
-  std::fill_n(out->ox, 8, r.wt.ox), std::fill_n(out->oy, 8, r.wt.oy);
-  std::fill_n(out->oz, 8, r.wt.oz), std::fill_n(out->sx, 8, r.wt.sx);
-  std::fill_n(out->sy, 8, r.wt.sy), std::fill_n(out->sz, 8, r.wt.sz);
-  std::fill_n(out->t_min, 8, r.t_min), std::fill_n(out->t_max, 8, r.t_max);
+// The single ray's watertight constants in lane 0 (WatertightTest<true> broadcasts them):
+// eight scalar stores per traversal instead of 64.
+HWY_INLINE void OneRayWatertight(const SingleRay& r, WatertightLanes* out) {
+  out->ox[0] = r.wt.ox, out->oy[0] = r.wt.oy, out->oz[0] = r.wt.oz;
+  out->sx[0] = r.wt.sx, out->sy[0] = r.wt.sy, out->sz[0] = r.wt.sz;
+  out->t_min[0] = r.t_min, out->t_max[0] = r.t_max;
 }
 
 // Starts loading a child before it is visited: traversal of large scenes waits on memory.
@@ -227,7 +239,7 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const SingleRay&
   const uint32_t lanes = static_cast<uint32_t>(hn::Lanes(d));
   for (uint32_t i = 0; i < n; i += lanes) {
     VF t = hn::Zero(d), b1 = t, b2 = t;
-    const MF hit = WatertightTest(d, rv, 0, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i),
+    const MF hit = WatertightTest<true>(d, rv, 0, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i),
                                   hn::LoadU(d, az + i), hn::LoadU(d, bx + i), hn::LoadU(d, by + i),
                                   hn::LoadU(d, bz + i), hn::LoadU(d, cx + i), hn::LoadU(d, cy + i),
                                   hn::LoadU(d, cz + i), hn::FirstN(d, n - i), &t, &b1, &b2);
@@ -259,7 +271,7 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
   const DF d;
   const size_t lanes = hn::Lanes(d);
   WatertightLanes rv;
-  BroadcastWatertight(r, &rv);
+  OneRayWatertight(r, &rv);
   const VF ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
   const VF ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
   const VF t_min = hn::Set(d, r.t_min), scale = hn::Set(d, kRobustFarScale);
@@ -352,8 +364,10 @@ struct PacketState {
   uint32_t neg_bits[3];           // lanes whose 1/d is negative, per axis
   int uniform_neg[3];             // -1 mixed, else 0/1 shared by all live lanes
   int uniform_k[3];               // the (kx, ky, kz) shared by all live lanes; kx = -1 if mixed
+  uint32_t k_is[3][2];            // lanes whose kx (ky, kz) is axis 0 / axis 1 (else axis 2)
   bool coherent;                  // all live lanes share the sign of 1/d on every axis (one octant)
   bool frustum;                   // coherent, and every 1/d finite
+  bool shared_origin;             // frustum, and all live lanes start at one point
   // Interval bounds of the live lanes (the packet's frustum), valid when `frustum` is set.
   float o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], t_min_lo;
 };
@@ -386,6 +400,36 @@ HWY_INLINE float ReduceLive(DF d, VF v, MF live) {
   return hn::GetLane(kMax ? hn::MaxOfLanes(d, x) : hn::MinOfLanes(d, x));
 }
 
+// Smallest (kMax: largest) value of a packet column among the lanes of `live`: the vectors
+// are folded lane-wise first, so there is one reduction per column.
+template <bool kMax>
+HWY_INLINE float FoldLive(DF d, const float* column, uint32_t live) {
+  const size_t lanes = hn::Lanes(d);
+  const uint32_t half_mask = (1u << lanes) - 1;
+  const VF fill = hn::Set(d, kMax ? -kInf : kInf);
+  VF acc = fill;
+  for (size_t i = 0; i < 8; i += lanes) {
+    const VF v = hn::IfThenElse(MaskFromBits(d, (live >> i) & half_mask), hn::Load(d, column + i),
+                                fill);
+    acc = kMax ? hn::Max(acc, v) : hn::Min(acc, v);
+  }
+  return hn::GetLane(kMax ? hn::MaxOfLanes(d, acc) : hn::MinOfLanes(d, acc));
+}
+
+// The packet's frustum (interval bounds of origins, 1/d and t_min over the live lanes),
+// written straight into *s: scalar results gathered in locals and copied as pairs stalled on
+// store forwarding (measured, 14 % of Occluded8's setup on coherent rays).
+HWY_INLINE void SetupFrustum(DF d, uint32_t live, PacketState* s) {
+  const float* o[3] = {s->o_x, s->o_y, s->o_z};
+  const float* inv[3] = {s->inv_x, s->inv_y, s->inv_z};
+  for (int a = 0; a < 3; ++a) {
+    s->o_lo[a] = FoldLive<false>(d, o[a], live), s->o_hi[a] = FoldLive<true>(d, o[a], live);
+    s->inv_lo[a] = FoldLive<false>(d, inv[a], live);
+    s->inv_hi[a] = FoldLive<true>(d, inv[a], live);
+  }
+  s->t_min_lo = FoldLive<false>(d, s->wt.t_min, live);
+}
+
 // Per-lane setup, vectorised: the oracle's per-ray precomputation (1/d, the watertight axes
 // kx, ky, kz by MakeWatertightRay's rule, the shear constants and the permuted origin) with
 // the same IEEE divisions, so every value equals the scalar one. Returns the lanes that can
@@ -397,9 +441,6 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   const VF zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   Mask8 live = 0;
   uint32_t kz0_bits = 0, kz1_bits = 0, swap_bits = 0, finite_bits = 0;
-  float o_lo[3] = {kInf, kInf, kInf}, o_hi[3] = {-kInf, -kInf, -kInf};
-  float inv_lo[3] = {kInf, kInf, kInf}, inv_hi[3] = {-kInf, -kInf, -kInf};
-  float t_min_lo = kInf;
   s->neg_bits[0] = s->neg_bits[1] = s->neg_bits[2] = 0;
   for (size_t i = 0; i < 8; i += lanes) {
     const VF t_min = hn::Load(d, rays.t_min + i), t_max = hn::Load(d, rays.t_max + i);
@@ -461,6 +502,12 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
     s->k_z[j] = static_cast<int8_t>(kz);
     s->best_prim[j] = LaneActive(live, j) ? static_cast<int32_t>(kNoHit) : -1;
   }
+  // The same axes as lane masks: kz = 0 (kz0), 1 (kz1) or 2; (kx, ky) = (kz + 1, kz + 2)
+  // mod 3, exchanged where swap is set.
+  const uint32_t z0 = kz0_bits, z1 = kz1_bits, z2 = ~(kz0_bits | kz1_bits), sw = swap_bits;
+  s->k_is[0][0] = (~sw & z2) | (sw & z1), s->k_is[0][1] = (~sw & z0) | (sw & z2);
+  s->k_is[1][0] = (~sw & z1) | (sw & z2), s->k_is[1][1] = (~sw & z2) | (sw & z0);
+  s->k_is[2][0] = z0, s->k_is[2][1] = z1;
   bool uniform = true;
   for (int a = 0; a < 3; ++a) {
     const uint32_t neg = s->neg_bits[a] & live;
@@ -478,29 +525,13 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   }
   s->coherent = live != 0 && uniform;
   s->frustum = s->coherent && (finite_bits & live) == live;
+  // The frustum's bounds only for packets that will use them (incoherent packets skip these
+  // thirteen reductions).
+  s->shared_origin = false;
   if (s->frustum) {
-    // The frustum's interval bounds, only for packets that will use them (incoherent packets
-    // go to single rays and skip these thirteen reductions).
-    for (size_t i = 0; i < 8; i += lanes) {
-      const uint32_t on_bits = (live >> i) & half_mask;
-      if (on_bits == 0) continue;
-      const MF on = MaskFromBits(d, on_bits);
-      const float* o[3] = {s->o_x + i, s->o_y + i, s->o_z + i};
-      const float* inv[3] = {s->inv_x + i, s->inv_y + i, s->inv_z + i};
-      for (int a = 0; a < 3; ++a) {
-        const VF ov = hn::Load(d, o[a]), iv = hn::Load(d, inv[a]);
-        o_lo[a] = std::min(o_lo[a], ReduceLive<false>(d, ov, on));
-        o_hi[a] = std::max(o_hi[a], ReduceLive<true>(d, ov, on));
-        inv_lo[a] = std::min(inv_lo[a], ReduceLive<false>(d, iv, on));
-        inv_hi[a] = std::max(inv_hi[a], ReduceLive<true>(d, iv, on));
-      }
-      t_min_lo = std::min(t_min_lo, ReduceLive<false>(d, hn::Load(d, s->wt.t_min + i), on));
-    }
-    for (int a = 0; a < 3; ++a) {
-      s->o_lo[a] = o_lo[a], s->o_hi[a] = o_hi[a];
-      s->inv_lo[a] = inv_lo[a], s->inv_hi[a] = inv_hi[a];
-    }
-    s->t_min_lo = t_min_lo;
+    SetupFrustum(d, live, s);
+    s->shared_origin = s->o_lo[0] == s->o_hi[0] && s->o_lo[1] == s->o_hi[1] &&
+                       s->o_lo[2] == s->o_hi[2];
   }
   return live;
 }
@@ -626,29 +657,57 @@ HWY_INLINE void PacketChildren(DF d, const PacketState& s, const Bvh8Node& node,
   }
 }
 
-// One triangle at a time against all lanes of m (the lanes share the permutation k).
-// Closest hit: updates the lanes' best hits. Any hit: returns the lanes that hit.
-template <bool kAnyHit>
+// Coordinate k of a broadcast point, per lane: x where k = 0 (is0), y where k = 1 (is1), else z.
+HWY_INLINE VF LaneAxis(MF is0, MF is1, VF x, VF y, VF z) {
+  return hn::IfThenElse(is0, x, hn::IfThenElse(is1, y, z));
+}
+
+// Vertex v (0, 1, 2) of leaf triangle j (of n), permuted to each lane's (kx, ky, kz): with
+// kMixedK by the lanes' masks (lanes [i, i + Lanes(d)) of s->k_is), else by the packet's
+// shared s->uniform_k.
+template <bool kMixedK>
+HWY_INLINE void PermutedVertex(DF d, const PacketState& s, size_t i, const float* base, uint32_t n,
+                               uint32_t j, int v, const uint32_t* k_n, VF* px, VF* py, VF* pz) {
+  const float* col = base + 3 * v * n + j;
+  if constexpr (!kMixedK) {
+    *px = hn::Set(d, col[k_n[0]]), *py = hn::Set(d, col[k_n[1]]), *pz = hn::Set(d, col[k_n[2]]);
+  } else {
+    const VF x = hn::Set(d, col[0]), y = hn::Set(d, col[n]), z = hn::Set(d, col[2 * n]);
+    VF* out[3] = {px, py, pz};
+    for (int a = 0; a < 3; ++a) {
+      *out[a] = LaneAxis(MaskFromBits(d, s.k_is[a][0] >> i), MaskFromBits(d, s.k_is[a][1] >> i),
+                         x, y, z);
+    }
+  }
+}
+
+// One triangle at a time against all lanes of m, each lane with its own axis permutation
+// (kMixedK: blended per lane, bit for bit the values a lane's own test would load) or the
+// packet's shared one. Closest hit: updates the lanes' best hits. Any hit: returns the lanes
+// that hit.
+template <bool kAnyHit, bool kMixedK>
 HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState* s, uint32_t m) {
   const DI di;
   const size_t lanes = hn::Lanes(d);
   const uint32_t half_mask = (1u << lanes) - 1;
   const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
   const float* base = bvh.tris.data() + size_t{9} * first;
-  const int kx = s->uniform_k[0], ky = s->uniform_k[1], kz = s->uniform_k[2];
+  // The shared permutation's column offsets (unused with kMixedK).
+  const uint32_t k_n[3] = {kMixedK ? 0 : s->uniform_k[0] * n, kMixedK ? 0 : s->uniform_k[1] * n,
+                           kMixedK ? 0 : s->uniform_k[2] * n};
   uint32_t hit_lanes = 0;
   for (size_t i = 0; i < 8; i += lanes) {
     uint32_t half = (m >> i) & half_mask;
     if (half == 0) continue;
     for (uint32_t j = 0; j < n && half != 0; ++j) {
       const MF act = MaskFromBits(d, half);
+      VF ax, ay, az, bx, by, bz, cx, cy, cz;
+      PermutedVertex<kMixedK>(d, *s, i, base, n, j, 0, k_n, &ax, &ay, &az);
+      PermutedVertex<kMixedK>(d, *s, i, base, n, j, 1, k_n, &bx, &by, &bz);
+      PermutedVertex<kMixedK>(d, *s, i, base, n, j, 2, k_n, &cx, &cy, &cz);
       VF t = hn::Zero(d), b1 = t, b2 = t;
       const MF hit =
-          WatertightTest(d, s->wt, i, hn::Set(d, base[kx * n + j]), hn::Set(d, base[ky * n + j]),
-                         hn::Set(d, base[kz * n + j]), hn::Set(d, base[(3 + kx) * n + j]),
-                         hn::Set(d, base[(3 + ky) * n + j]), hn::Set(d, base[(3 + kz) * n + j]),
-                         hn::Set(d, base[(6 + kx) * n + j]), hn::Set(d, base[(6 + ky) * n + j]),
-                         hn::Set(d, base[(6 + kz) * n + j]), act, &t, &b1, &b2);
+          WatertightTest(d, s->wt, i, ax, ay, az, bx, by, bz, cx, cy, cz, act, &t, &b1, &b2);
       if (hn::AllFalse(d, hit)) continue;
       if constexpr (kAnyHit) {
         const uint32_t bits = MaskBits(d, hit);
@@ -673,20 +732,28 @@ HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketSta
   return hit_lanes;
 }
 
+// Out of line: mixed permutations are the incoherent packets' case, so the coherent packets'
+// traversal loop keeps only the shared-permutation copy of the leaf loop.
+template <bool kAnyHit>
+HWY_NOINLINE uint32_t LeafBroadcastMixedK(const Bvh8& bvh, Bvh8Ref leaf, PacketState* s,
+                                          uint32_t m) {
+  return LeafBroadcast<kAnyHit, true>(DF(), bvh, leaf, s, m);
+}
+
 template <bool kAnyHit>
 HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState* s, uint32_t m,
                                const Traverse8Options& options) {
   const uint32_t n = LeafCount(leaf);
-  if (options.broadcast_leaves && s->uniform_k[0] >= 0 &&
-      n < static_cast<uint32_t>(std::popcount(m))) {
-    return LeafBroadcast<kAnyHit>(d, bvh, leaf, s, m);
+  if (options.broadcast_leaves && n < static_cast<uint32_t>(std::popcount(m))) {
+    if (s->uniform_k[0] >= 0) return LeafBroadcast<kAnyHit, false>(d, bvh, leaf, s, m);
+    return LeafBroadcastMixedK<kAnyHit>(bvh, leaf, s, m);
   }
   uint32_t hit_lanes = 0;
   for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
     const int j = std::countr_zero(bits);
     const SingleRay r = LaneSingleRay(*s, j);
     WatertightLanes rv;
-    BroadcastWatertight(r, &rv);
+    OneRayWatertight(r, &rv);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
     if (LeafSingle<kAnyHit>(d, bvh, leaf, r, rv, &best)) hit_lanes |= LaneBit(j);
@@ -754,13 +821,17 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
   Entry stack[kStackSize];
   int sp = 0;
   uint32_t done = 0;  // any hit: lanes already occluded
+  const uint32_t single_ray_lanes =
+      s->shared_origin && options.shared_origin_single_ray_lanes >= 0
+          ? static_cast<uint32_t>(options.shared_origin_single_ray_lanes)
+          : options.single_ray_lanes;
   // The subtree being visited and its lanes. The nearest child hit is visited next without a
   // round trip through the stack: its lanes were just tested against their closest hits.
   Bvh8Ref ref = 0;
   uint32_t m = live;
   for (;;) {
     bool descend = false;
-    if (static_cast<uint32_t>(std::popcount(m)) <= options.single_ray_lanes) {
+    if (static_cast<uint32_t>(std::popcount(m)) <= single_ray_lanes) {
       // Too few rays left to fill a vector: each finishes this subtree alone.
       done |= SingleRayLanes<kAnyHit>(bvh, ref, s, m);
       if (kAnyHit && done == live) return done;

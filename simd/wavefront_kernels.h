@@ -7,7 +7,7 @@
 namespace ptlab::simd {
 
 /// The SIMD table: intersect8 / occluded8 run simd::Intersect8 / simd::Occluded8 on `bvh8`
-/// (default Traverse8Options), sobol2d / sobol1d the 8-wide Sobol' batches (simd/sampler8.h),
+/// (each with its default options), sobol2d / sobol1d the 8-wide Sobol' batches (simd/sampler8.h),
 /// bsdf simd::ShadeBatch (simd/shade8.h), splat simd::SplatSamples (simd/splat8.h),
 /// area_light simd::SampleAreaLightBatch (simd/emitter8.h), interaction
 /// simd::MakeInteractionBatch (simd/interaction8.h).

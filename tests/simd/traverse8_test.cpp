@@ -360,6 +360,90 @@ TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
     CompareAll(bvh8, some, some_expected, {"packet, per-lane leaves", {0, false, false}}, false,
                &mm);
     CompareAll(bvh8, some, some_expected, {"mostly single-ray", {7, true, false}}, false, &mm);
+    CompareAll(bvh8, some, some_expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
+    EXPECT_EQ(mm.count, 0);
+  });
+}
+
+// Packets from one origin into one octant (coherent: the frustum and broadcast-leaf paths),
+// whose lanes' intervals end before, exactly at, just after and well after their oracle hit
+// (the interval is open), so that the lanes of an any-hit packet stop at different times.
+std::vector<Ray> MakeSharedOriginRays(const TriangleTable& table, const Bvh& bvh, size_t count,
+                                      uint64_t seed) {
+  const Vec3f lo = bvh.nodes[0].bounds_min, hi = bvh.nodes[0].bounds_max;
+  const float half = 0.5f * MaxComponent(hi - lo);
+  const Vec3f outer_lo = lo - Vec3f{half, half, half}, outer_hi = hi + Vec3f{half, half, half};
+  Pcg32 rng(seed, 13);
+  const uint32_t n = static_cast<uint32_t>(table.size());
+  std::vector<Ray> rays;
+  rays.reserve(count + 8);
+  while (rays.size() < count) {
+    const Vec3f o = UniformInBox(rng, outer_lo, outer_hi);
+    const uint32_t row = rng.NextUint() % n;
+    const Vec3f a = table.V0(row), b = table.V1(row), c = table.V2(row);
+    const Vec3f targets[8] = {a, b, c, (a + b) * 0.5f, (b + c) * 0.5f, (c + a) * 0.5f,
+                              (a + b + c) * (1.0f / 3.0f), a + (b - a) * 0.25f};
+    const uint32_t shift = rng.NextUint() % 8;  // which lane gets which interval
+    for (uint32_t j = 0; j < 8; ++j) {
+      Ray r{o, targets[j] - o};
+      Hit h;
+      if (Intersect1(bvh, r, &h)) {
+        switch ((j + shift) % 8) {
+          case 0:
+            r.t_max = h.t;  // the hit is excluded
+            break;
+          case 1:
+            r.t_max = std::nextafter(h.t, kInf);
+            break;
+          case 2:
+            r.t_min = h.t;
+            break;
+          case 3:
+            r.t_min = std::nextafter(h.t, -kInf);
+            break;
+          case 4:
+            r.t_max = 0.5f * h.t;  // ends before anything
+            break;
+          case 5:
+            r.t_min = r.t_max = h.t;  // empty
+            break;
+          default:  // (0, inf): stops at its first hit
+            break;
+        }
+      }
+      rays.push_back(r);
+    }
+  }
+  rays.resize(count);
+  return rays;
+}
+
+TEST(Traverse8, OcclusionOfSharedOriginPacketsMatchesOracle) {
+  const Fixture& f = AdversarialFixture();
+  const Bvh8 bvh8 = BuildBvh8(f.bvh);
+  const std::vector<Ray> rays = MakeSharedOriginRays(f.table, f.bvh, size_t{1} << 16, 3);
+  const std::vector<Expected> expected = Oracle(f.bvh, rays);
+  // The packets must mostly be coherent (one octant), or the frustum path is not reached.
+  size_t one_octant = 0;
+  for (size_t base = 0; base + 8 <= rays.size(); base += 8) {
+    bool same = true;
+    for (int a = 0; a < 3; ++a) {
+      for (int j = 1; j < 8; ++j) {
+        same &= std::signbit(rays[base + j].d[a]) == std::signbit(rays[base].d[a]);
+      }
+    }
+    one_octant += same;
+  }
+  EXPECT_GT(one_octant, rays.size() / 8 / 2);
+  size_t occluded = 0;
+  for (const Expected& e : expected) occluded += e.occluded;
+  EXPECT_GT(occluded, rays.size() / 8);
+  EXPECT_LT(occluded, rays.size() * 7 / 8);
+  ForEachTarget([&] {
+    Mismatches mm;
+    CompareAll(bvh8, rays, expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
+    CompareAll(bvh8, rays, expected, {"hybrid", {}}, /*single_ray=*/true, &mm);
+    CompareAll(bvh8, rays, expected, {"packet, broadcast leaves", {0, true, false}}, false, &mm);
     EXPECT_EQ(mm.count, 0);
   });
 }
