@@ -67,24 +67,21 @@ TEST(SceneBytes, EqualElementSizeTimesRowsOfEveryColumn) {
   EXPECT_EQ(TableBytes(s.triangles), b.triangles);
 }
 
-// A BVH holds at least its used rows (nodes, the leaf-ordered triangle copy, the prim ids) and,
-// grown by doubling or sized once, less than twice that; so do the BVH8's. Both grow with the
-// number of triangles.
-TEST(SceneBytes, BvhAndBvh8BytesBoundTheirRowsAndGrowWithTriangles) {
+// A BVH holds exactly its rows (nodes, the leaf-ordered triangle copy, the prim ids): the builds
+// leave no reserved slack; so does the BVH8. Both grow with the number of triangles.
+TEST(SceneBytes, BvhAndBvh8HoldTheirRowsOnlyAndGrowWithTriangles) {
   size_t last_bvh = 0, last_bvh8 = 0;
-  for (int n : {4, 16, 64}) {
+  for (int n : {4, 16, 64, 128}) {
     const TriangleTable grid = bvh_test::MakeFlatGrid(n).ToTable();
     const Bvh bvh = BuildBvh(grid);
     const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
     const size_t tris = grid.size();
-    const size_t bvh_rows = bvh.nodes.size() * sizeof(BvhNode) + tris * (9 * 4 + 4);
-    EXPECT_GE(BvhBytes(bvh), bvh_rows) << n;
-    EXPECT_LT(BvhBytes(bvh), 2 * bvh_rows) << n;
-    const size_t bvh8_rows = bvh8.nodes.size() * sizeof(simd::Bvh8Node) +
-                             bvh8.tris.size() * sizeof(float) + bvh8.prim.size() * 4;
+    EXPECT_EQ(BvhBytes(bvh), bvh.nodes.size() * sizeof(BvhNode) + tris * (9 + 1) * 4) << n;
     EXPECT_GE(bvh8.tris.size(), 9 * tris) << n;
-    EXPECT_GE(simd::Bvh8Bytes(bvh8), bvh8_rows) << n;
-    EXPECT_LT(simd::Bvh8Bytes(bvh8), 2 * bvh8_rows) << n;
+    EXPECT_EQ(simd::Bvh8Bytes(bvh8), bvh8.nodes.size() * sizeof(simd::Bvh8Node) +
+                                         bvh8.tris.size() * sizeof(float) +
+                                         bvh8.prim.size() * sizeof(uint32_t))
+        << n;
     EXPECT_GT(BvhBytes(bvh), last_bvh) << n;
     EXPECT_GT(simd::Bvh8Bytes(bvh8), last_bvh8) << n;
     last_bvh = BvhBytes(bvh), last_bvh8 = simd::Bvh8Bytes(bvh8);
