@@ -125,14 +125,20 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         const Tile& t = tiles[i];
         const auto tile_start = Clock::now();
         reset_block(i);
+        // The tile's counters live on this thread's stack while it renders: stats[i] and the
+        // stats of the tile another thread renders beside it share cache lines, and the
+        // wavefront adds to them for every packet.
+        TileStats tile_stats;
         if (options.kernels != nullptr) {
           RenderTilePacket8(ctx, *options.kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1,
-                            options.seed, &blocks[i], &stats[i], pixels, &workspaces[size_t(slot)]);
+                            options.seed, &blocks[i], &tile_stats, pixels,
+                            &workspaces[size_t(slot)]);
         } else {
           RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,
-                           &blocks[i], &stats[i], pixels);
+                           &blocks[i], &tile_stats, pixels);
         }
-        stats[i].wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
+        tile_stats.wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
+        stats[i] = tile_stats;
         std::lock_guard<std::mutex> lock(mutex);
         rendered[i] = 1;
         ++tiles_done;

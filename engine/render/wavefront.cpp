@@ -130,8 +130,10 @@ double Seconds(Clock::time_point a, Clock::time_point b) {
 }  // namespace
 
 /// One tile's paths, wave by wave. Path state is SoA, indexed by path id (generation order);
-/// the per-bounce scratch (hits, interactions) is indexed by queue entry.
-class Wavefront {
+/// the per-bounce scratch (hits, interactions) is indexed by queue entry. Each worker thread has
+/// one on the heap, cache-line aligned so that no two threads' wavefronts share a line (the
+/// vectors' end pointers are written at every push).
+class alignas(kColumnAlignment) Wavefront {
  public:
   void RenderTile(const RenderContext& ctx, const WavefrontKernels& kernels, TileSampleStats* stats,
                   const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
