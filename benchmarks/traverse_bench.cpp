@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/fractal_terrain.h"
 #include "engine/bvh/bvh.h"
 #include "engine/bvh/intersect1.h"
 #include "engine/bvh/ray_offset.h"
@@ -43,54 +44,8 @@ namespace {
 constexpr size_t kSecondaryRays = size_t{1} << 18;
 
 // ---------------------------------------------------------------------------------------------
-// Scenes: the Nori table and veach_mi scenes (when ../shared/data is there) and a fractal
-// terrain of 1,048,352 triangles that needs no data.
-
-float Hash2(int x, int y) {
-  uint32_t h = static_cast<uint32_t>(x) * 0x8da6b343u ^ static_cast<uint32_t>(y) * 0xd8163841u;
-  h = (h ^ (h >> 13)) * 0x85ebca6bu;
-  h ^= h >> 16;
-  return static_cast<float>(h & 0xffffffu) * 0x1p-24f;
-}
-
-// Value noise with a smooth fade, in [0, 1).
-float ValueNoise(float x, float y) {
-  const float fx = std::floor(x), fy = std::floor(y);
-  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
-  const float tx = x - fx, ty = y - fy;
-  const float sx = tx * tx * (3 - 2 * tx), sy = ty * ty * (3 - 2 * ty);
-  const float a = Hash2(ix, iy), b = Hash2(ix + 1, iy), c = Hash2(ix, iy + 1),
-              d = Hash2(ix + 1, iy + 1);
-  return (a + (b - a) * sx) + ((c + (d - c) * sx) - (a + (b - a) * sx)) * sy;
-}
-
-// Ridged fBm terrain over [-1, 1]^2, n x n vertices, 2 (n-1)^2 triangles (n = 725: 1,048,352).
-TriangleTable MakeFractalTerrain(int n) {
-  std::vector<Vec3f> v(static_cast<size_t>(n) * n);
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const float x = -1.0f + 2.0f * static_cast<float>(i) / static_cast<float>(n - 1);
-      const float y = -1.0f + 2.0f * static_cast<float>(j) / static_cast<float>(n - 1);
-      float h = 0.0f, amp = 0.5f, freq = 3.0f;
-      for (int o = 0; o < 9; ++o) {
-        const float r = 1.0f - std::fabs(2.0f * ValueNoise(x * freq + 17.0f * o, y * freq) - 1.0f);
-        h += amp * r * r;
-        amp *= 0.5f;
-        freq *= 2.03f;
-      }
-      v[static_cast<size_t>(j) * n + i] = {x, y, 0.45f * h - 0.2f};
-    }
-  }
-  TriangleTable t;
-  auto at = [&](int i, int j) { return v[static_cast<size_t>(j) * n + i]; };
-  for (int j = 0; j + 1 < n; ++j) {
-    for (int i = 0; i + 1 < n; ++i) {
-      t.Append(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      t.Append(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
-  }
-  return t;
-}
+// Scenes: the Nori table and veach_mi scenes (when ../shared/data is there) and the fractal
+// terrain of benchmarks/fractal_terrain.h (1,048,352 triangles, no data).
 
 CameraDesc LookAtCamera(const Vec3f& eye, const Vec3f& target, const Vec3f& up, float fov,
                         int width, int height) {
@@ -252,9 +207,10 @@ std::unique_ptr<BenchScene> MakeScene(const std::string& name) {
   CameraDesc camera;
   LightSampler light;
   if (name == "terrain") {
-    s->terrain = MakeFractalTerrain(725);
+    s->terrain = MakeFractalTerrain(kTerrainGridSize);
     s->triangles = &s->terrain;
-    camera = LookAtCamera({0.0f, -1.55f, 0.75f}, {0.0f, 0.2f, -0.05f}, {0, 0, 1}, 50.0f, 768, 512);
+    const TerrainView& v = kTerrainView;
+    camera = LookAtCamera(v.eye, v.target, v.up, v.fov_deg, v.width, v.height);
   } else {
     const std::string path =
         DataPath(name == "table" ? "table/table_mis.xml" : "veach_mi/veach_mis.xml");

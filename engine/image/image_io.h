@@ -61,10 +61,16 @@ Status PrepareOutputFile(const std::string& path);
 /// Names must be non-empty and must not be standard attributes ("channels", "compression", ...).
 Status WriteExr(const std::string& path, const Image& image,
                 const std::vector<std::pair<std::string, std::string>>& header_attributes = {});
+/// The bytes WriteExr writes; `path` only names the file in errors.
+StatusOr<std::string> EncodeExr(
+    const std::string& path, const Image& image,
+    const std::vector<std::pair<std::string, std::string>>& header_attributes = {});
 
 /// Writes `image` as an 8-bit RGB PNG: each channel sRGB-encoded with the exact curve, clamped to
 /// [0, 1] and rounded to nearest; NaN becomes 0. Atomic.
 Status WritePng(const std::string& path, const Image& image);
+/// The bytes WritePng writes; `path` only names the file in errors.
+StatusOr<std::string> EncodePng(const std::string& path, const Image& image);
 
 /// Writes `image` as a little-endian RGB PFM (scale -1, rows bottom to top), floats bit-exact.
 /// Atomic.

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "engine/core/memory.h"
 #include "engine/core/vec.h"
 #include "engine/image/image.h"
 #include "engine/render/filter.h"
@@ -64,6 +65,8 @@ class FilmBlock {
   /// The accumulators, r, g, b, w per pixel in rows: what a block sends to another process.
   const std::vector<float>& sums() const { return sum_; }
   std::vector<float>& sums() { return sum_; }
+  /// Heap bytes of the accumulators (capacity × element size).
+  size_t Bytes() const { return VectorBytes(sum_); }
 
  private:
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;

@@ -79,6 +79,8 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   progress.samples_total = uint64_t(width) * uint64_t(height) * options.spp;
 
   const int threads = std::max(1, options.threads);
+  // One wavefront per worker slot, kept over the tiles and passes that slot renders.
+  std::vector<WavefrontWorkspace> workspaces(options.kernels != nullptr ? size_t(threads) : 0);
   const bool adaptive = options.adaptive.batch > 0 && options.distribution == nullptr;
   const uint32_t per_pass = adaptive ? std::min(options.adaptive.batch, options.spp)
                                      : std::max<uint32_t>(1, SamplesPerPass(options.spp));
@@ -131,7 +133,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     auto take_tile = [&] {
       return dist != nullptr ? dist->next_tile(pass, tiles.size()) : next_tile.fetch_add(1);
     };
-    auto worker = [&] {
+    auto worker = [&](int slot) {
       for (;;) {
         if (cancelled()) break;
         const size_t i = take_tile();
@@ -139,14 +141,20 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         const Tile& t = tiles[i];
         const auto tile_start = Clock::now();
         reset_block(i);
+        // The tile's counters live on this thread's stack while it renders: stats[i] and the
+        // stats of the tile another thread renders beside it share cache lines, and the
+        // wavefront adds to them for every packet.
+        TileStats tile_stats;
         if (options.kernels != nullptr) {
-          RenderTilePacket8(ctx, *options.kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0,
-                            s1, options.seed, &blocks[i], &stats[i], pixels);
+          RenderTilePacket8(ctx, *options.kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1,
+                            options.seed, &blocks[i], &tile_stats, pixels,
+                            &workspaces[size_t(slot)]);
         } else {
           RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,
-                           &blocks[i], &stats[i], pixels);
+                           &blocks[i], &tile_stats, pixels);
         }
-        stats[i].wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
+        tile_stats.wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
+        stats[i] = tile_stats;
         std::lock_guard<std::mutex> lock(mutex);
         rendered[i] = 1;
         ++tiles_done;
@@ -160,7 +168,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     };
     std::vector<std::thread> pool;
     try {
-      for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+      for (int i = 0; i < threads; ++i) pool.emplace_back(worker, i);
     } catch (const std::system_error& e) {
       // Out of memory for stacks or a process limit: stop the workers that did start.
       start_failed.store(true);
@@ -250,6 +258,9 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     }
   }
   result.tile_count = int(tiles.size());
+  for (const WavefrontWorkspace& w : workspaces) result.memory.wavefront += w.Bytes();
+  result.memory.film = film.Bytes();
+  for (const FilmBlock& b : blocks) result.memory.film += b.Bytes();
   result.interrupted = result.spp_done < options.spp && !budget_spent && !all_converged;
   result.image = film.Resolve();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -95,6 +95,15 @@ struct RenderOptions {
   std::function<void(const RenderPass&)> on_pass;
 };
 
+/// Heap bytes a render held at its end (capacity × element size of the containers).
+struct RenderMemory {
+  /// The wavefronts' path state, queues and columns: each worker thread's high-water mark,
+  /// summed over the threads (0 on the scalar path, which has none).
+  uint64_t wavefront = 0;
+  /// The film and the tile blocks (one per tile, filter border included).
+  uint64_t film = 0;
+};
+
 struct RenderResult {
   Image image;
   uint32_t spp_done = 0;       // samples per pixel in the image (< spp when interrupted)
@@ -114,6 +123,7 @@ struct RenderResult {
   /// Adaptive sampling: the samples each pixel took (row-major), summing to samples_taken.
   std::vector<uint32_t> pixel_samples;
   uint64_t samples_taken = 0;  // every pixel sample of the completed passes
+  RenderMemory memory;
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of

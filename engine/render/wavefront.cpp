@@ -9,9 +9,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "engine/bvh/intersect1.h"
+#include "engine/core/memory.h"
 #include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
 #include "engine/sampling/sobol.h"
@@ -101,6 +103,7 @@ struct RayQueue {
   std::vector<uint32_t> owner;
 
   size_t size() const { return owner.size(); }
+  size_t Bytes() const { return VectorsBytes(packets, owner); }
   void Clear() {
     packets.clear();
     owner.clear();
@@ -134,24 +137,45 @@ void GrowColumns(size_t capacity, Columns*... columns) {
   ((columns->size() < capacity ? columns->resize(capacity) : void()), ...);
 }
 
-/// One tile's paths, wave by wave. Path state is SoA, indexed by path id (generation order);
-/// the per-bounce scratch (hits, interactions) is indexed by queue entry.
-class Wavefront {
- public:
-  Wavefront(const RenderContext& ctx, const WavefrontKernels& kernels, TileSampleStats* stats)
-      : scene_(ctx.scene), kernels_(kernels), rules_(RulesFor(ctx.scene.integrator)),
-        stats_(stats), sobol_(ctx.scene.sampler.type == SamplerType::kSobol),
-        environment_(ctx.scene.environment_maps.size()) {}
+}  // namespace
 
-  void RenderTile(const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
+/// One tile's paths, wave by wave. Path state is SoA, indexed by path id (generation order);
+/// the per-bounce scratch (hits, interactions) is indexed by queue entry. Each worker thread has
+/// one on the heap, cache-line aligned so that no two threads' wavefronts share a line (the
+/// vectors' end pointers are written at every push).
+class alignas(kColumnAlignment) Wavefront {
+ public:
+  void RenderTile(const RenderContext& ctx, const WavefrontKernels& kernels, TileSampleStats* stats,
+                  const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1, int y1,
                   uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
                   const PixelSampling* pixels) {
+    scene_ = &ctx.scene, kernels_ = &kernels, stats_ = stats;
+    rules_ = RulesFor(ctx.scene.integrator);
+    sobol_ = ctx.scene.sampler.type == SamplerType::kSobol;
+    environment_.resize(ctx.scene.environment_maps.size());
     for (int y = y0; y < y1; y += kWaveRows) {
       const int wy1 = std::min(y1, y + kWaveRows);
       Generate(camera, x0, y, x1, wy1, s_begin, s_end, seed, pixels);
       for (int depth = 0; rays_.size() > 0; ++depth) Bounce(depth);
       Splat(filter, x0, y, x1, wy1, s_end - s_begin, block, pixels);
     }
+  }
+
+  /// Heap bytes of the path state, queues and columns: capacity × element size. They only grow
+  /// (cleared, never shrunk), so this is the high-water mark of every tile rendered so far.
+  size_t Bytes() const {
+    size_t bytes = VectorsBytes(sampler_, gen_px_, gen_py_, jitter_, lens_, all_paths_, continuing_,
+                                roulette_, bsdf_lobe_, light_point_, bsdf_direction_, draw_seed_,
+                                draw_index_, draw_x_, draw_y_);
+    bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,
+                          slot_, results_);
+    bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
+    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, requests_, occluded_, nee_paths_);
+    bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
+    bytes += VectorsBytes(environment_);
+    for (const EnvironmentColumns& e : environment_) bytes += e.Bytes();
+    bytes += ShadeScratchBytes(shade_scratch_);
+    return bytes;
   }
 
  private:
@@ -180,7 +204,7 @@ class Wavefront {
             if (px >= x1 || py >= y1) continue;
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
             if (pixels && pixels->active && !pixels->active[pixel]) continue;
-            sampler_[id] = PathSampler(scene_.sampler.type, PixelSeed(seed, pixel), s);
+            sampler_[id] = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
             slot_[id] = uint32_t((size_t(py - y0) * tile_w + size_t(px - x0)) * samples +
                                  (s - s_begin));
             gen_px_.push_back(px), gen_py_.push_back(py);
@@ -239,7 +263,7 @@ class Wavefront {
     for (size_t k = 0; k < packets; ++k) {
       const Mask8 active = rays_.Active(k);
       hit_mask_[k] =
-          kernels_.intersect8(kernels_.accel, rays_.packets[k], active, &hits_[k]) & active;
+          kernels_->intersect8(kernels_->accel, rays_.packets[k], active, &hits_[k]) & active;
       stats_->rays += uint64_t(std::popcount(active));
     }
     stats_->packets += packets;
@@ -252,7 +276,7 @@ class Wavefront {
     its_.resize(n), wo_.resize(n), goes_on_.assign(n, 0);
     points_.Resize(rays_.packets.size() * kPacketWidth);
     const InteractionColumns points = points_.View();
-    kernels_.interaction(scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(),
+    kernels_->interaction(*scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(),
                          rays_.packets.size(), points);
     for (size_t q = 0; q < n; ++q) {
       const uint32_t i = rays_.owner[q];
@@ -264,26 +288,26 @@ class Wavefront {
         if (rules_.normals) continue;
         const Vec3f w = d / Length(d);
         if (!rules_.nee || specular_[i]) {
-          L_[i] += throughput_[i] * Escaped(scene_, w, false, 0.0f);
+          L_[i] += throughput_[i] * Escaped(*scene_, w, false, 0.0f);
         } else if (rules_.mis) {
-          L_[i] += throughput_[i] * Escaped(scene_, w, true, prev_pdf_[i]);
+          L_[i] += throughput_[i] * Escaped(*scene_, w, true, prev_pdf_[i]);
         }
         continue;
       }
-      const SurfaceInteraction its = InteractionAt(scene_, points, q, hits_[k].prim[j]);
+      const SurfaceInteraction its = InteractionAt(*scene_, points, q, hits_[k].prim[j]);
       if (rules_.normals) {
         const Vec3f a = Abs(its.frame.n);
         L_[i] = {a.x, a.y, a.z};
         continue;
       }
       const Vec3f wo_world = -d / Length(d);
-      const Color3f Le = Emitted(scene_, its, wo_world);
+      const Color3f Le = Emitted(*scene_, its, wo_world);
       if (!IsBlack(Le)) {
         float w = 1.0f;
         if (rules_.nee && !specular_[i]) {
           // Emitter sampling already counted this light from the previous vertex.
-          w = rules_.mis ? MisWeight(prev_pdf_[i], EmitterPdf(scene_, its, prev_p_[i]),
-                                     scene_.integrator.power_heuristic)
+          w = rules_.mis ? MisWeight(prev_pdf_[i], EmitterPdf(*scene_, its, prev_p_[i]),
+                                     scene_->integrator.power_heuristic)
                          : 0.0f;
         }
         L_[i] += throughput_[i] * Le * w;
@@ -308,7 +332,7 @@ class Wavefront {
     area_.Clear(emitter_rows);
     for (EnvironmentColumns& e : environment_) e.Clear(emitter_rows);
     if (sobol_) DrawVertexNumbers(depth);
-    const bool emitters = !scene_.emitters.empty();
+    const bool emitters = !scene_->emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
     size_t c = 0;
     for (size_t q = 0; q < rays_.size(); ++q) {
@@ -334,7 +358,7 @@ class Wavefront {
             numbers = DrawEmitterNumbers(sampler, depth, uint32_t(s), uint32_t(n_light));
           }
           float pick_pmf = 0.0f;
-          const EmitterRef emitter = PickEmitter(scene_, &numbers, &pick_pmf);
+          const EmitterRef emitter = PickEmitter(*scene_, &numbers, &pick_pmf);
           const Vec2f& u = numbers.point;
           if (!(pick_pmf > 0)) {
             requests_.push_back({});
@@ -348,7 +372,7 @@ class Wavefront {
             requests_.push_back({});
           } else {
             requests_.push_back(
-                PrepareEmitterSampleFrom(scene_, its, wo, rules_.mis, emitter, pick_pmf, u));
+                PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis, emitter, pick_pmf, u));
           }
         }
         nee_paths_.push_back(i);
@@ -397,17 +421,17 @@ class Wavefront {
     const AreaLightBatchOutputs out{a.p_x.data(),  a.p_y.data(),  a.p_z.data(),  a.n_x.data(),
                                     a.n_y.data(),  a.n_z.data(),  a.ng_x.data(), a.ng_y.data(),
                                     a.ng_z.data(), a.pdf.data()};
-    kernels_.area_light(scene_, scene_.integrator.triangle_sampling, n, in, out);
+    kernels_->area_light(*scene_, scene_->integrator.triangle_sampling, n, in, out);
     for (size_t c = 0; c < n; ++c) {
       AreaLightSample ls;
       ls.p = {a.p_x[c], a.p_y[c], a.p_z[c]};
       ls.n = {a.n_x[c], a.n_y[c], a.n_z[c]};
       ls.ng = {a.ng_x[c], a.ng_y[c], a.ng_z[c]};
       ls.pdf = a.pdf[c];
-      ls.radiance = scene_.area_lights.radiance[a.light[c]];
+      ls.radiance = scene_->area_lights.radiance[a.light[c]];
       const size_t q = a.entry[c];
       requests_[a.request[c]] =
-          AreaEmitterSampleRequest(scene_, its_[q], wo_[q], rules_.mis, ls, a.pick_pmf[c]);
+          AreaEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis, ls, a.pick_pmf[c]);
     }
   }
 
@@ -421,14 +445,14 @@ class Wavefront {
       if (n == 0) continue;
       const EnvironmentBatchOutputs out{e.wi_x.data(), e.wi_y.data(), e.wi_z.data(), e.r.data(),
                                         e.g.data(),    e.b.data(),    e.pdf.data()};
-      kernels_.environment(scene_.environment_maps, map, n, {e.u_x.data(), e.u_y.data()}, out);
+      kernels_->environment(scene_->environment_maps, map, n, {e.u_x.data(), e.u_y.data()}, out);
       for (size_t c = 0; c < n; ++c) {
         if (!(e.pdf[c] > 0)) continue;
         const EnvironmentSample es{
             {e.wi_x[c], e.wi_y[c], e.wi_z[c]}, {e.r[c], e.g[c], e.b[c]}, e.pdf[c]};
         const size_t q = e.entry[c];
         requests_[e.request[c]] =
-            InfiniteEmitterSampleRequest(scene_, its_[q], wo_[q], rules_.mis, es, e.pick_pmf[c]);
+            InfiniteEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis, es, e.pick_pmf[c]);
       }
     }
   }
@@ -448,13 +472,13 @@ class Wavefront {
     out.wi = {b.wi_x.data(), b.wi_y.data(), b.wi_z.data()};
     out.weight = {b.weight_r.data(), b.weight_g.data(), b.weight_b.data()};
     out.pdf = b.pdf.data(), out.eta = b.eta.data();
-    const auto bsdf = kernels_.bsdf;
+    const auto bsdf = kernels_->bsdf;
     ShadeHitsWith(
         [bsdf](const MaterialTables& mt, MaterialTag tag, const uint32_t* index, size_t count,
                const ShadeInputs& bin, const ShadeOutputs& bout) {
           bsdf(mt, tag, index, count, bin, bout);
         },
-        scene_.materials, b.material.data(), n, in, out, &shade_scratch_);
+        scene_->materials, b.material.data(), n, in, out, &shade_scratch_);
     for (size_t c = 0; c < n; ++c) {
       if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
       const uint32_t i = b.path[c];
@@ -483,7 +507,7 @@ class Wavefront {
       if (goes_on_[q]) continuing_.push_back(rays_.owner[q]);
     const size_t m = continuing_.size();
     const uint32_t n_light = uint32_t(rules_.light_samples);
-    if (rules_.nee && !scene_.emitters.empty()) {
+    if (rules_.nee && !scene_->emitters.empty()) {
       // No pick numbers: the pick is folded into the point's x (EmitterNumbers).
       light_point_.resize(m * n_light);
       for (uint32_t s = 0; s < n_light; ++s) {
@@ -493,7 +517,7 @@ class Wavefront {
     }
     if (!rules_.bsdf_sampling) return;
     // With one emitter sample per vertex, its rows (sub 0 of 1) are the BSDF decisions' rows.
-    const bool emitter_rows_fit = rules_.nee && !scene_.emitters.empty() && n_light == 1;
+    const bool emitter_rows_fit = rules_.nee && !scene_->emitters.empty() && n_light == 1;
     if (!emitter_rows_fit) FillSobolRows(continuing_, 0, 1);
     roulette_.resize(m), bsdf_lobe_.resize(m), bsdf_direction_.resize(m);
     // Roulette numbers only where Sample reads them (Nori's from depth 3, Whitted's always).
@@ -518,11 +542,11 @@ class Wavefront {
     }
   }
   void DrawSobol1D(uint32_t dim, float* out) {
-    kernels_.sobol1d(draw_seed_.data(), draw_index_.data(), dim, draw_seed_.size(), out);
+    kernels_->sobol1d(draw_seed_.data(), draw_index_.data(), dim, draw_seed_.size(), out);
   }
   void DrawSobol2D(uint32_t dim, Vec2f* out) {
     const size_t m = draw_seed_.size();
-    kernels_.sobol2d(draw_seed_.data(), draw_index_.data(), dim, m, draw_x_.data(),
+    kernels_->sobol2d(draw_seed_.data(), draw_index_.data(), dim, m, draw_x_.data(),
                      draw_y_.data());
     for (size_t k = 0; k < m; ++k) out[k] = {draw_x_[k], draw_y_[k]};
   }
@@ -531,7 +555,7 @@ class Wavefront {
     occluded_.assign(requests_.size(), 0);
     for (size_t k = 0; k < shadows_.packets.size(); ++k) {
       const Mask8 active = shadows_.Active(k);
-      const Mask8 occ = kernels_.occluded8(kernels_.accel, shadows_.packets[k], active) & active;
+      const Mask8 occ = kernels_->occluded8(kernels_->accel, shadows_.packets[k], active) & active;
       for (Mask8 m = occ; m != 0; m &= m - 1) {
         occluded_[shadows_.owner[k * kLanes + size_t(std::countr_zero(m))]] = 1;
       }
@@ -582,7 +606,7 @@ class Wavefront {
         }
       }
     }
-    kernels_.splat(filter, splat_.View(), block);
+    kernels_->splat(filter, splat_.View(), block);
     stats_->seconds.film += Seconds(t0, Clock::now());
   }
 
@@ -598,6 +622,10 @@ class Wavefront {
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
 
     size_t size() const { return path.size(); }
+    size_t Bytes() const {
+      return VectorsBytes(path, entry, material, roulette_scale, wo_x, wo_y, wo_z, u_lobe, u_x, u_y,
+                          wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
+    }
     void Clear() {
       for (auto* v : {&path, &entry}) v->clear();
       material.clear(), roulette_scale.clear();
@@ -629,6 +657,10 @@ class Wavefront {
     size_t rows = 0;
 
     size_t size() const { return rows; }
+    size_t Bytes() const {
+      return VectorsBytes(request, entry, light, pick_pmf, ref_x, ref_y, ref_z, u_x, u_y, p_x, p_y,
+                          p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf);
+    }
     /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the
     /// rows are written in place, which keeps the per-sample loop free of push_back calls).
     /// The columns only grow, so a wave sizes them once.
@@ -655,6 +687,9 @@ class Wavefront {
     size_t rows = 0;
 
     size_t size() const { return rows; }
+    size_t Bytes() const {
+      return VectorsBytes(request, entry, pick_pmf, u_x, u_y, wi_x, wi_y, wi_z, r, g, b, pdf);
+    }
     /// As EmitterColumns::Clear: room for `capacity` rows, written in place; only grows.
     void Clear(size_t capacity) {
       rows = 0;
@@ -673,6 +708,7 @@ class Wavefront {
     void Resize(size_t n) {
       for (auto* v : {&p_x, &p_y, &p_z, &ng_x, &ng_y, &ng_z, &n_x, &n_y, &n_z}) v->resize(n);
     }
+    size_t Bytes() const { return VectorsBytes(p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z); }
     InteractionColumns View() {
       return {p_x.data(),  p_y.data(),  p_z.data(), ng_x.data(), ng_y.data(),
               ng_z.data(), n_x.data(), n_y.data(), n_z.data()};
@@ -682,6 +718,7 @@ class Wavefront {
   /// The splat stage's SoA columns: film position and radiance of each finite sample.
   struct SplatColumns {
     AlignedVector<float> sx, sy, r, g, b;
+    size_t Bytes() const { return VectorsBytes(sx, sy, r, g, b); }
     void Clear() {
       for (auto* v : {&sx, &sy, &r, &g, &b}) v->clear();
     }
@@ -699,14 +736,15 @@ class Wavefront {
     bool used = false;
   };
 
-  const Scene& scene_;
-  const WavefrontKernels& kernels_;
-  const VertexRules rules_;
-  TileSampleStats* stats_;
+  // The tile being rendered (RenderTile sets them).
+  const Scene* scene_ = nullptr;
+  const WavefrontKernels* kernels_ = nullptr;
+  VertexRules rules_;
+  TileSampleStats* stats_ = nullptr;
 
   // Path state (SoA, by path id).
   std::vector<PathSampler> sampler_;
-  const bool sobol_;
+  bool sobol_ = false;
   // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
   std::vector<int> gen_px_, gen_py_;
   std::vector<Vec2f> jitter_, lens_;
@@ -738,6 +776,8 @@ class Wavefront {
   ShadeScratch shade_scratch_;
   SplatColumns splat_;
 };
+
+namespace {
 
 // The oracle's traversal kernels: each active lane alone through Intersect1 / Occluded1.
 Mask8 OracleIntersect8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active,
@@ -783,13 +823,26 @@ bool ForceScalar() {
   return v != nullptr && v[0] != '\0' && std::strcmp(v, "0") != 0;
 }
 
+WavefrontWorkspace::WavefrontWorkspace() : wave_(std::make_unique<Wavefront>()) {}
+WavefrontWorkspace::~WavefrontWorkspace() = default;
+WavefrontWorkspace::WavefrontWorkspace(WavefrontWorkspace&&) noexcept = default;
+WavefrontWorkspace& WavefrontWorkspace::operator=(WavefrontWorkspace&&) noexcept = default;
+
+size_t WavefrontWorkspace::Bytes() const { return wave_ != nullptr ? wave_->Bytes() : 0; }
+
 void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
-                       TileSampleStats* stats, const PixelSampling* pixels) {
+                       TileSampleStats* stats, const PixelSampling* pixels,
+                       WavefrontWorkspace* workspace) {
   if (x1 <= x0 || y1 <= y0 || s_end <= s_begin) return;
-  Wavefront wave(ctx, kernels, stats);
-  wave.RenderTile(camera, filter, x0, y0, x1, y1, s_begin, s_end, seed, block, pixels);
+  if (workspace == nullptr) {
+    WavefrontWorkspace local;  // one tile alone: its containers go when it is done
+    return RenderTilePacket8(ctx, kernels, camera, filter, x0, y0, x1, y1, s_begin, s_end, seed,
+                             block, stats, pixels, &local);
+  }
+  workspace->wave().RenderTile(ctx, kernels, stats, camera, filter, x0, y0, x1, y1, s_begin, s_end,
+                               seed, block, pixels);
 }
 
 }  // namespace ptlab

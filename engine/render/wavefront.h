@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "engine/bsdf/shade_batch.h"
 #include "engine/bvh/bvh.h"
@@ -112,6 +113,27 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh);
 /// OracleWavefrontKernels, as `--scalar` does. The kernels themselves never read it.
 bool ForceScalar();
 
+class Wavefront;  // wavefront.cpp
+
+/// A worker thread's wavefront: path state, ray queues and per-bounce columns, kept from tile to
+/// tile. Its containers are cleared between waves and tiles, never shrunk, so a thread
+/// allocates in its first tiles only and Bytes() is its high-water mark.
+class WavefrontWorkspace {
+ public:
+  WavefrontWorkspace();
+  ~WavefrontWorkspace();
+  WavefrontWorkspace(WavefrontWorkspace&&) noexcept;
+  WavefrontWorkspace& operator=(WavefrontWorkspace&&) noexcept;
+
+  /// Heap bytes of every queue and column: capacity × element size.
+  size_t Bytes() const;
+  /// The wavefront itself (wavefront.cpp; RenderTilePacket8 runs it).
+  Wavefront& wave() { return *wave_; }
+
+ private:
+  std::unique_ptr<Wavefront> wave_;
+};
+
 /// Renders samples [s_begin, s_end) of pixels [x0, x1) x [y0, y1) into `block` as a wavefront:
 /// the paths of a few pixel rows and all the samples are generated as camera packets of 4x2
 /// pixels at one sample index, then bounce by bounce go through
@@ -123,10 +145,12 @@ bool ForceScalar();
 /// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF and environment kernels
 /// differ from their oracles by a few ulp (simd/shade8.h, simd/environment8.h), so the image agrees with the oracle's within the render
 /// contract of tests/simd/traverse8_test.cpp (relMSE, block means) but not bit for bit. Every
-/// integrator type is supported.
+/// integrator type is supported. The paths run in `workspace` (one per thread, reused from
+/// tile to tile; null: a workspace for this tile alone).
 void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
                        int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
-                       TileSampleStats* stats, const PixelSampling* pixels = nullptr);
+                       TileSampleStats* stats, const PixelSampling* pixels = nullptr,
+                       WavefrontWorkspace* workspace = nullptr);
 
 }  // namespace ptlab

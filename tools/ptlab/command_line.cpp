@@ -116,8 +116,9 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
                 "Render with the scalar oracle's kernels, one ray at a time (same as "
                 "PTLAB_FORCE_SCALAR=1)");
   cmd->add_flag("--stats", cl->render.stats,
-                "Print the fraction of time in traversal, shading and sampling, and packet "
-                "occupancy");
+                "Print the fraction of time in traversal, shading and sampling, packet "
+                "occupancy, and the memory of the scene, BVHs, wavefronts and film with the "
+                "peak RSS");
   cmd->add_option("--tile-times", cl->render.tile_times,
                   "Write the wall time of every tile of every pass to this CSV "
                   "(pass,tile,seconds)");

@@ -1,6 +1,7 @@
 // The render driver: thread-count independence, interruption, and the integrators' basics.
 #include "engine/render/render.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -244,6 +245,51 @@ TEST(Render, SameImageForAnyThreadCount) {
     other.seed = 8;
     EXPECT_NE(Render(scene, bvh, other).image.rgb, a.rgb);
   }
+}
+
+// The render's memory: the film and one block per tile (tile plus the filter's border) are
+// 4 floats a pixel, exactly; the wavefronts exist on the packet path only; a workspace that
+// renders a tile it has rendered before allocates nothing more.
+TEST(Render, MemoryOfFilmBlocksAndWavefronts) {
+  const Scene scene = LoadOrDie(BoxScene("path_mis", 4));
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
+  RenderOptions options;
+  options.spp = 4;
+  const int w = scene.camera.width, h = scene.camera.height;  // 48 x 40: tiles 32, 16 x 32, 8
+  const int border = int(std::ceil(scene.filter.radius));
+  size_t pixels = size_t(w) * size_t(h);
+  for (int y = 0; y < h; y += 32)
+    for (int x = 0; x < w; x += 32)
+      pixels += size_t(std::min(32, w - x) + 2 * border) * size_t(std::min(32, h - y) + 2 * border);
+  const RenderResult scalar = Render(scene, bvh, options);
+  EXPECT_EQ(scalar.memory.film, pixels * 4 * sizeof(float));
+  EXPECT_EQ(scalar.memory.wavefront, 0u);
+  for (int threads : {1, 2}) {
+    options.threads = threads;
+    const RenderResult packets = RenderWithPackets(scene, options);
+    EXPECT_EQ(packets.memory.film, pixels * 4 * sizeof(float)) << threads;
+    // At least the path state of one wave: a sampler and a radiance sum per path.
+    const size_t paths = size_t(std::min(w, 32)) * 4 * options.spp;
+    EXPECT_GT(packets.memory.wavefront, paths * (sizeof(PathSampler) + sizeof(Color3f))) << threads;
+  }
+
+  const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
+  const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8);
+  const Camera camera(scene.camera);
+  const PixelFilter filter(scene.filter);
+  const RenderContext ctx{scene, bvh};
+  WavefrontWorkspace workspace;
+  EXPECT_EQ(workspace.Bytes(), 0u);
+  size_t bytes = 0;
+  for (int round = 0; round < 2; ++round) {
+    FilmBlock block(-border, -border, 32 + 2 * border, 32 + 2 * border);
+    TileSampleStats stats;
+    RenderTilePacket8(ctx, kernels, camera, filter, 0, 0, 32, 32, 0, 4, 3, &block, &stats, nullptr,
+                      &workspace);
+    if (round == 0) bytes = workspace.Bytes();
+  }
+  EXPECT_GT(bytes, 0u);
+  EXPECT_EQ(workspace.Bytes(), bytes);
 }
 
 TEST(Render, CancelledBeforeStartKeepsNothing) {

@@ -1,0 +1,94 @@
+// Heap bytes of the scene's component tables, column by column.
+#include "engine/scene/scene_bytes.h"
+
+#include <vector>
+
+#include "engine/core/memory.h"
+
+namespace ptlab {
+namespace {
+
+// Every table is a set of vectors; a column added to a table must be counted below, which these
+// sizes remind whoever adds one of.
+constexpr size_t kColumn = sizeof(std::vector<float>);
+static_assert(sizeof(TriangleTable) == 9 * kColumn);
+static_assert(sizeof(SphereTable) == 5 * kColumn);
+static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
+static_assert(sizeof(VertexTable) == 5 * kColumn);
+static_assert(sizeof(MeshTable) == 7 * kColumn);
+static_assert(sizeof(MaterialTables) == (3 + 3 + 9 + 7 + 6) * kColumn);
+static_assert(sizeof(AreaLightTable) == 7 * kColumn);
+static_assert(sizeof(EnvironmentMapTable) == 13 * kColumn);
+static_assert(sizeof(DistantDiskTable) == 4 * kColumn);
+static_assert(sizeof(PointLightTable) == 2 * kColumn);
+static_assert(sizeof(DirectionalLightTable) == 2 * kColumn);
+static_assert(sizeof(SpotLightTable) == 5 * kColumn);
+static_assert(sizeof(EmitterSelectionTable) == 10 * kColumn);
+
+size_t TableBytes(const TriangleShadingTable& t) {
+  return VectorsBytes(t.mesh, t.material, t.vertex0, t.vertex1, t.vertex2);
+}
+
+size_t TableBytes(const VertexTable& t) { return VectorsBytes(t.n_x, t.n_y, t.n_z, t.u, t.v); }
+
+size_t TableBytes(const MeshTable& t) {
+  return VectorsBytes(t.first_triangle, t.triangle_count, t.material, t.emitter, t.has_normals,
+                      t.has_uvs) +
+         StringsBytes(t.name);
+}
+
+size_t TableBytes(const MaterialTables& m) {
+  const DielectricTable& d = m.dielectric;
+  return VectorsBytes(m.diffuse.albedo_r, m.diffuse.albedo_g, m.diffuse.albedo_b) +
+         VectorsBytes(m.mirror.reflectance_r, m.mirror.reflectance_g, m.mirror.reflectance_b) +
+         VectorsBytes(d.int_ior, d.ext_ior, d.flags, d.reflectance_r, d.reflectance_g,
+                      d.reflectance_b, d.transmittance_r, d.transmittance_g, d.transmittance_b) +
+         VectorsBytes(m.conductor.alpha, m.conductor.eta_r, m.conductor.eta_g, m.conductor.eta_b,
+                      m.conductor.k_r, m.conductor.k_g, m.conductor.k_b) +
+         VectorsBytes(m.rough_plastic.alpha, m.rough_plastic.int_ior, m.rough_plastic.ext_ior,
+                      m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b);
+}
+
+size_t EmitterTablesBytes(const Scene& s) {
+  const AreaLightTable& a = s.area_lights;
+  const EnvironmentMapTable& e = s.environment_maps;
+  const EmitterSelectionTable& sel = s.emitter_selection;
+  return VectorsBytes(a.radiance, a.mesh, a.area, a.cdf_offset, a.triangle_cdf, a.guide_offset,
+                      a.triangle_guide) +
+         VectorsBytes(e.width, e.height, e.pixel_offset, e.marginal_offset, e.conditional_offset,
+                      e.sampling, e.to_world, e.luminance_integral, e.r, e.g, e.b, e.marginal_cdf,
+                      e.conditional_cdf) +
+         VectorsBytes(s.distant_disks.radiance, s.distant_disks.max_chord2,
+                      s.distant_disks.solid_angle, s.distant_disks.to_world) +
+         VectorsBytes(s.point_lights.position, s.point_lights.power) +
+         VectorsBytes(s.directional_lights.direction, s.directional_lights.radiance) +
+         VectorsBytes(s.spot_lights.position, s.spot_lights.axis, s.spot_lights.intensity,
+                      s.spot_lights.cos_half_angle, s.spot_lights.exponent) +
+         VectorsBytes(s.emitters, sel.power, sel.pmf, sel.cdf, sel.guide, sel.slot_area,
+                      sel.slot_environment, sel.slot_disk, sel.slot_point, sel.slot_directional,
+                      sel.slot_spot);
+}
+
+}  // namespace
+
+size_t TableBytes(const TriangleTable& t) {
+  return VectorsBytes(t.v0_x, t.v0_y, t.v0_z, t.v1_x, t.v1_y, t.v1_z, t.v2_x, t.v2_y, t.v2_z);
+}
+
+size_t TableBytes(const SphereTable& t) {
+  return VectorsBytes(t.center_x, t.center_y, t.center_z, t.radius, t.material);
+}
+
+SceneBytes SceneTableBytes(const Scene& scene) {
+  SceneBytes b;
+  b.triangles = TableBytes(scene.triangles);
+  b.spheres = TableBytes(scene.spheres);
+  b.shading = TableBytes(scene.shading);
+  b.vertices = TableBytes(scene.vertices);
+  b.materials = TableBytes(scene.materials);
+  b.emitters = EmitterTablesBytes(scene);
+  b.meshes = TableBytes(scene.meshes);
+  return b;
+}
+
+}  // namespace ptlab

@@ -1,0 +1,17 @@
+// Heap bytes of a BVH8 (plain C++: no Highway code here).
+#include "engine/core/memory.h"
+#include "engine/scene/scene_bytes.h"
+#include "simd/bvh8.h"
+
+namespace ptlab::simd {
+
+static_assert(sizeof(Bvh8) == sizeof(AlignedVector<Bvh8Node>) + sizeof(AlignedVector<float>) +
+                                  sizeof(AlignedVector<uint32_t>) + 2 * sizeof(uint32_t) +
+                                  sizeof(SphereTable),
+              "a member added to Bvh8 must be counted in Bvh8Bytes");
+
+size_t Bvh8Bytes(const Bvh8& bvh8) {
+  return VectorsBytes(bvh8.nodes, bvh8.tris, bvh8.prim) + TableBytes(bvh8.spheres);
+}
+
+}  // namespace ptlab::simd
