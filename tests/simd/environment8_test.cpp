@@ -22,6 +22,7 @@
 #include "engine/light/environment_batch.h"
 #include "engine/light/environment_map.h"
 #include "tests/simd/for_each_target.h"
+#include "tests/simd/sample_columns.h"
 
 namespace ptlab {
 namespace {
@@ -30,14 +31,7 @@ namespace {
 constexpr float kWiTolerance = 2e-6f;   // |Δ| per component
 constexpr float kPdfTolerance = 2e-6f;  // relative
 
-struct Outputs {
-  explicit Outputs(size_t n) : col(7, std::vector<float>(n)) {}
-  std::vector<std::vector<float>> col;  // wi x, y, z, r, g, b, pdf
-  EnvironmentBatchOutputs Out() {
-    return {col[0].data(), col[1].data(), col[2].data(), col[3].data(),
-            col[4].data(), col[5].data(), col[6].data()};
-  }
-};
+using test::SampleColumns;
 
 // `random` random rows, then the hard cases: both numbers on the ends of [0, 1) and beyond it,
 // on every CDF entry of the map (marginal and conditional) and one float below it, so that
@@ -72,36 +66,19 @@ void ExpectBatchMatchesOracle(const EnvironmentMapTable& table, uint32_t map, si
   MakeRows(table, map, random, rng, &u_x, &u_y);
   const size_t n = u_x.size();
   const EnvironmentBatchInputs in{u_x.data(), u_y.data()};
-  Outputs want(n);
+  SampleColumns want(n);
   SampleEnvironmentBatch(table, map, n, in, want.Out());
   test::ForEachTarget(simd::Environment8TargetName, [&](const char* target) {
     // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
     float seen_wi = 0, seen_pdf = 0;
     for (size_t cut = 0; cut < 8; ++cut) {
       const size_t m = n - cut;
-      Outputs got(m);
+      SampleColumns got(m);
       simd::SampleEnvironmentBatch(table, map, m, in, got.Out());
-      size_t radiance_differ = 0, wi_off = 0, pdf_off = 0, nonfinite = 0, first = m;
-      for (size_t i = 0; i < m; ++i) {
-        bool off = false;
-        for (size_t c = 0; c < 7; ++c) nonfinite += !std::isfinite(got.col[c][i]);
-        for (size_t c = 3; c < 6; ++c)
-          if (std::bit_cast<uint32_t>(got.col[c][i]) != std::bit_cast<uint32_t>(want.col[c][i]))
-            ++radiance_differ, off = true;
-        for (size_t c = 0; c < 3; ++c) {
-          const float e = std::fabs(got.col[c][i] - want.col[c][i]);
-          seen_wi = std::max(seen_wi, e);
-          if (!(e <= kWiTolerance)) ++wi_off, off = true;
-        }
-        const float p = got.col[6][i], q = want.col[6][i];
-        if (q > 0) seen_pdf = std::max(seen_pdf, std::fabs(p - q) / q);
-        if (!(std::fabs(p - q) <= kPdfTolerance * q) || ((p > 0) != (q > 0))) ++pdf_off, off = true;
-        if (off) first = std::min(first, i);
-      }
-      EXPECT_EQ(radiance_differ, 0u) << "first differing row " << first << " of " << m;
-      EXPECT_EQ(wi_off, 0u) << "first differing row " << first << " of " << m;
-      EXPECT_EQ(pdf_off, 0u) << "first differing row " << first << " of " << m;
-      EXPECT_EQ(nonfinite, 0u);
+      const test::SampleColumnsDiff diff =
+          test::ExpectSampleColumnsMatch(got, want, m, kWiTolerance, kPdfTolerance);
+      seen_wi = std::max(seen_wi, diff.seen_wi), seen_pdf = std::max(seen_pdf, diff.seen_pdf);
+      const size_t first = diff.first;
       if (first < m) {
         ADD_FAILURE() << "row " << first << " u = (" << u_x[first] << ", " << u_y[first]
                       << "): pdf " << got.col[6][first] << " want " << want.col[6][first];

@@ -16,6 +16,7 @@
 #include "engine/light/environment_batch.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/distribution2d.h"
+#include "simd/distant_disk8.h"
 #include "simd/environment8.h"
 
 namespace ptlab {
@@ -104,19 +105,21 @@ Chi2Subject EnvSubject(std::string name, EnvTable table, std::string params,
 
 constexpr int kRows = 1024;  // rows of one call of the SIMD batch
 
-// `s` with its samples drawn by simd::SampleEnvironmentBatch on row 0 of `table` (1024 rows
-// a call) instead of SampleEnvironment; renamed `name`. The pdf stays the scalar one.
-Chi2Subject DrawnBySimdBatch(Chi2Subject s, std::string name, EnvTable table) {
+// `s` with its samples drawn by `batch` (a SIMD batch over EnvironmentBatch columns, called
+// as batch(n, in, out) with up to 1024 rows) instead of its scalar sampler; renamed `name`,
+// the SIMD target in its params. The pdf stays the scalar one.
+template <class Batch>
+Chi2Subject DrawnByColumnBatch(Chi2Subject s, std::string name, const char* target, Batch batch) {
   s.name = std::move(name);
-  s.params += std::string(" target=") + simd::Environment8TargetName();
-  s.sample_batch = [table](const float*, const Vec2f* u, int n, Chi2Point* p, uint8_t* ok) {
+  s.params += std::string(" target=") + target;
+  s.sample_batch = [batch](const float*, const Vec2f* u, int n, Chi2Point* p, uint8_t* ok) {
     float u_x[kRows], u_y[kRows], wi_x[kRows], wi_y[kRows], wi_z[kRows], r[kRows], g[kRows],
         b[kRows], pdf[kRows];
     for (int begin = 0; begin < n; begin += kRows) {
       const int count = std::min(kRows, n - begin);
       for (int i = 0; i < count; ++i) u_x[i] = u[begin + i].x, u_y[i] = u[begin + i].y;
-      simd::SampleEnvironmentBatch(*table, 0, size_t(count), {u_x, u_y},
-                                   {wi_x, wi_y, wi_z, r, g, b, pdf});
+      batch(size_t(count), EnvironmentBatchInputs{u_x, u_y},
+            EnvironmentBatchOutputs{wi_x, wi_y, wi_z, r, g, b, pdf});
       for (int i = 0; i < count; ++i) {
         ok[begin + i] = pdf[i] > 0 ? 1 : 0;
         p[begin + i] = {wi_x[i], wi_y[i], wi_z[i]};
@@ -124,6 +127,15 @@ Chi2Subject DrawnBySimdBatch(Chi2Subject s, std::string name, EnvTable table) {
     }
   };
   return s;
+}
+
+// `s` with its samples drawn by simd::SampleEnvironmentBatch on row 0 of `table`.
+Chi2Subject DrawnBySimdBatch(Chi2Subject s, std::string name, EnvTable table) {
+  return DrawnByColumnBatch(
+      std::move(s), std::move(name), simd::Environment8TargetName(),
+      [table](size_t n, const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
+        simd::SampleEnvironmentBatch(*table, 0, n, in, out);
+      });
 }
 
 // Broken: the pdf of `table` (the gradient map under y_to_z) read half a cell off in φ (a
@@ -233,13 +245,24 @@ void RegisterLightSubjects(Chi2Registry* r, const std::string& data_dir) {
                      "venice_sunset_1k.exr box-filtered to 32x16, up -> +z");
   }
 
-  r->Add(DiskSubject("distantdisk/cone_10deg_rotated",
-                     MakeDisk(10, FrameOf(Transform::Rotate({1, 0, 0}, 45))),
-                     "thetaA = 10, toWorld = rotate x 45 (sphere_side)"));
-  r->Add(DiskSubject("distantdisk/cone_90deg",
-                     MakeDisk(90, FrameOf(Transform::Rotate({0, 1, 0}, 90))),
-                     "thetaA = 90 around +x"));
-  r->Add(DiskSubject("distantdisk/full_sphere", MakeDisk(180, identity), "thetaA = 180"));
+  // Each disk twice: "distantdisk/<what>" drawn by SampleDistantDisk and
+  // "simd/distant_disk_<what>" drawn by simd::SampleDistantDiskBatch, against the same pdf.
+  const auto add_disk = [r](const std::string& what,
+                            const std::shared_ptr<const DistantDiskTable>& table,
+                            const std::string& params) {
+    const Chi2Subject scalar = DiskSubject("distantdisk/" + what, table, params);
+    r->Add(scalar);
+    r->Add(DrawnByColumnBatch(
+        scalar, "simd/distant_disk_" + what, simd::DistantDisk8TargetName(),
+        [table](size_t n, const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
+          simd::SampleDistantDiskBatch(*table, 0, n, in, out);
+        }));
+  };
+  add_disk("cone_10deg_rotated", MakeDisk(10, FrameOf(Transform::Rotate({1, 0, 0}, 45))),
+           "thetaA = 10, toWorld = rotate x 45 (sphere_side)");
+  add_disk("cone_90deg", MakeDisk(90, FrameOf(Transform::Rotate({0, 1, 0}, 90))),
+           "thetaA = 90 around +x");
+  add_disk("full_sphere", MakeDisk(180, identity), "thetaA = 180");
 
   {
     const std::vector<float> w = RandomWeights(12, 0, 0);

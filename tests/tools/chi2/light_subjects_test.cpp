@@ -52,6 +52,13 @@ TEST(StatLightChi2Registry, HoldsTheSyntheticAndRealMaps) {
   EXPECT_EQ(Registry().Find("simd/env_importance_venice_32x16") != nullptr,
             std::filesystem::exists(VenicePath()));
   EXPECT_NE(Registry().Find("broken/simd_env_pdf_half_pixel_shift"), nullptr);
+  // Every distant disk also drawn by the SIMD batch.
+  for (const char* name : {"simd/distant_disk_cone_10deg_rotated", "simd/distant_disk_cone_90deg",
+                           "simd/distant_disk_full_sphere"}) {
+    const Chi2Subject* s = Registry().Find(name);
+    ASSERT_NE(s, nullptr) << name;
+    EXPECT_TRUE(bool(s->sample_batch)) << name;
+  }
   for (const Chi2Subject& s : Registry().subjects())
     EXPECT_EQ(s.name.rfind("broken/", 0) == 0, s.expect == Chi2Expect::kFail) << s.name;
 }
