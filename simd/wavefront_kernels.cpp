@@ -1,7 +1,9 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
-// simd/splat8, simd/emitter8, simd/environment8, simd/interaction8.
+// simd/splat8, simd/emitter8, simd/environment8, simd/distant_disk8,
+// simd/interaction8.
 #include "simd/wavefront_kernels.h"
 
+#include "simd/distant_disk8.h"
 #include "simd/emitter8.h"
 #include "simd/environment8.h"
 #include "simd/interaction8.h"
@@ -34,6 +36,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
           .environment = SampleEnvironmentBatch,
+          .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
           .name = Traverse8TargetName()};
 }

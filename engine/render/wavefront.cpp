@@ -153,6 +153,7 @@ class alignas(kColumnAlignment) Wavefront {
     rules_ = RulesFor(ctx.scene.integrator);
     sobol_ = ctx.scene.sampler.type == SamplerType::kSobol;
     environment_.resize(ctx.scene.environment_maps.size());
+    distant_disk_.resize(ctx.scene.distant_disks.size());
     for (int y = y0; y < y1; y += kWaveRows) {
       const int wy1 = std::min(y1, y + kWaveRows);
       Generate(camera, x0, y, x1, wy1, s_begin, s_end, seed, pixels);
@@ -172,8 +173,9 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, requests_, occluded_, nee_paths_);
     bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
-    bytes += VectorsBytes(environment_);
-    for (const EnvironmentColumns& e : environment_) bytes += e.Bytes();
+    bytes += VectorsBytes(environment_, distant_disk_);
+    for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
+    for (const InfiniteLightColumns& e : distant_disk_) bytes += e.Bytes();
     bytes += ShadeScratchBytes(shade_scratch_);
     return bytes;
   }
@@ -330,7 +332,8 @@ class alignas(kColumnAlignment) Wavefront {
     bsdf_.Clear();
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
     area_.Clear(emitter_rows);
-    for (EnvironmentColumns& e : environment_) e.Clear(emitter_rows);
+    for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
+    for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_->emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
@@ -349,8 +352,8 @@ class alignas(kColumnAlignment) Wavefront {
             requests_.push_back({});
             continue;
           }
-          // PrepareEmitterSample's numbers and pick; area-light and environment-map picks go to
-          // the emitter stage's batches, the others are prepared here.
+          // PrepareEmitterSample's numbers and pick; area-light, environment-map and distant-disk
+          // picks go to the emitter stage's batches, the delta lights are prepared here.
           EmitterNumbers numbers;
           if (sobol_) {
             numbers.point = light_point_[size_t(s) * m + k], numbers.folded = true;
@@ -360,19 +363,26 @@ class alignas(kColumnAlignment) Wavefront {
           float pick_pmf = 0.0f;
           const EmitterRef emitter = PickEmitter(*scene_, &numbers, &pick_pmf);
           const Vec2f& u = numbers.point;
-          if (!(pick_pmf > 0)) {
-            requests_.push_back({});
-          } else if (emitter.tag() == EmitterTag::kArea) {
-            area_.Push(uint32_t(requests_.size()), uint32_t(q), emitter.index(), pick_pmf, its.p,
-                       u);
-            requests_.push_back({});
-          } else if (emitter.tag() == EmitterTag::kEnvironment) {
-            environment_[emitter.index()].Push(uint32_t(requests_.size()), uint32_t(q), pick_pmf,
-                                               u);
-            requests_.push_back({});
-          } else {
-            requests_.push_back(
-                PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis, emitter, pick_pmf, u));
+          const uint32_t request = uint32_t(requests_.size());
+          requests_.push_back({});
+          if (!(pick_pmf > 0)) continue;
+          switch (emitter.tag()) {
+            case EmitterTag::kArea:
+              area_.Push(request, uint32_t(q), emitter.index(), pick_pmf, its.p, u);
+              break;
+            case EmitterTag::kEnvironment:
+              environment_[emitter.index()].Push(request, uint32_t(q), pick_pmf, u);
+              break;
+            case EmitterTag::kDistantDisk:
+              distant_disk_[emitter.index()].Push(request, uint32_t(q), pick_pmf, u);
+              break;
+            // Delta lights: one position or direction each, nothing to batch.
+            case EmitterTag::kPoint:
+            case EmitterTag::kDirectional:
+            case EmitterTag::kSpot:
+              requests_[request] =
+                  PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis, emitter, pick_pmf, u);
+              break;
           }
         }
         nee_paths_.push_back(i);
@@ -404,7 +414,7 @@ class alignas(kColumnAlignment) Wavefront {
       bsdf_.Push(i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
     }
     SampleAreaLights();
-    SampleEnvironmentMaps();
+    SampleInfiniteLights();
     for (size_t r = 0; r < requests_.size(); ++r)
       if (requests_[r].traced) shadows_.Push(requests_[r].shadow, uint32_t(r));
     SampleBsdfs();
@@ -435,18 +445,13 @@ class alignas(kColumnAlignment) Wavefront {
     }
   }
 
-  // The emitter stage's environment maps: the kernel table's environment slot over each map's
-  // picks, then each returned sample's request as PrepareEmitterSample finishes it (a row
-  // without a sample, pdf 0, keeps its empty request).
-  void SampleEnvironmentMaps() {
-    for (uint32_t map = 0; map < environment_.size(); ++map) {
-      EnvironmentColumns& e = environment_[map];
-      const size_t n = e.size();
-      if (n == 0) continue;
-      const EnvironmentBatchOutputs out{e.wi_x.data(), e.wi_y.data(), e.wi_z.data(), e.r.data(),
-                                        e.g.data(),    e.b.data(),    e.pdf.data()};
-      kernels_->environment(scene_->environment_maps, map, n, {e.u_x.data(), e.u_y.data()}, out);
-      for (size_t c = 0; c < n; ++c) {
+  // The emitter stage's infinite lights: the kernel table's environment slot over each map's
+  // picks and its distant_disk slot over each disk's, then each returned sample's request as
+  // PrepareEmitterSample finishes it.
+  void SampleInfiniteLights() {
+    // A row without a sample (pdf 0: a black light) keeps its empty request.
+    const auto finish = [this](const InfiniteLightColumns& e) {
+      for (size_t c = 0; c < e.size(); ++c) {
         if (!(e.pdf[c] > 0)) continue;
         const EnvironmentSample es{
             {e.wi_x[c], e.wi_y[c], e.wi_z[c]}, {e.r[c], e.g[c], e.b[c]}, e.pdf[c]};
@@ -454,6 +459,18 @@ class alignas(kColumnAlignment) Wavefront {
         requests_[e.request[c]] =
             InfiniteEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis, es, e.pick_pmf[c]);
       }
+    };
+    for (uint32_t map = 0; map < environment_.size(); ++map) {
+      InfiniteLightColumns& e = environment_[map];
+      if (e.size() == 0) continue;
+      kernels_->environment(scene_->environment_maps, map, e.size(), e.Inputs(), e.Outputs());
+      finish(e);
+    }
+    for (uint32_t disk = 0; disk < distant_disk_.size(); ++disk) {
+      InfiniteLightColumns& e = distant_disk_[disk];
+      if (e.size() == 0) continue;
+      kernels_->distant_disk(scene_->distant_disks, disk, e.size(), e.Inputs(), e.Outputs());
+      finish(e);
     }
   }
 
@@ -677,10 +694,11 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
-  /// The emitter stage's SoA columns of one environment map, one row per emitter sample that
-  /// picked it (in request order): its request, queue entry, pick probability and numbers
-  /// (inputs); the sample (outputs, written by the environment slot).
-  struct EnvironmentColumns {
+  /// The emitter stage's SoA columns of one infinite light (an environment map or a distant
+  /// disk), one row per emitter sample that picked it (in request order): its request, queue
+  /// entry, pick probability and numbers (inputs); the sample (outputs, written by the
+  /// environment or distant_disk slot).
+  struct InfiniteLightColumns {
     std::vector<uint32_t> request, entry;
     std::vector<float> pick_pmf;
     AlignedVector<float> u_x, u_y, wi_x, wi_y, wi_z, r, g, b, pdf;
@@ -699,6 +717,10 @@ class alignas(kColumnAlignment) Wavefront {
     void Push(uint32_t req, uint32_t queue_entry, float pmf, const Vec2f& u) {
       const size_t c = rows++;
       request[c] = req, entry[c] = queue_entry, pick_pmf[c] = pmf, u_x[c] = u.x, u_y[c] = u.y;
+    }
+    EnvironmentBatchInputs Inputs() const { return {u_x.data(), u_y.data()}; }
+    EnvironmentBatchOutputs Outputs() {
+      return {wi_x.data(), wi_y.data(), wi_z.data(), r.data(), g.data(), b.data(), pdf.data()};
     }
   };
 
@@ -772,7 +794,8 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<uint32_t> nee_paths_;
   BsdfColumns bsdf_;
   EmitterColumns area_;
-  std::vector<EnvironmentColumns> environment_;  // one per environment map of the scene
+  std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
+  std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
   ShadeScratch shade_scratch_;
   SplatColumns splat_;
 };
@@ -814,6 +837,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
           .environment = SampleEnvironmentBatch,
+          .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
           .name = "scalar-oracle"};
 }

@@ -10,6 +10,7 @@
 #include "engine/bvh/bvh.h"
 #include "engine/core/packet8.h"
 #include "engine/light/area_light.h"
+#include "engine/light/distant_disk_batch.h"
 #include "engine/light/environment_batch.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
@@ -87,6 +88,15 @@ struct WavefrontKernels {
                       const EnvironmentBatchInputs& in,
                       const EnvironmentBatchOutputs& out) = nullptr;
 
+  // Emitter stage, distant disks: as the environment slot, one call per disk picked (rows: the
+  // wave's samples of disk `disk`, same columns), each returned sample finished with
+  // integrator::InfiniteEmitterSampleRequest. Oracle: ptlab::SampleDistantDiskBatch
+  // (SampleDistantDisk per row); SIMD: simd::SampleDistantDiskBatch, radiance and pdf
+  // bit-identical, wi within 1e-6 (simd/distant_disk8.h).
+  void (*distant_disk)(const DistantDiskTable& table, uint32_t disk, size_t n,
+                       const EnvironmentBatchInputs& in,
+                       const EnvironmentBatchOutputs& out) = nullptr;
+
   // Interaction stage: a wave's hit records -> shading points (p, ng, shading normal) as SoA
   // columns, row = queue entry, written for the hit lanes of each packet only; the wavefront
   // builds each SurfaceInteraction from its row with InteractionAt (frame, material, emitter).
@@ -96,10 +106,12 @@ struct WavefrontKernels {
                       const Mask8* hit_mask, size_t packets,
                       const InteractionColumns& out) = nullptr;
 
-  // Planned slot (issue 11, the SIMD shading stage), a batch over a wave's SoA columns with its
-  // scalar twin in this table's oracle:
-  //   emitter:     the other emitters' samples (distant disk, point) and the MIS weights and
-  //                shadow rays' setup.
+  // Not in the table, row by row in the wavefront (PrepareEmitterSampleFrom): the delta lights
+  // (point, and the CS184 directional and spot lights, engine/light/delta_light.h). Their
+  // "sample" draws no numbers: the light's one position or direction and a falloff, a handful
+  // of operations per row, less than a batch's gather into columns and scatter back would cost.
+  // Also scalar in every table: the emitter requests' finish (BSDF evaluation, MIS weight,
+  // shadow-ray setup; integrator::AreaEmitterSampleRequest / InfiniteEmitterSampleRequest).
 
   /// For logs: "scalar-oracle" or the Highway target the SIMD kernels dispatch to.
   const char* name = "";
@@ -142,10 +154,11 @@ class WavefrontWorkspace {
 /// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
 /// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
 /// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
-/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF and environment kernels
-/// differ from their oracles by a few ulp (simd/shade8.h, simd/environment8.h), so the image agrees with the oracle's within the render
-/// contract of tests/simd/traverse8_test.cpp (relMSE, block means) but not bit for bit. Every
-/// integrator type is supported. The paths run in `workspace` (one per thread, reused from
+/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF, environment and
+/// distant-disk kernels differ from their oracles by a few ulp (simd/shade8.h,
+/// simd/environment8.h, simd/distant_disk8.h), so the image agrees with the oracle's within the
+/// render contract of tests/simd/traverse8_test.cpp (relMSE, block means) but not bit for bit.
+/// Every integrator type is supported. The paths run in `workspace` (one per thread, reused from
 /// tile to tile; null: a workspace for this tile alone).
 void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
                        const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,

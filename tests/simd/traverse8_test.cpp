@@ -841,6 +841,13 @@ TEST(Traverse8Render, PacketPathMatchesOracleOnDielectricAndEnvironmentMap) {
   ExpectPacketRenderMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/demo.xml", 64);
 }
 
+// A distant disk (ETH pa3 sphere_side: a 10-degree cone, rotated) as the only emitter: every
+// emitter sample goes through the distant_disk slot, under each integrator the helper runs.
+TEST(Traverse8Render, PacketPathMatchesOracleOnDistantDisk) {
+  ExpectPacketRenderMatchesOracle(
+      kSharedData + "nori/eth2015/scenes/pa3/sphere/sphere_side_mis.xml", 64);
+}
+
 // Analytic spheres (CS184's CGL spheres: a mirror and a glass sphere, rays leaving them from
 // inside and outside) through the oracle's and the SIMD sphere kernels.
 TEST(Traverse8Render, PacketPathMatchesOracleOnCs184Spheres) {
