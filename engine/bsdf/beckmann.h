@@ -28,8 +28,6 @@ namespace ptlab {
 
 inline constexpr float kBeckmannMinAlpha = 1e-4f;
 inline constexpr float kBeckmannMaxAlpha = 1e2f;
-/// 1 − 2⁻²⁴, the largest float below 1; sample coordinates are clamped into [0, this].
-inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 inline float ClampBeckmannAlpha(float alpha) {
   return !(alpha > kBeckmannMinAlpha) ? kBeckmannMinAlpha

@@ -72,6 +72,8 @@ inline bool IsFinite(const Color3f& c) {
 constexpr float Luminance(const Color3f& c) { return 0.212671f * c.r + 0.715160f * c.g + 0.072169f * c.b; }
 
 inline constexpr float kPi = 3.14159265358979323846f;
+/// 1 − 2⁻²⁴, the largest float below 1; sample coordinates are clamped into [0, this].
+inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 inline constexpr float kInvPi = 0.31830988618379067154f;
 inline constexpr float kInv2Pi = 0.15915494309189533577f;
 inline constexpr float kInv4Pi = 0.07957747154594766788f;

@@ -73,12 +73,10 @@ AreaLightTrianglePick PickAreaLightTriangle(const Scene& scene, uint32_t light, 
   const uint32_t count = scene.meshes.triangle_count[mesh];
   const float* cdf = lights.triangle_cdf.data() + lights.cdf_offset[light];
   const uint32_t* guide = lights.triangle_guide.data() + lights.guide_offset[light];
-  const uint32_t k = std::min<uint32_t>(GuidedUpperBound(cdf, count, guide, u_x), count - 1);
-  // u_x within the triangle's CDF interval is uniform again: it goes on to the point, so that a
-  // stratified u stays stratified over the whole light.
-  const float lo = k > 0 ? cdf[k - 1] : 0.0f, width = cdf[k] - lo;
-  u_x = width > 0 ? std::min((u_x - lo) / width, 0x1.fffffep-1f) : 0.5f;
-  return {scene.meshes.first_triangle[mesh] + k, std::max(u_x, 0.0f)};
+  // u_x within the triangle's CDF interval goes on to the point, so that a stratified u stays
+  // stratified over the whole light.
+  const CdfPick pick = PickCdfBin(cdf, count, guide, u_x);
+  return {scene.meshes.first_triangle[mesh] + pick.bin, pick.u_remapped};
 }
 
 AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f& ref,

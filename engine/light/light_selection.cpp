@@ -114,27 +114,21 @@ void BuildEmitterSelection(Scene* scene) {
   BuildGuideTable(t.cdf.data(), uint32_t(n), t.guide.data());
 }
 
-// The largest float below 1: remapped numbers stay in [0, 1).
-constexpr float kBelowOne = 0x1.fffffep-1f;
-
 EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf, float* u_remapped) {
   const size_t n = scene.emitters.size();
   PTLAB_DCHECK(n > 0);
   if (scene.integrator.light_selection == LightSelection::kUniform) {
     const size_t k = std::min(n - 1, size_t(u * float(n)));
     *pmf = 1.0f / float(n);
-    if (u_remapped) *u_remapped = std::min(u * float(n) - float(k), kBelowOne);
+    if (u_remapped) *u_remapped = std::min(u * float(n) - float(k), kOneMinusEpsilon);
     return scene.emitters[k];
   }
   const EmitterSelectionTable& t = scene.emitter_selection;
   PTLAB_CHECK(t.size() == n);  // BuildEmitterSelection ran after the last emitter was added
-  const uint32_t k = std::min<uint32_t>(
-      GuidedUpperBound(t.cdf.data(), uint32_t(n), t.guide.data(), u), uint32_t(n - 1));
+  const CdfPick pick = PickCdfBin(t.cdf.data(), uint32_t(n), t.guide.data(), u);
+  const uint32_t k = pick.bin;
   *pmf = t.pmf[k];
-  if (u_remapped) {
-    const float lo = k > 0 ? t.cdf[k - 1] : 0.0f, width = t.cdf[k] - lo;
-    *u_remapped = width > 0 ? std::clamp((u - lo) / width, 0.0f, kBelowOne) : 0.0f;
-  }
+  if (u_remapped) *u_remapped = pick.u_remapped;
   return scene.emitters[k];
 }
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "engine/core/vec.h"
+
 namespace ptlab {
 
 /// Fills guide[0..n] for the non-decreasing cdf[0..n): guide[b] = the first index whose cdf
@@ -28,6 +30,21 @@ inline uint32_t GuidedUpperBound(const float* cdf, uint32_t n, const uint32_t* g
   const bool exact = (k == 0 || !(cdf[k - 1] > u)) && (k == n || cdf[k] > u);
   if (!exact) k = uint32_t(std::upper_bound(cdf, cdf + n, u) - cdf);
   return k;
+}
+
+/// A bin picked by u from a CDF of n > 0 entries, and u stretched back to [0, 1) over the bin's
+/// interval: a number independent of the pick, so a stratified u stays stratified within each
+/// bin when it goes on to the next decision (0.5 for a bin of zero width, which u never picks).
+struct CdfPick {
+  uint32_t bin = 0;
+  float u_remapped = 0.5f;
+};
+
+inline CdfPick PickCdfBin(const float* cdf, uint32_t n, const uint32_t* guide, float u) {
+  const uint32_t k = std::min<uint32_t>(GuidedUpperBound(cdf, n, guide, u), n - 1);
+  const float lo = k > 0 ? cdf[k - 1] : 0.0f, width = cdf[k] - lo;
+  const float v = width > 0 ? std::min((u - lo) / width, kOneMinusEpsilon) : 0.5f;
+  return {k, std::max(v, 0.0f)};
 }
 
 }  // namespace ptlab
