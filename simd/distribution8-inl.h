@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "engine/core/vec.h"
 #include "hwy/highway.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -36,7 +37,7 @@ template <class D, class V = hn::Vec<D>, class VI = hn::Vec<hn::RebindToSigned<D
 HWY_INLINE void SamplePiecewiseConstant8(D d, const float* cdf, VI row, int n, V u, V* x, VI* bin,
                                          V* pdf) {
   const hn::RebindToSigned<D> di;
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), below_one = hn::Set(d, 0x1.fffffep-1f);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), below_one = hn::Set(d, kOneMinusEpsilon);
   const VI one_i = hn::Set(di, 1);
   // u clamped to [0, 1): also maps NaN to 0.
   u = hn::IfThenElse(hn::Ge(u, zero), hn::Min(u, below_one), zero);

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "engine/core/vec.h"
 #include "engine/light/area_light.h"
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
@@ -86,7 +87,7 @@ HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightBatchInputs& i
       hn::RebindMask(d, hn::Gt(k, zero_i)),
       hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Max(hn::Sub(k, one_i), zero_i))));
   const auto width = hn::Sub(hn::GatherIndex(d, cdf, hn::Add(cdf_at, k)), c_lo);
-  const auto rescaled = hn::Min(hn::Div(hn::Sub(u, c_lo), width), hn::Set(d, 0x1.fffffep-1f));
+  const auto rescaled = hn::Min(hn::Div(hn::Sub(u, c_lo), width), hn::Set(d, kOneMinusEpsilon));
   const auto u_x = hn::Max(hn::IfThenElse(hn::Gt(width, zero), rescaled, hn::Set(d, 0.5f)), zero);
   const auto first = hn::GatherIndex(di, as_i(scene.meshes.first_triangle.data()), mesh);
   const auto tri = hn::IfThenElseZero(valid_i, hn::Add(first, k));

@@ -55,7 +55,7 @@ inline float PiecewiseConstantBinPdf(const float* cdf, int n, int bin) {
 inline bool SamplePiecewiseConstant1D(const float* cdf, int n, float u, float* x, int* bin,
                                       float* pdf) {
   if (!PiecewiseConstantNonEmpty(cdf, n)) return false;
-  u = u >= 0.0f ? std::min(u, 0x1.fffffep-1f) : 0.0f;  // also maps NaN to 0
+  u = u >= 0.0f ? std::min(u, kOneMinusEpsilon) : 0.0f;  // also maps NaN to 0
   // The last i with cdf[i] <= u: skips bins of zero width, and is < n because u < 1 = cdf[n].
   const int i = int(std::upper_bound(cdf, cdf + n + 1, u) - cdf) - 1;
   const float lo = cdf[i], width = cdf[i + 1] - lo;
@@ -64,7 +64,7 @@ inline bool SamplePiecewiseConstant1D(const float* cdf, int n, float u, float* x
   // Rounding may push v onto a neighbouring bin; step back inside so Pdf(v) agrees.
   while (v > 0.0f && PiecewiseConstantBin(v, n) > i) v = std::nextafter(v, 0.0f);
   while (PiecewiseConstantBin(v, n) < i) v = std::nextafter(v, 1.0f);
-  if (v >= 1.0f) v = 0x1.fffffep-1f;
+  if (v >= 1.0f) v = kOneMinusEpsilon;
   *x = v;
   *bin = i;
   *pdf = PiecewiseConstantBinPdf(cdf, n, i);
