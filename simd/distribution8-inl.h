@@ -29,27 +29,41 @@ HWY_INLINE hn::Vec<hn::RebindToSigned<D>> PiecewiseConstantBin8(D d, V x, float 
 }
 
 /// SamplePiecewiseConstant1D over the CDF rows at cdf + row (per lane; row = 0 for a single
-/// CDF) of n bins, which must be non-empty: *x, *bin and *pdf per lane, the scalar code's
-/// float operations in its order (bit-identical to it). std::upper_bound becomes a branchless
-/// search of ⌈log2(n + 1)⌉ gathers (the last entry <= u, as upper_bound - 1 finds it in a
-/// non-decreasing CDF), and the rounding repair of x a masked loop that rarely runs.
+/// CDF) of n bins, which must be non-empty, with their guide tables at guide + row
+/// (BuildPiecewiseConstantGuide; null: none): *x, *bin and *pdf per lane, the scalar code's float
+/// operations in its order (bit-identical to it). The bin is searched between the guide's
+/// entries one bucket either side of u's (which absorbs the rounding of u·n and of the guide's
+/// edges), by a branchless bisection that runs while some lane's interval holds more than one
+/// candidate: usually no step or one, where a search of the whole CDF takes ⌈log2(n + 1)⌉
+/// dependent gathers. The rounding repair of x is a masked loop that rarely runs.
 template <class D, class V = hn::Vec<D>, class VI = hn::Vec<hn::RebindToSigned<D>>>
-HWY_INLINE void SamplePiecewiseConstant8(D d, const float* cdf, VI row, int n, V u, V* x, VI* bin,
-                                         V* pdf) {
+HWY_INLINE void SamplePiecewiseConstant8(D d, const float* cdf, const uint32_t* guide, VI row,
+                                         int n, V u, V* x, VI* bin, V* pdf) {
   const hn::RebindToSigned<D> di;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), below_one = hn::Set(d, kOneMinusEpsilon);
-  const VI one_i = hn::Set(di, 1);
+  const VI one_i = hn::Set(di, 1), last = hn::Set(di, n - 1);
+  const int32_t* guide_i = reinterpret_cast<const int32_t*>(guide);
   // u clamped to [0, 1): also maps NaN to 0.
   u = hn::IfThenElse(hn::Ge(u, zero), hn::Min(u, below_one), zero);
-  // The search keeps cdf[row + i] <= u (true for i = 0: cdf[0] = 0) with the answer in
-  // [i, i + len); probing i + half moves i up or leaves the answer below i + half.
-  VI i = hn::Zero(di);
-  for (int len = n + 1; len > 1;) {
-    const int half = len / 2;
-    const VI probe = hn::Add(i, hn::Set(di, half));
+  // The answer (the last i with cdf[row + i] <= u) lies in [i, i + len): with a guide,
+  // guide[b - 1] is the bin of a number <= u and guide[b + 2] (clamped: bins end at n - 1) that
+  // of one >= u; without one, the whole CDF (cdf[0] = 0 <= u).
+  VI i = hn::Zero(di), len = hn::Set(di, n + 1);
+  if (guide != nullptr) {
+    const VI b = PiecewiseConstantBin8(d, u, float(n));
+    const VI below = hn::Add(row, hn::Max(hn::Sub(b, one_i), hn::Zero(di)));
+    const VI above = hn::Add(row, hn::Min(hn::Add(b, hn::Set(di, 2)), hn::Set(di, n)));
+    i = hn::Min(hn::GatherIndex(di, guide_i, below), last);
+    len = hn::Add(hn::Sub(hn::Min(hn::GatherIndex(di, guide_i, above), last), i), one_i);
+  }
+  while (!hn::AllTrue(di, hn::Eq(len, one_i))) {
+    // Probing i + half moves i up or leaves the answer below i + half; lanes with len = 1 probe
+    // i itself and stay.
+    const VI half = hn::ShiftRight<1>(len);
+    const VI probe = hn::Add(i, half);
     const V c = hn::GatherIndex(d, cdf, hn::Add(row, probe));
     i = hn::IfThenElse(hn::RebindMask(di, hn::Le(c, u)), probe, i);
-    len -= half;
+    len = hn::Sub(len, half);
   }
   const V lo = hn::GatherIndex(d, cdf, hn::Add(row, i));
   const V hi = hn::GatherIndex(d, cdf, hn::Add(row, hn::Add(i, one_i)));

@@ -81,11 +81,11 @@ HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, u
       // conditional with u.x; the cell's density (Distribution2DCellPdf).
       hn::Vec<decltype(d)> y, pdf_y, x, pdf_x;
       hn::Vec<decltype(di)> row, column;
-      SamplePiecewiseConstant8(d, dist.marginal_cdf, hn::Zero(di), dist.nv,
+      SamplePiecewiseConstant8(d, dist.marginal_cdf, dist.marginal_guide, hn::Zero(di), dist.nv,
                                hn::LoadU(d, in.u_y + i), &y, &row, &pdf_y);
       const auto row_at = hn::Mul(row, stride);
-      SamplePiecewiseConstant8(d, dist.conditional_cdf, row_at, dist.nu, hn::LoadU(d, in.u_x + i),
-                               &x, &column, &pdf_x);
+      SamplePiecewiseConstant8(d, dist.conditional_cdf, dist.conditional_guide, row_at, dist.nu,
+                               hn::LoadU(d, in.u_x + i), &x, &column, &pdf_x);
       const auto pdf_uv = hn::Mul(pdf_y, pdf_x);
       // A row without mass gives no sample (it is never picked: the marginal skips it).
       const auto valid = hn::Gt(

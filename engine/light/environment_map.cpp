@@ -60,8 +60,8 @@ Status CheckPixels(const Image& image, float scale, const std::string& name) {
   if (overflow > 0)
     return Status::Error(name + ": environment map pixel (" + std::to_string(over_x) + ", " +
                          std::to_string(over_y) + ") times scale " + FormatValue(scale) +
-                         " exceeds the largest radiance ptlab accepts, " + FormatValue(kMaxRadiance) +
-                         " (" + std::to_string(overflow) +
+                         " exceeds the largest radiance ptlab accepts, " +
+                         FormatValue(kMaxRadiance) + " (" + std::to_string(overflow) +
                          " pixels); expected smaller values or a smaller scale");
   return Status::Ok();
 }
@@ -180,13 +180,24 @@ StatusOr<uint32_t> AddEnvironmentMap(const Image& image, const EnvironmentMapDes
     t.conditional_cdf.resize(c + size_t(h) * (size_t(w) + 1));
     BuildDistribution2D(weights.data(), w, h, t.marginal_cdf.data() + m,
                         t.conditional_cdf.data() + c);
+    t.marginal_guide.resize(t.marginal_cdf.size());
+    t.conditional_guide.resize(t.conditional_cdf.size());
+    BuildDistribution2DGuides(EnvironmentDistribution(t, row), t.marginal_guide.data() + m,
+                              t.conditional_guide.data() + c);
   }
   return row;
 }
 
 Distribution2DView EnvironmentDistribution(const EnvironmentMapTable& t, uint32_t row) {
-  return {t.marginal_cdf.data() + t.marginal_offset[row],
-          t.conditional_cdf.data() + t.conditional_offset[row], t.width[row], t.height[row]};
+  Distribution2DView view{t.marginal_cdf.data() + t.marginal_offset[row],
+                          t.conditional_cdf.data() + t.conditional_offset[row], t.width[row],
+                          t.height[row]};
+  if (t.marginal_guide.size() == t.marginal_cdf.size() &&
+      t.conditional_guide.size() == t.conditional_cdf.size() && !t.marginal_guide.empty()) {
+    view.marginal_guide = t.marginal_guide.data() + t.marginal_offset[row];
+    view.conditional_guide = t.conditional_guide.data() + t.conditional_offset[row];
+  }
+  return view;
 }
 
 Color3f EnvironmentRadiance(const EnvironmentMapTable& t, uint32_t row, const Vec3f& w_world) {

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "engine/core/aligned.h"
 #include "engine/core/vec.h"
+#include "engine/sampling/guide_table.h"
 
 namespace ptlab {
 
@@ -49,15 +51,27 @@ inline float PiecewiseConstantBinPdf(const float* cdf, int n, int bin) {
   return float(n) * (cdf[bin + 1] - cdf[bin]);
 }
 
+/// Fills guide[0..n] (n + 1 entries) for the CDF cdf[0..n] of n bins: guide[b] is the bin that
+/// u = b / n falls in, so the bin of any u in [b / n, (b + 1) / n) lies between guide[b] and
+/// guide[b + 1] (float rounding at the edges aside: readers check or widen by one bucket).
+inline void BuildPiecewiseConstantGuide(const float* cdf, int n, uint32_t* guide) {
+  // cdf[0] = 0 <= u always, so the last i with cdf[i] <= u is the first index of cdf + 1 whose
+  // entry exceeds u: BuildGuideTable over cdf[1..n].
+  BuildGuideTable(cdf + 1, uint32_t(n), guide);
+}
+
 /// Inverts the CDF at u ∈ [0,1): *x ∈ [0,1) lies in bin *bin (PiecewiseConstantBin(*x) == *bin,
 /// guaranteed despite rounding), linearly placed within it; *pdf is the bin's density (> 0).
-/// Returns false, touching nothing, when the distribution is empty.
+/// With the CDF's guide (BuildPiecewiseConstantGuide) the bin is found in the guide's bucket
+/// of u; the result is the same bin either way. Returns false, touching nothing, when the
+/// distribution is empty.
 inline bool SamplePiecewiseConstant1D(const float* cdf, int n, float u, float* x, int* bin,
-                                      float* pdf) {
+                                      float* pdf, const uint32_t* guide = nullptr) {
   if (!PiecewiseConstantNonEmpty(cdf, n)) return false;
   u = u >= 0.0f ? std::min(u, kOneMinusEpsilon) : 0.0f;  // also maps NaN to 0
   // The last i with cdf[i] <= u: skips bins of zero width, and is < n because u < 1 = cdf[n].
-  const int i = int(std::upper_bound(cdf, cdf + n + 1, u) - cdf) - 1;
+  const int i = guide ? int(GuidedUpperBound(cdf + 1, uint32_t(n), guide, u))
+                      : int(std::upper_bound(cdf, cdf + n + 1, u) - cdf) - 1;
   const float lo = cdf[i], width = cdf[i + 1] - lo;
   float t = (u - lo) / width;
   float v = (float(i) + std::min(t, 1.0f)) / float(n);
@@ -105,8 +119,14 @@ struct Distribution2DView {
   const float* marginal_cdf = nullptr;     // nv + 1
   const float* conditional_cdf = nullptr;  // nv × (nu + 1)
   int nu = 0, nv = 0;
+  // Optional guide tables (BuildDistribution2DGuides), laid out as the CDFs; null: none.
+  const uint32_t* marginal_guide = nullptr;
+  const uint32_t* conditional_guide = nullptr;
 
   const float* Row(int j) const { return conditional_cdf + size_t(j) * size_t(nu + 1); }
+  const uint32_t* RowGuide(int j) const {
+    return conditional_guide ? conditional_guide + size_t(j) * size_t(nu + 1) : nullptr;
+  }
   bool NonEmpty() const { return PiecewiseConstantNonEmpty(marginal_cdf, nv); }
 };
 
@@ -122,6 +142,15 @@ double BuildDistribution2D(const T* weights, int nu, int nv, float* marginal_cdf
   return BuildPiecewiseConstantCdf(row_sums.data(), nv, marginal_cdf);
 }
 
+/// Fills the guide tables of d's CDFs: marginal_guide nv + 1 entries, conditional_guide
+/// nv × (nu + 1), laid out as the CDFs.
+inline void BuildDistribution2DGuides(const Distribution2DView& d, uint32_t* marginal_guide,
+                                      uint32_t* conditional_guide) {
+  BuildPiecewiseConstantGuide(d.marginal_cdf, d.nv, marginal_guide);
+  for (int j = 0; j < d.nv; ++j)
+    BuildPiecewiseConstantGuide(d.Row(j), d.nu, conditional_guide + size_t(j) * size_t(d.nu + 1));
+}
+
 /// Density of cell (i, j) w.r.t. area on the unit square.
 inline float Distribution2DCellPdf(const Distribution2DView& d, int i, int j) {
   return PiecewiseConstantBinPdf(d.marginal_cdf, d.nv, j) *
@@ -135,8 +164,9 @@ inline bool SampleDistribution2D(const Distribution2DView& d, const Vec2f& u, Ve
                                  int* column = nullptr, int* row = nullptr) {
   float y, x, pdf_y, pdf_x;
   int j, i;
-  if (!SamplePiecewiseConstant1D(d.marginal_cdf, d.nv, u.y, &y, &j, &pdf_y)) return false;
-  if (!SamplePiecewiseConstant1D(d.Row(j), d.nu, u.x, &x, &i, &pdf_x)) return false;
+  if (!SamplePiecewiseConstant1D(d.marginal_cdf, d.nv, u.y, &y, &j, &pdf_y, d.marginal_guide))
+    return false;
+  if (!SamplePiecewiseConstant1D(d.Row(j), d.nu, u.x, &x, &i, &pdf_x, d.RowGuide(j))) return false;
   *p = {x, y};
   *pdf = Distribution2DCellPdf(d, i, j);
   if (column) *column = i;

@@ -38,8 +38,10 @@ enum class EnvironmentSampling : uint8_t {
 /// (engine/light/environment_map.h), which documents the lat-long convention. Per-row columns
 /// index into pooled columns: pixels (premultiplied by `scale`, row-major, row 0 = up) at
 /// pixel_offset; the importance distribution (engine/sampling/distribution2d.h layout) at
-/// marginal_offset (height + 1 floats) and conditional_offset (height × (width + 1) floats).
-/// Uniform rows store no distribution. A scene without environment maps holds empty vectors.
+/// marginal_offset (height + 1 floats) and conditional_offset (height × (width + 1) floats),
+/// each CDF with its guide table beside it at the same offsets (engine/sampling/guide_table.h:
+/// n + 1 entries for a CDF of n bins). Uniform rows store no distribution. A scene without
+/// environment maps holds empty vectors.
 struct EnvironmentMapTable {
   std::vector<int32_t> width, height;
   std::vector<uint32_t> pixel_offset, marginal_offset, conditional_offset;
@@ -48,6 +50,7 @@ struct EnvironmentMapTable {
   std::vector<float> luminance_integral;   // ≈ ∫ luminance dω (sr); 0 = black: never sampled
   AlignedVector<float> r, g, b;            // pooled pixels
   AlignedVector<float> marginal_cdf, conditional_cdf;  // pooled importance CDFs
+  AlignedVector<uint32_t> marginal_guide, conditional_guide;  // their guide tables
 
   size_t size() const { return width.size(); }
 };
