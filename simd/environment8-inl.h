@@ -120,6 +120,92 @@ HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, u
   for (; i < n; ++i) SetEnvironmentRow(out, i, SampleEnvironmentRow(table, map, in, i));
 }
 
+/// atan2(y, x) from hwy's Atan on [0, 1] (the smaller magnitude over the larger), moved to
+/// its quadrant: atan2's signs (CopySign of y, so atan2(±0, x < 0) = ±π) and ±0 for (±0, +0).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V Atan2(D d, V y, V x) {
+  const V ax = hn::Abs(x), ay = hn::Abs(y), zero = hn::Zero(d);
+  const auto steep = hn::Gt(ay, ax);
+  const V big = hn::IfThenElse(steep, ay, ax), small = hn::IfThenElse(steep, ax, ay);
+  const V ratio = hn::IfThenZeroElse(hn::Eq(big, zero), hn::Div(small, big));
+  V a = hn::Atan(d, ratio);
+  a = hn::IfThenElse(steep, hn::Sub(hn::Set(d, 0.5f * kPi), a), a);
+  // x with its sign bit set (−0 included: atan2(0, −0) = π) reflects a about π/2.
+  const hn::RebindToSigned<D> di;
+  const auto x_negative = hn::RebindMask(d, hn::Lt(hn::BitCast(di, x), hn::Zero(di)));
+  a = hn::IfThenElse(x_negative, hn::Sub(hn::Set(d, kPi), a), a);
+  return hn::CopySign(a, y);
+}
+
+HWY_INLINE void EvalEnvironmentBatchKernel(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                                           const EnvironmentEvalInputs& in,
+                                           const EnvironmentEvalOutputs& out) {
+  const hn::CappedTag<float, 8> d;
+  const size_t lanes = hn::Lanes(d);
+  const int w = table.width[map], h = table.height[map];
+  const bool importance = table.sampling[map] == EnvironmentSampling::kImportance;
+  const Distribution2DView dist = EnvironmentDistribution(table, map);
+  size_t i = 0;
+  // The conditional CDFs are indexed by int32 gathers.
+  if (!importance || int64_t(h) * (int64_t(w) + 1) < (int64_t(1) << 31)) {
+    const hn::RebindToSigned<decltype(d)> di;
+    const uint32_t o = table.pixel_offset[map];
+    const float *pr = table.r.data() + o, *pg = table.g.data() + o, *pb = table.b.data() + o;
+    const Frame& f = table.to_world[map];
+    const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const auto uniform_pdf = hn::Set(d, table.luminance_integral[map] > 0 ? kInv4Pi : 0.0f);
+    for (; i + lanes <= n; i += lanes) {
+      const auto wx = hn::LoadU(d, in.w_x + i), wy = hn::LoadU(d, in.w_y + i),
+                 wz = hn::LoadU(d, in.w_z + i);
+      // Frame::ToLocal: the dot products with s, t, n.
+      const auto local = [&](const Vec3f& axis) {
+        return hn::Add(hn::Add(hn::Mul(wx, hn::Set(d, axis.x)), hn::Mul(wy, hn::Set(d, axis.y))),
+                       hn::Mul(wz, hn::Set(d, axis.z)));
+      };
+      const auto lx = local(f.s), ly = local(f.t), lz = local(f.n);
+      // EnvironmentDirectionToUv.
+      auto phi = Atan2(d, lx, hn::Neg(lz));
+      phi = hn::IfThenElse(hn::Lt(phi, zero), hn::Add(phi, hn::Set(d, 2 * kPi)), phi);
+      const auto r = hn::Sqrt(hn::Add(hn::Mul(lx, lx), hn::Mul(lz, lz)));
+      const auto theta = Atan2(d, r, ly);
+      const auto u = hn::Min(hn::Max(hn::Mul(phi, hn::Set(d, kInv2Pi)), zero), one);
+      const auto v = hn::Min(hn::Max(hn::Mul(theta, hn::Set(d, kInvPi)), zero), one);
+      hn::Vec<decltype(d)> cr, cg, cb;
+      EnvironmentLookup8(d, pr, pg, pb, w, h, u, v, &cr, &cg, &cb);
+      // A direction that is not finite sees black (Lookup's test of x and y).
+      const auto finite = hn::And(hn::IsFinite(u), hn::IsFinite(v));
+      hn::StoreU(hn::IfThenElseZero(finite, cr), d, out.r + i);
+      hn::StoreU(hn::IfThenElseZero(finite, cg), d, out.g + i);
+      hn::StoreU(hn::IfThenElseZero(finite, cb), d, out.b + i);
+      if (!out.pdf) continue;
+      if (!importance) {
+        hn::StoreU(uniform_pdf, d, out.pdf + i);
+        continue;
+      }
+      // EnvironmentPdf: the cell's density (Distribution2DPdf at (u, v)) over 2π² sinθ, with
+      // sinθ = r / |d|; 0 on the axis (r = 0).
+      const auto column = PiecewiseConstantBin8(d, u, float(w));
+      const auto row = PiecewiseConstantBin8(d, v, float(h));
+      const auto m0 = hn::GatherIndex(d, dist.marginal_cdf, row);
+      const auto m1 = hn::GatherIndex(d, dist.marginal_cdf, hn::Add(row, hn::Set(di, 1)));
+      const auto at = hn::Add(hn::Mul(row, hn::Set(di, w + 1)), column);
+      const auto c0 = hn::GatherIndex(d, dist.conditional_cdf, at);
+      const auto c1 = hn::GatherIndex(d, dist.conditional_cdf, hn::Add(at, hn::Set(di, 1)));
+      const auto pdf_uv = hn::Mul(hn::Mul(hn::Set(d, float(h)), hn::Sub(m1, m0)),
+                                  hn::Mul(hn::Set(d, float(w)), hn::Sub(c1, c0)));
+      const auto sin_theta = hn::Div(r, hn::Sqrt(hn::Add(hn::Mul(r, r), hn::Mul(ly, ly))));
+      const auto pdf = hn::Div(pdf_uv, hn::Mul(hn::Set(d, kEnvironmentTwoPiSquared), sin_theta));
+      hn::StoreU(hn::IfThenElseZero(hn::And(hn::Gt(r, zero), finite), pdf), d, out.pdf + i);
+    }
+  }
+  if (i < n) {
+    const EnvironmentEvalInputs tail{in.w_x + i, in.w_y + i, in.w_z + i};
+    const EnvironmentEvalOutputs rest{out.r + i, out.g + i, out.b + i,
+                                      out.pdf ? out.pdf + i : nullptr};
+    ptlab::EvalEnvironmentBatch(table, map, n - i, tail, rest);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
 HWY_AFTER_NAMESPACE();

@@ -17,6 +17,11 @@ void SampleEnvironmentBatchTarget(const EnvironmentMapTable& table, uint32_t map
                                   const EnvironmentBatchOutputs& out) {
   SampleEnvironmentBatchKernel(table, map, n, in, out);
 }
+void EvalEnvironmentBatchTarget(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                                const EnvironmentEvalInputs& in,
+                                const EnvironmentEvalOutputs& out) {
+  EvalEnvironmentBatchKernel(table, map, n, in, out);
+}
 const char* Environment8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -29,12 +34,19 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(SampleEnvironmentBatchTarget);
+HWY_EXPORT(EvalEnvironmentBatchTarget);
 HWY_EXPORT(Environment8TargetNameTarget);
 
 void SampleEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(SampleEnvironmentBatchTarget)(table, map, n, in, out);
+}
+
+void EvalEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                          const EnvironmentEvalInputs& in, const EnvironmentEvalOutputs& out) {
+  if (n == 0) return;
+  HWY_DYNAMIC_DISPATCH(EvalEnvironmentBatchTarget)(table, map, n, in, out);
 }
 
 const char* Environment8TargetName() {

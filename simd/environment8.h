@@ -1,4 +1,5 @@
-// Vectorized environment-map sampling: importance samples for a batch of rows (plain API).
+// Vectorized environment maps: importance samples, and radiance and pdf of escaping rays, for
+// a batch of rows (plain API).
 #pragma once
 
 #include <cstddef>
@@ -23,6 +24,19 @@ namespace ptlab::simd {
 /// tests/simd/environment8_test.cpp.
 void SampleEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out);
+
+/// EnvironmentRadiance and EnvironmentPdf (when out.pdf is set) of map `map` for n escaping
+/// rays, eight per step: the direction's (u, v) (two atan2 from hwy's Atan), the bilinear
+/// lookup and the cell's density over 2π² sinθ run as vectors; the rows after the last full
+/// vector take the oracle, ptlab::EvalEnvironmentBatch. Contract, on every target: (u, v) is a
+/// few ulp off the oracle's (libm's atan2), so the radiance, continuous in (u, v), is within
+/// 1e-3 of the largest pixel the lookup reads around it (relative), and the pdf is the
+/// oracle's bit for bit (the same float operations on the same local direction) except where
+/// u·width or v·height lies within 1e-3 of an integer, where it may be the neighbouring cell's;
+/// no NaN or Inf for finite unit directions. Seen on venice_sunset_1k: radiance 9.9e-5.
+/// tests/simd/environment8_test.cpp.
+void EvalEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                          const EnvironmentEvalInputs& in, const EnvironmentEvalOutputs& out);
 
 /// Name of the Highway target SampleEnvironmentBatch dispatches to now; for logs and tests.
 const char* Environment8TargetName();

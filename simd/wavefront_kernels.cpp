@@ -36,6 +36,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
           .environment = SampleEnvironmentBatch,
+          .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
           .name = Traverse8TargetName()};

@@ -1,4 +1,5 @@
-// Environment-map samples for a batch of rows: SampleEnvironment row by row.
+// Environment-map samples and evaluations for a batch of rows: SampleEnvironment,
+// EnvironmentRadiance and EnvironmentPdf row by row.
 #include "engine/light/environment_batch.h"
 
 #include "engine/light/environment_map.h"
@@ -15,6 +16,16 @@ EnvironmentSample SampleEnvironmentRow(const EnvironmentMapTable& table, uint32_
 void SampleEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
   for (size_t i = 0; i < n; ++i) SetEnvironmentRow(out, i, SampleEnvironmentRow(table, map, in, i));
+}
+
+void EvalEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                          const EnvironmentEvalInputs& in, const EnvironmentEvalOutputs& out) {
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3f w{in.w_x[i], in.w_y[i], in.w_z[i]};
+    const Color3f L = EnvironmentRadiance(table, map, w);
+    out.r[i] = L.r, out.g[i] = L.g, out.b[i] = L.b;
+    if (out.pdf) out.pdf[i] = EnvironmentPdf(table, map, w);
+  }
 }
 
 }  // namespace ptlab

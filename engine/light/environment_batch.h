@@ -28,6 +28,24 @@ struct EnvironmentBatchOutputs {
 void SampleEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out);
 
+/// A batch of escaping rays as columns: row i is the world direction (w_x[i], w_y[i], w_z[i])
+/// (unit, pointing away from the scene).
+struct EnvironmentEvalInputs {
+  const float *w_x = nullptr, *w_y = nullptr, *w_z = nullptr;
+};
+
+/// What an evaluation writes per row: EnvironmentRadiance (r, g, b) and, when pdf is not null,
+/// EnvironmentPdf (the density with which SampleEnvironment produces the direction, for MIS).
+struct EnvironmentEvalOutputs {
+  float *r = nullptr, *g = nullptr, *b = nullptr;
+  float* pdf = nullptr;
+};
+
+/// EnvironmentRadiance and EnvironmentPdf of map `map` for n escaping rays: the oracle of
+/// simd::EvalEnvironmentBatch, bit-identical to the two functions row by row.
+void EvalEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                          const EnvironmentEvalInputs& in, const EnvironmentEvalOutputs& out);
+
 /// Writes s into row i of `out`.
 inline void SetEnvironmentRow(const EnvironmentBatchOutputs& out, size_t i,
                               const EnvironmentSample& s) {

@@ -174,6 +174,7 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, requests_, occluded_, nee_paths_);
     bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
+    bytes += escaped_.Bytes();
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
     for (const InfiniteLightColumns& e : distant_disk_) bytes += e.Bytes();
     bytes += ShadeScratchBytes(shade_scratch_);
@@ -276,6 +277,8 @@ class alignas(kColumnAlignment) Wavefront {
   void Shade(int depth) {
     const size_t n = rays_.size();
     its_.resize(n), wo_.resize(n), goes_on_.assign(n, 0);
+    const bool batch_escaped = EscapedRaysBatch();
+    escaped_.Clear();
     points_.Resize(rays_.packets.size() * kPacketWidth);
     const InteractionColumns points = points_.View();
     kernels_->interaction(*scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(),
@@ -289,10 +292,12 @@ class alignas(kColumnAlignment) Wavefront {
         // non-specular bounce), MIS-weighted when mis is on.
         if (rules_.normals) continue;
         const Vec3f w = d / Length(d);
-        if (!rules_.nee || specular_[i]) {
-          L_[i] += throughput_[i] * Escaped(*scene_, w, false, 0.0f);
-        } else if (rules_.mis) {
-          L_[i] += throughput_[i] * Escaped(*scene_, w, true, prev_pdf_[i]);
+        const bool plain = !rules_.nee || specular_[i];
+        if (!plain && !rules_.mis) continue;
+        if (batch_escaped) {
+          escaped_.Push(uint32_t(q), w, !plain);
+        } else {
+          L_[i] += throughput_[i] * Escaped(*scene_, w, !plain, plain ? 0.0f : prev_pdf_[i]);
         }
         continue;
       }
@@ -318,6 +323,53 @@ class alignas(kColumnAlignment) Wavefront {
       its_[q] = its;
       wo_[q] = its.frame.ToLocal(wo_world);
       goes_on_[q] = 1;
+    }
+    if (batch_escaped) ShadeEscaped();
+  }
+
+  // Whether the escaped rays take the environment_eval batch: when every infinite emitter is
+  // an environment map, listed among the emitters in table order (so that summing the maps
+  // per row in that order is integrator::Escaped's sum, with and without MIS). Distant disks
+  // keep the per-row integrator::Escaped.
+  bool EscapedRaysBatch() const {
+    if (scene_->environment_maps.size() == 0 || scene_->distant_disks.size() != 0) return false;
+    uint32_t next = 0;
+    for (const EmitterRef e : scene_->emitters)
+      if (IsInfiniteLight(e) && (e.tag() != EmitterTag::kEnvironment || e.index() != next++))
+        return false;
+    return next == scene_->environment_maps.size();
+  }
+
+  // The escaped rays' environment light as one batch per map: radiance (and, for MIS, the
+  // emitter-sampling pdf) through the kernel table's environment_eval slot, summed per row over
+  // the maps in integrator::Escaped's order and operations.
+  void ShadeEscaped() {
+    EscapedColumns& e = escaped_;
+    const size_t m = e.q.size();
+    if (m == 0) return;
+    const bool any_mis = std::find(e.mis.begin(), e.mis.end(), uint8_t(1)) != e.mis.end();
+    e.light.assign(m, Color3f{});
+    e.r.resize(m), e.g.resize(m), e.b.resize(m), e.pdf.resize(m);
+    for (const EmitterRef emitter : scene_->emitters) {
+      if (!IsInfiniteLight(emitter)) continue;
+      kernels_->environment_eval(
+          scene_->environment_maps, emitter.index(), m, {e.w_x.data(), e.w_y.data(), e.w_z.data()},
+          {e.r.data(), e.g.data(), e.b.data(), any_mis ? e.pdf.data() : nullptr});
+      const float pmf = EmitterSelectionPmf(*scene_, emitter);
+      for (size_t row = 0; row < m; ++row) {
+        const Color3f Le{e.r[row], e.g[row], e.b[row]};
+        if (!e.mis[row]) {
+          e.light[row] += Le;
+        } else if (!IsBlack(Le)) {
+          const uint32_t i = rays_.owner[e.q[row]];
+          e.light[row] +=
+              Le * MisWeight(prev_pdf_[i], e.pdf[row] * pmf, scene_->integrator.power_heuristic);
+        }
+      }
+    }
+    for (size_t row = 0; row < m; ++row) {
+      const uint32_t i = rays_.owner[e.q[row]];
+      L_[i] += throughput_[i] * e.light[row];
     }
   }
 
@@ -790,6 +842,21 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<Vec3f> wo_;
   std::vector<uint8_t> goes_on_;
   std::vector<EmitterSampleRequest> requests_;
+  // A wave's escaped rays, when they go through the environment_eval batch (ShadeEscaped).
+  struct EscapedColumns {
+    std::vector<uint32_t> q;           // queue entry
+    std::vector<uint8_t> mis;          // 1: MIS-weighted against the previous BSDF sample
+    std::vector<float> w_x, w_y, w_z;  // unit direction (world)
+    std::vector<float> r, g, b, pdf;   // one map's radiance and emitter-sampling pdf
+    std::vector<Color3f> light;        // the maps' sum
+    void Clear() { q.clear(), mis.clear(), w_x.clear(), w_y.clear(), w_z.clear(); }
+    void Push(uint32_t entry, const Vec3f& w, bool weighted) {
+      q.push_back(entry), mis.push_back(uint8_t(weighted));
+      w_x.push_back(w.x), w_y.push_back(w.y), w_z.push_back(w.z);
+    }
+    size_t Bytes() const { return VectorsBytes(q, mis, w_x, w_y, w_z, r, g, b, pdf, light); }
+  };
+  EscapedColumns escaped_;
   std::vector<uint8_t> occluded_;
   std::vector<uint32_t> nee_paths_;
   BsdfColumns bsdf_;
@@ -837,6 +904,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
           .environment = SampleEnvironmentBatch,
+          .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
           .name = "scalar-oracle"};

@@ -88,6 +88,16 @@ struct WavefrontKernels {
                       const EnvironmentBatchInputs& in,
                       const EnvironmentBatchOutputs& out) = nullptr;
 
+  // Shading stage, escaped rays: EnvironmentRadiance and (out.pdf set) EnvironmentPdf of map
+  // `map` for a wave's escaping rays (world directions as SoA columns), one call per map; the
+  // wavefront sums the maps' light as integrator::Escaped does. Oracle:
+  // ptlab::EvalEnvironmentBatch (the two functions per row); SIMD: simd::EvalEnvironmentBatch,
+  // radiance within 1e-3 of the pixels it reads, pdf bit-identical away from cell edges
+  // (simd/environment8.h).
+  void (*environment_eval)(const EnvironmentMapTable& table, uint32_t map, size_t n,
+                           const EnvironmentEvalInputs& in,
+                           const EnvironmentEvalOutputs& out) = nullptr;
+
   // Emitter stage, distant disks: as the environment slot, one call per disk picked (rows: the
   // wave's samples of disk `disk`, same columns), each returned sample finished with
   // integrator::InfiniteEmitterSampleRequest. Oracle: ptlab::SampleDistantDiskBatch

@@ -20,6 +20,7 @@
 #include "engine/image/image_io.h"
 #include "engine/light/environment_batch.h"
 #include "engine/light/environment_map.h"
+#include "engine/sampling/warp.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/sample_columns.h"
@@ -129,6 +130,15 @@ Image RandomMap(int w, int h, bool black_lines, Pcg32& rng) {
   return image;
 }
 
+// A map frame turned 40° about (1, 2, 3): no axis of the map is a world axis.
+Frame RotatedFrame() {
+  const Transform rotate = Transform::Rotate(Normalize(Vec3f{1, 2, 3}), 40);
+  Frame f;
+  f.s = rotate.ApplyVector({1, 0, 0}), f.t = rotate.ApplyVector({0, 1, 0});
+  f.n = rotate.ApplyVector({0, 0, 1});
+  return f;
+}
+
 const std::string kEnvmaps = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/envmaps/";
 
 void ExpectMatchesOnFile(const std::string& file) {
@@ -147,10 +157,7 @@ TEST(Environment8, BatchMatchesOracleOnPedestrianOverpass) {
 
 TEST(Environment8, BatchMatchesOracleOnBlackRowsAndColumnsRotated) {
   Pcg32 rng(3, 5);
-  const Transform rotate = Transform::Rotate(Normalize(Vec3f{1, 2, 3}), 40);
-  Frame f;
-  f.s = rotate.ApplyVector({1, 0, 0}), f.t = rotate.ApplyVector({0, 1, 0});
-  f.n = rotate.ApplyVector({0, 0, 1});
+  const Frame f = RotatedFrame();
   ExpectBatchMatchesOracle(
       OneMap(RandomMap(37, 23, true, rng), EnvironmentSampling::kImportance, f), 0, 1000003);
 }
@@ -179,6 +186,129 @@ TEST(Environment8, UniformAndBlackMapsTakeTheScalarRows) {
                                {wi.data(), wi.data() + 17, wi.data() + 34, wi.data() + 51,
                                 wi.data() + 68, wi.data() + 85, pdf.data()});
   for (float p : pdf) EXPECT_EQ(p, 0.0f);
+}
+
+// Escaping directions for the evaluation: `random` uniform ones, then the hard cases: the
+// axes with ±0 components (poles, the φ seam), directions just off the poles, and the
+// directions of cell edges and pixel centres of the map (where the pdf's cell and the lookup's
+// pixels change), in local coordinates turned to world by the map's frame.
+std::vector<Vec3f> EvalDirections(const EnvironmentMapTable& table, uint32_t map, size_t random,
+                                  Pcg32& rng) {
+  std::vector<Vec3f> local;
+  for (size_t i = 0; i < random; ++i) {
+    const float a = rng.NextFloat();
+    local.push_back(SampleUniformSphere({a, rng.NextFloat()}));
+  }
+  for (float a : {1.0f, -1.0f})
+    for (float z : {0.0f, -0.0f}) {
+      local.push_back({a, z, z}), local.push_back({z, a, z}), local.push_back({z, z, a});
+      local.push_back({z, a, -z}), local.push_back({-z, z, a});
+    }
+  for (float e : {1e-30f, 1e-12f, 1e-6f, 1e-3f})
+    for (float y : {1.0f, -1.0f}) local.push_back(Normalize(Vec3f{e, y, -e}));
+  const int w = table.width[map], h = table.height[map];
+  const int step = std::max(1, std::max(w, h) / 200);
+  for (int j = 0; j <= 2 * h; j += step)
+    for (int i = 0; i <= 2 * w; i += step)
+      local.push_back(EnvironmentUvToDirection({float(i) / float(2 * w), float(j) / float(2 * h)}));
+  const Frame& f = table.to_world[map];
+  std::vector<Vec3f> world;
+  for (const Vec3f& d : local) world.push_back(f.ToWorld(d));
+  return world;
+}
+
+// The largest pixel value (any channel) of the 4 × 4 pixels around (u, v): what bounds the
+// change of the bilinear lookup when (u, v) moves by a few ulp.
+float LargestPixelAround(const EnvironmentMapTable& table, uint32_t map, Vec2f uv) {
+  const int w = table.width[map], h = table.height[map];
+  const int x = int(std::floor(uv.x * float(w) - 0.5f)),
+            y = int(std::floor(uv.y * float(h) - 0.5f));
+  float largest = 0;
+  for (int dy = -1; dy <= 2; ++dy)
+    for (int dx = -1; dx <= 2; ++dx) {
+      const int px = ((x + dx) % w + w) % w, py = std::clamp(y + dy, 0, h - 1);
+      const size_t k = table.pixel_offset[map] + size_t(py) * size_t(w) + size_t(px);
+      largest = std::max({largest, table.r[k], table.g[k], table.b[k]});
+    }
+  return largest;
+}
+
+// True when x·n lies within 1e-3 of an integer: a cell edge, where (u, v) a few ulp off may
+// fall in the neighbouring cell.
+bool NearCellEdge(float x, int n) {
+  const float t = x * float(n);
+  return std::abs(t - std::round(t)) < 1e-3f;
+}
+
+void ExpectEvalMatchesOracle(const EnvironmentMapTable& table, uint32_t map, size_t random) {
+  Pcg32 rng(13, 17);
+  const std::vector<Vec3f> dirs = EvalDirections(table, map, random, rng);
+  const size_t n = dirs.size();
+  std::vector<float> w_x(n), w_y(n), w_z(n);
+  for (size_t i = 0; i < n; ++i) w_x[i] = dirs[i].x, w_y[i] = dirs[i].y, w_z[i] = dirs[i].z;
+  const EnvironmentEvalInputs in{w_x.data(), w_y.data(), w_z.data()};
+  std::vector<float> want(4 * n);
+  EvalEnvironmentBatch(table, map, n, in,
+                       {want.data(), want.data() + n, want.data() + 2 * n, want.data() + 3 * n});
+  for (size_t i = 0; i < n; ++i) {  // the oracle is the two scalar functions
+    ASSERT_EQ(want[i], EnvironmentRadiance(table, map, dirs[i]).r);
+    ASSERT_EQ(want[3 * n + i], EnvironmentPdf(table, map, dirs[i]));
+  }
+  test::ForEachTarget(simd::Environment8TargetName, [&](const char* target) {
+    std::vector<float> got(4 * n, -1.0f), no_pdf(3 * n, -1.0f);
+    simd::EvalEnvironmentBatch(
+        table, map, n, in, {got.data(), got.data() + n, got.data() + 2 * n, got.data() + 3 * n});
+    // Without a pdf column the radiance is the same.
+    simd::EvalEnvironmentBatch(table, map, n, in,
+                               {no_pdf.data(), no_pdf.data() + n, no_pdf.data() + 2 * n, nullptr});
+    size_t edge_pdfs = 0;
+    float seen_radiance = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec2f uv = EnvironmentDirectionToUv(table.to_world[map].ToLocal(dirs[i]));
+      const float scale = LargestPixelAround(table, map, uv);
+      for (size_t c = 0; c < 3; ++c) {
+        const float g = got[c * n + i], o = want[c * n + i];
+        ASSERT_TRUE(std::isfinite(g)) << "row " << i;
+        ASSERT_EQ(g, no_pdf[c * n + i]) << "row " << i;
+        const float off = std::abs(g - o);
+        if (scale > 0) seen_radiance = std::max(seen_radiance, off / scale);
+        ASSERT_LE(off, 1e-3f * scale) << "row " << i << " channel " << c << " uv " << uv.x << ", "
+                                      << uv.y << ": " << g << " want " << o;
+      }
+      const float g = got[3 * n + i], o = want[3 * n + i];
+      ASSERT_TRUE(std::isfinite(g) && g >= 0) << "row " << i << " pdf " << g;
+      if (g == o) continue;  // the same cell: the oracle's operations on the same numbers
+      ASSERT_TRUE(NearCellEdge(uv.x, table.width[map]) || NearCellEdge(uv.y, table.height[map]))
+          << "row " << i << " uv " << uv.x << ", " << uv.y << ": pdf " << g << " want " << o;
+      ++edge_pdfs;
+    }
+    std::printf(
+        "  %s: %zu rows, radiance |Δ|/largest pixel %.3g, %zu pdfs of the neighbouring "
+        "cell at cell edges\n",
+        target, n, double(seen_radiance), edge_pdfs);
+  });
+}
+
+TEST(Environment8, EvalMatchesOracleOnVenice) {
+  const std::string path = kEnvmaps + "venice_sunset_1k.exr";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  const StatusOr<Image> image = ReadImage(path);
+  ASSERT_TRUE(image.ok()) << image.status().message();
+  ExpectEvalMatchesOracle(OneMap(*image), 0, 1000003);
+}
+
+TEST(Environment8, EvalMatchesOracleOnBlackRowsRotatedTinyAndUniformMaps) {
+  Pcg32 rng(3, 5);
+  const Frame f = RotatedFrame();
+  ExpectEvalMatchesOracle(OneMap(RandomMap(37, 23, true, rng), EnvironmentSampling::kImportance, f),
+                          0, 100003);
+  for (const auto& [w, h] : {std::pair{1, 1}, {2, 1}, {1, 2}, {3, 2}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    ExpectEvalMatchesOracle(OneMap(RandomMap(w, h, false, rng)), 0, 10003);
+  }
+  ExpectEvalMatchesOracle(OneMap(RandomMap(8, 4, false, rng), EnvironmentSampling::kUniform), 0,
+                          10003);
+  ExpectEvalMatchesOracle(OneMap(Image(8, 4)), 0, 10003);  // black
 }
 
 }  // namespace
