@@ -10,8 +10,9 @@
 namespace ptlab::simd {
 
 /// ptlab::MakeInteractionBatch, eight lanes per step (hn::CappedTag<float, 8>): for the triangle
-/// hits of a packet the vertices, the vertex normals (where the mesh has them) and the
-/// interpolation and normalizations of MakeInteraction / ShadingNormalAt run as vectors over
+/// hits of a packet the vertices, the vertex normals and texture coordinates (where the mesh
+/// has them) and the interpolation and normalizations of MakeInteraction / ShadingNormalAt /
+/// SurfaceUvAt run as vectors over
 /// gathered triangle data; sphere hits take the scalar MakeInteraction lane by lane. Rows of
 /// lanes that did not hit are not written.
 /// Oracle: ptlab::MakeInteractionBatch. Contract: every output bit-identical to the oracle's on

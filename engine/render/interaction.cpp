@@ -1,7 +1,9 @@
 // The shading point of a ray hit: position, normals and the components the hit refers to.
 #include "engine/render/interaction.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/light/area_light.h"
@@ -21,11 +23,29 @@ SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const H
   its.prim = hit.prim;
   its.ng = n;
   its.frame = Frame(n);
+  its.uv = SphereUv(n);
   its.material = s.material[i];
   return its;
 }
 
 }  // namespace
+
+Vec2f SurfaceUvAt(const Scene& scene, uint32_t tri, float b1, float b2) {
+  const TriangleShadingTable& sh = scene.shading;
+  if (!scene.meshes.has_uvs[sh.mesh[tri]]) return {b1, b2};
+  const VertexTable& v = scene.vertices;
+  const uint32_t i0 = sh.vertex0[tri], i1 = sh.vertex1[tri], i2 = sh.vertex2[tri];
+  const float b0 = 1.0f - b1 - b2;
+  return {b0 * v.u[i0] + b1 * v.u[i1] + b2 * v.u[i2], b0 * v.v[i0] + b1 * v.v[i1] + b2 * v.v[i2]};
+}
+
+Vec2f SphereUv(const Vec3f& n) {
+  float phi = std::atan2(n.y, n.x);
+  if (phi < 0) phi += 2 * kPi;
+  // atan2 of a tiny negative y rounds phi + 2π up to 2π; u stays in [0, 1).
+  const float u = std::min(phi * kInv2Pi, kOneMinusEpsilon);
+  return {u, std::acos(std::clamp(n.z, -1.0f, 1.0f)) * kInvPi};
+}
 
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
   if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit);
@@ -39,6 +59,7 @@ SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit
   const float len = Length(ng);
   its.ng = len > 0 ? ng / len : Vec3f{0, 0, 1};
   its.frame = Frame(ShadingNormalAt(scene, tri, hit.b1, hit.b2));
+  its.uv = SurfaceUvAt(scene, tri, hit.b1, hit.b2);
   its.material = scene.shading.material[tri];
   its.emitter = scene.meshes.emitter[scene.shading.mesh[tri]];
   return its;
@@ -63,6 +84,7 @@ SurfaceInteraction InteractionAt(const Scene& scene, const InteractionColumns& i
   its.p = {in.p_x[q], in.p_y[q], in.p_z[q]};
   its.ng = {in.ng_x[q], in.ng_y[q], in.ng_z[q]};
   its.frame = Frame(Vec3f{in.n_x[q], in.n_y[q], in.n_z[q]});
+  its.uv = {in.u[q], in.v[q]};
   its.prim = prim;
   if (IsSphereHit(prim)) {
     its.material = scene.spheres.material[SphereHitRow(prim)];

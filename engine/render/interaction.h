@@ -14,10 +14,21 @@ struct SurfaceInteraction {
                   // o + t d projected onto the surface
   Vec3f ng;       // unit geometric normal, (v1 - v0) x (v2 - v0); a sphere's outward normal
   Frame frame;    // shading frame, z = shading normal
+  Vec2f uv;       // surface coordinates: SurfaceUvAt on a triangle, SphereUv on a sphere
   uint32_t prim = kNoHit;  // Hit::prim: a triangle row, or kSphereHitBit | sphere row
   MaterialRef material;
   EmitterRef emitter;
 };
+
+/// Surface uv of triangle `tri` at barycentrics (b1, b2), as Nori's Mesh::setHitInformation
+/// computes it: the mesh's texture coordinates interpolated, b0 uv0 + b1 uv1 + b2 uv2 in that
+/// order, when its mesh has them (MeshTable::has_uvs), else the barycentrics (b1, b2).
+Vec2f SurfaceUvAt(const Scene& scene, uint32_t tri, float b1, float b2);
+
+/// Surface uv of a sphere at unit outward normal n (world axes): (φ/2π, θ/π) with φ = atan2(y,
+/// x) ∈ [0, 2π) from +x towards +y and θ = acos(z) ∈ [0, π] from +z, the convention of the
+/// tessellated MakeSphere (engine/io/shapes.h).
+Vec2f SphereUv(const Vec3f& n);
 
 /// Builds the interaction for a hit of `ray` (hit.prim must be valid). A sphere hit's shading
 /// normal is (p - c)/r; spheres never emit.
@@ -25,9 +36,10 @@ SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit
 
 /// The interaction stage's SoA columns of shading points, world space, one row per queue entry
 /// (row q = lane q % 8 of packet q / 8): p, the unit geometric normal ng and the unit shading
-/// normal n (the z axis of SurfaceInteraction::frame).
+/// normal n (the z axis of SurfaceInteraction::frame), and the surface coordinates (u, v)
+/// (SurfaceInteraction::uv).
 struct InteractionColumns {
-  float *p_x, *p_y, *p_z, *ng_x, *ng_y, *ng_z, *n_x, *n_y, *n_z;
+  float *p_x, *p_y, *p_z, *ng_x, *ng_y, *ng_z, *n_x, *n_y, *n_z, *u, *v;
 };
 
 /// MakeInteraction for every hit lane of `packets` ray/hit packets: row k * 8 + j is written
@@ -42,10 +54,11 @@ inline void SetInteractionRow(const InteractionColumns& out, size_t q,
   out.p_x[q] = its.p.x, out.p_y[q] = its.p.y, out.p_z[q] = its.p.z;
   out.ng_x[q] = its.ng.x, out.ng_y[q] = its.ng.y, out.ng_z[q] = its.ng.z;
   out.n_x[q] = its.frame.n.x, out.n_y[q] = its.frame.n.y, out.n_z[q] = its.frame.n.z;
+  out.u[q] = its.uv.x, out.v[q] = its.uv.y;
 }
 
 /// The SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim): the frame
-/// built from n, the material and emitter looked up by prim. Bit-identical to MakeInteraction
+/// built from n, uv read back, the material and emitter looked up by prim. Bit-identical to MakeInteraction
 /// when the row came from MakeInteractionBatch.
 SurfaceInteraction InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q,
                                  uint32_t prim);

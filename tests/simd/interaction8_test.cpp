@@ -1,8 +1,10 @@
 // simd::MakeInteractionBatch against its oracle ptlab::MakeInteractionBatch (MakeInteraction per
-// hit lane): every output bit-identical on every compiled target for 10^6 random hits per scene
-// and the hard cases (barycentrics on edges and vertices, degenerate triangles, vertex normals
-// that interpolate to zero, sphere lanes mixed in, partial hit masks), no NaN or Inf out, and
-// rows of lanes that did not hit left untouched.
+// hit lane): every output (p, ng, n, uv) bit-identical on every compiled target for 10^6 random
+// hits per scene and the hard cases (barycentrics on edges and vertices, degenerate triangles,
+// vertex normals that interpolate to zero, degenerate and huge texture coordinates, meshes
+// without uvs next to meshes with them, sphere lanes mixed in, partial hit masks), no NaN or Inf
+// out, and rows of lanes that did not hit left untouched. Plus the uv rules themselves:
+// barycentrics without mesh uvs, interpolated mesh uvs, a sphere's (φ/2π, θ/π).
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/interaction8.h"
 
@@ -16,6 +18,7 @@
 
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/core/rng.h"
+#include "engine/io/mesh_builder.h"
 #include "engine/io/scene_file.h"
 #include "engine/render/interaction.h"
 #include "tests/simd/for_each_target.h"
@@ -24,19 +27,35 @@ namespace ptlab {
 namespace {
 
 constexpr float kUntouched = -12345.0f;  // rows the kernels must not write
+constexpr size_t kColumns = 11;           // p, ng, n (3 each), u, v
 
 struct Columns {
-  explicit Columns(size_t n) : col(9, std::vector<float>(n, kUntouched)) {}
+  explicit Columns(size_t n) : col(kColumns, std::vector<float>(n, kUntouched)) {}
   std::vector<std::vector<float>> col;
   InteractionColumns Out() {
-    return {col[0].data(), col[1].data(), col[2].data(), col[3].data(), col[4].data(),
-            col[5].data(), col[6].data(), col[7].data(), col[8].data()};
+    return {col[0].data(), col[1].data(), col[2].data(), col[3].data(),
+            col[4].data(), col[5].data(), col[6].data(), col[7].data(),
+            col[8].data(), col[9].data(), col[10].data()};
   }
 };
 
+// A quad (two triangles) in the z = 1 plane with the given per-vertex normals and uvs (either
+// may be empty), appended to the scene; returns its first triangle.
+uint32_t AddQuad(Scene* scene, std::vector<Vec3f> normals, std::vector<Vec2f> uvs) {
+  MeshData m;
+  m.positions = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  m.normals = std::move(normals), m.uvs = std::move(uvs);
+  m.indices = {0, 1, 2, 0, 2, 3};
+  const uint32_t first = uint32_t(scene->triangles.size());
+  AddMesh(scene, m, Transform(), scene->shading.material[0], "quad");
+  return first;
+}
+
 // The hard geometry: triangle 0 degenerate (V2 on V1), triangle 1 degenerate to a point, and
 // where the scene has vertex normals, triangle 2's normals opposite at V0 and V1 (zero at the
-// middle of that edge) and triangle 3's all zero; two spheres appended.
+// middle of that edge) and triangle 3's all zero, with uvs equal at all three vertices on one
+// and ±1e30 on the other where the scene has uvs; quads with normals but no uvs, uvs but no
+// normals, neither, and huge uvs appended; two spheres appended.
 std::vector<uint32_t> AddHardCases(Scene* scene) {
   TriangleTable& t = scene->triangles;
   t.v2_x[0] = t.v1_x[0], t.v2_y[0] = t.v1_y[0], t.v2_z[0] = t.v1_z[0];
@@ -54,8 +73,21 @@ std::vector<uint32_t> AddHardCases(Scene* scene) {
                            {0.0f, 0.0f, opposite ? -1.0f : 0.0f},
                            {0.0f, 0.0f, 0.0f}};
     for (const auto& c : n) v.n_x.push_back(c[0]), v.n_y.push_back(c[1]), v.n_z.push_back(c[2]);
+    if (!v.u.empty()) {  // VertexTable columns stay aligned
+      const float uv[3][2] = {{opposite ? 0.25f : 1e30f, opposite ? 0.75f : -1e30f},
+                              {0.25f, opposite ? 0.75f : 1e30f},
+                              {opposite ? 0.25f : -1e30f, 0.75f}};
+      for (const auto& c : uv) v.u.push_back(c[0]), v.v.push_back(c[1]);
+    }
     sh.vertex0[tri] = base, sh.vertex1[tri] = base + 1, sh.vertex2[tri] = base + 2;
     hard.push_back(tri);
+  }
+  const std::vector<Vec3f> up(4, Vec3f{0, 0, 1});
+  const std::vector<Vec2f> uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const std::vector<Vec2f> huge = {{-3e38f, 1e-38f}, {3e38f, -7.5f}, {1e20f, 0}, {0, -1e20f}};
+  for (const uint32_t first : {AddQuad(scene, up, {}), AddQuad(scene, {}, uvs),
+                               AddQuad(scene, {}, {}), AddQuad(scene, up, huge)}) {
+    hard.push_back(first), hard.push_back(first + 1);
   }
   scene->spheres.Append({0.1f, 0.2f, 0.3f}, 0.5f, scene->shading.material[0]);
   scene->spheres.Append({-1.0f, 2.0f, 0.0f}, 1e-3f, scene->shading.material[0]);
@@ -123,7 +155,7 @@ void ExpectBatchMatchesOracle(const std::string& path) {
     simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
                                got.Out());
     size_t differ = 0, nonfinite = 0, untouched = 0, first = rows;
-    for (size_t c = 0; c < 9; ++c) {
+    for (size_t c = 0; c < kColumns; ++c) {
       for (size_t q = 0; q < rows; ++q) {
         const float g = got.col[c][q];
         const bool hit = LaneActive(p.mask[q / kPacketWidth], int(q % kPacketWidth));
@@ -142,7 +174,7 @@ void ExpectBatchMatchesOracle(const std::string& path) {
     EXPECT_EQ(nonfinite, 0u);
     size_t misses = 0;
     for (const Mask8 m : p.mask) misses += 8 - std::popcount(m);
-    EXPECT_EQ(untouched, 9 * misses);
+    EXPECT_EQ(untouched, kColumns * misses);
   });
 }
 

@@ -1,0 +1,94 @@
+// MakeInteraction's surface uv: a mesh's texture coordinates interpolated at the hit, the
+// barycentrics on meshes without them (Nori), (φ/2π, θ/π) on spheres; InteractionAt reads it back.
+#include "engine/render/interaction.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "engine/bvh/sphere_intersect.h"
+#include "engine/io/mesh_builder.h"
+
+namespace ptlab {
+namespace {
+
+// Two quads in the z = 1 plane: mesh 0 with uvs (triangle 0: uv (0.5,0), (1,0), (1,0.25)),
+// mesh 1 with normals only, so its zero-filled uv rows exist but are not its uvs.
+Scene QuadScene() {
+  Scene scene;
+  MeshData m;
+  m.positions = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.uvs = {{0.5f, 0}, {1, 0}, {1, 0.25f}, {0.5f, 0.25f}};
+  AddMesh(&scene, m, Transform(), MaterialRef{}, "with uvs");
+  m.uvs.clear();
+  m.normals.assign(4, Vec3f{0, 0, 1});
+  AddMesh(&scene, m, Transform(), MaterialRef{}, "without uvs");
+  return scene;
+}
+
+const Ray kDown{{0.5f, 0.5f, 3}, {0, 0, -1}};
+
+TEST(Interaction, UvInterpolatesMeshTexCoords) {
+  const Scene scene = QuadScene();
+  const float b1 = 0.25f, b2 = 0.5f, b0 = 1 - b1 - b2;
+  const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, b1, b2, 0});
+  EXPECT_EQ(its.uv.x, b0 * 0.5f + b1 * 1.0f + b2 * 1.0f);
+  EXPECT_EQ(its.uv.y, b0 * 0.0f + b1 * 0.0f + b2 * 0.25f);
+  EXPECT_EQ(MakeInteraction(scene, kDown, Hit{2, 0, 0, 0}).uv.x, 0.5f);
+  EXPECT_EQ(MakeInteraction(scene, kDown, Hit{2, 0, 1, 0}).uv.y, 0.25f);
+}
+
+TEST(Interaction, UvIsBarycentricsWithoutTexCoords) {
+  const Scene scene = QuadScene();
+  ASSERT_FALSE(scene.vertices.u.empty());  // mesh 1 has zero-filled uv rows
+  for (const uint32_t tri : {2u, 3u}) {
+    const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.125f, 0.75f, tri});
+    EXPECT_EQ(its.uv.x, 0.125f);
+    EXPECT_EQ(its.uv.y, 0.75f);
+  }
+  Scene bare;  // no VertexTable columns at all
+  MeshData m;
+  m.positions = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}};
+  m.indices = {0, 1, 2};
+  AddMesh(&bare, m, Transform(), MaterialRef{}, "bare");
+  EXPECT_EQ(MakeInteraction(bare, kDown, Hit{2, 0.3f, 0.6f, 0}).uv.y, 0.6f);
+}
+
+TEST(Interaction, SphereUvIsPhiAndTheta) {
+  Scene scene;
+  scene.spheres.Append({1, 2, 3}, 2.0f, MaterialRef{});
+  const uint32_t prim = kSphereHitBit | 0;
+  // Rays from outside along -axis towards the centre hit at t = 8 - 2.
+  const auto uv_at = [&](const Vec3f& axis) {
+    const Ray ray{Vec3f{1, 2, 3} + axis * 8.0f, -axis};
+    return MakeInteraction(scene, ray, Hit{6, 0, 0, prim}).uv;
+  };
+  EXPECT_EQ(uv_at({1, 0, 0}).x, 0.0f);
+  EXPECT_FLOAT_EQ(uv_at({1, 0, 0}).y, 0.5f);
+  EXPECT_FLOAT_EQ(uv_at({0, 1, 0}).x, 0.25f);
+  EXPECT_FLOAT_EQ(uv_at({-1, 0, 0}).x, 0.5f);
+  EXPECT_FLOAT_EQ(uv_at({0, -1, 0}).x, 0.75f);
+  EXPECT_EQ(uv_at({0, 0, 1}).y, 0.0f);
+  EXPECT_FLOAT_EQ(uv_at({0, 0, -1}).y, 1.0f);
+  // Just below the seam φ = 2π: u stays below 1.
+  EXPECT_LT(SphereUv({1, -1e-30f, 0}).x, 1.0f);
+  EXPECT_GE(SphereUv({1, -1e-30f, 0}).x, 0.0f);
+}
+
+TEST(Interaction, InteractionAtReadsUvBack) {
+  const Scene scene = QuadScene();
+  std::vector<float> col[11];
+  for (auto& c : col) c.assign(1, 0.0f);
+  const InteractionColumns cols{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
+                                col[4].data(), col[5].data(), col[6].data(), col[7].data(),
+                                col[8].data(), col[9].data(), col[10].data()};
+  const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.2f, 0.3f, 1});
+  SetInteractionRow(cols, 0, its);
+  const SurfaceInteraction back = InteractionAt(scene, cols, 0, 1);
+  EXPECT_EQ(back.uv.x, its.uv.x);
+  EXPECT_EQ(back.uv.y, its.uv.y);
+}
+
+}  // namespace
+}  // namespace ptlab
