@@ -23,13 +23,14 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Lookup (environment_map.cpp) at (u, v) ∈ [0, 1)² of the w × h map whose pixels start at
-/// r, g, b: the bilinear interpolation of the pixel centres, wrapping in u and clamping in v,
-/// the scalar code's float operations in its order. For u in [0, 1) the column ⌊u w − ½⌋ lies
-/// in [−1, w − 1], so the wrap is one conditional add.
+/// Lookup (environment_map.cpp) at (u, v) ∈ [0, 1]² of the w × h map whose texels (r, g, b,
+/// pad: kEnvironmentTexel floats) start at `texels`: the bilinear interpolation of the pixel
+/// centres, wrapping in u and clamping in v, the scalar code's float operations in its order.
+/// For u in [0, 1] the column ⌊u w − ½⌋ lies in [−1, w − 1], so the wrap is one conditional
+/// add. A lane's three channels of a pixel share a cache line: the first gather brings it in.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE void EnvironmentLookup8(D d, const float* r, const float* g, const float* b, int w,
-                                   int h, V u, V v, V* out_r, V* out_g, V* out_b) {
+HWY_INLINE void EnvironmentLookup8(D d, const float* texels, int w, int h, V u, V v, V* out_r,
+                                   V* out_g, V* out_b) {
   const hn::RebindToSigned<D> di;
   const V one = hn::Set(d, 1.0f), half = hn::Set(d, 0.5f);
   const V x = hn::Sub(hn::Mul(u, hn::Set(d, float(w))), half);
@@ -43,8 +44,11 @@ HWY_INLINE void EnvironmentLookup8(D d, const float* r, const float* g, const fl
   const auto last_row = hn::Set(di, h - 1);
   const auto y0 = hn::Min(hn::Max(iy, zero_i), last_row);
   const auto y1 = hn::Min(hn::Max(hn::Add(iy, one_i), zero_i), last_row);
-  const auto k00 = hn::Add(hn::Mul(y0, w_i), x0), k10 = hn::Add(hn::Mul(y0, w_i), x1);
-  const auto k01 = hn::Add(hn::Mul(y1, w_i), x0), k11 = hn::Add(hn::Mul(y1, w_i), x1);
+  static_assert(kEnvironmentTexel == 4);
+  const auto texel = [&](auto row, auto column) {
+    return hn::ShiftLeft<2>(hn::Add(hn::Mul(row, w_i), column));
+  };
+  const auto k00 = texel(y0, x0), k10 = texel(y0, x1), k01 = texel(y1, x0), k11 = texel(y1, x1);
   const V sx = hn::Sub(one, tx), sy = hn::Sub(one, ty);
   // (1 − ty)((1 − tx) c00 + tx c10) + ty((1 − tx) c01 + tx c11), per channel.
   const auto channel = [&](const float* c) {
@@ -54,7 +58,13 @@ HWY_INLINE void EnvironmentLookup8(D d, const float* r, const float* g, const fl
         hn::Add(hn::Mul(sx, hn::GatherIndex(d, c, k01)), hn::Mul(tx, hn::GatherIndex(d, c, k11)));
     return hn::Add(hn::Mul(sy, top), hn::Mul(ty, bottom));
   };
-  *out_r = channel(r), *out_g = channel(g), *out_b = channel(b);
+  *out_r = channel(texels), *out_g = channel(texels + 1), *out_b = channel(texels + 2);
+}
+
+/// Whether the texels of map `map` can be addressed by int32 gathers.
+inline bool TexelsFitInt32(const EnvironmentMapTable& table, uint32_t map) {
+  return int64_t(table.width[map]) * int64_t(table.height[map]) * int64_t(kEnvironmentTexel) <
+         (int64_t(1) << 31);
 }
 
 HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, uint32_t map,
@@ -66,12 +76,12 @@ HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, u
   const Distribution2DView dist = EnvironmentDistribution(table, map);
   size_t i = 0;
   // Importance rows of a map with mass (the scalar code samples the rest, and the tail); the
-  // conditional CDFs are indexed by int32 gathers.
+  // conditional CDFs and the texels are indexed by int32 gathers.
   const bool vector = table.sampling[map] == EnvironmentSampling::kImportance && dist.NonEmpty() &&
-                      int64_t(dist.nv) * (int64_t(dist.nu) + 1) < (int64_t(1) << 31);
+                      int64_t(dist.nv) * (int64_t(dist.nu) + 1) < (int64_t(1) << 31) &&
+                      TexelsFitInt32(table, map);
   if (vector) {
-    const uint32_t o = table.pixel_offset[map];
-    const float *pr = table.r.data() + o, *pg = table.g.data() + o, *pb = table.b.data() + o;
+    const float* texels = table.texels.data() + size_t(table.pixel_offset[map]) * kEnvironmentTexel;
     const Frame& f = table.to_world[map];
     const auto zero = hn::Zero(d), half = hn::Set(d, 0.5f), one = hn::Set(d, 1.0f);
     const auto pi = hn::Set(d, kPi), two_pi = hn::Set(d, 2 * kPi);
@@ -106,7 +116,7 @@ HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, u
                        hn::Mul(hn::Set(d, nn), dz));
       };
       hn::Vec<decltype(d)> r, g, b;
-      EnvironmentLookup8(d, pr, pg, pb, dist.nu, dist.nv, x, v, &r, &g, &b);
+      EnvironmentLookup8(d, texels, dist.nu, dist.nv, x, v, &r, &g, &b);
       const auto pdf = hn::Div(pdf_uv, hn::Mul(hn::Set(d, kEnvironmentTwoPiSquared), sin_theta));
       hn::StoreU(hn::IfThenElseZero(valid, world(f.s.x, f.t.x, f.n.x)), d, out.wi_x + i);
       hn::StoreU(hn::IfThenElseZero(valid, world(f.s.y, f.t.y, f.n.y)), d, out.wi_y + i);
@@ -146,11 +156,11 @@ HWY_INLINE void EvalEnvironmentBatchKernel(const EnvironmentMapTable& table, uin
   const bool importance = table.sampling[map] == EnvironmentSampling::kImportance;
   const Distribution2DView dist = EnvironmentDistribution(table, map);
   size_t i = 0;
-  // The conditional CDFs are indexed by int32 gathers.
-  if (!importance || int64_t(h) * (int64_t(w) + 1) < (int64_t(1) << 31)) {
+  // The conditional CDFs and the texels are indexed by int32 gathers.
+  if ((!importance || int64_t(h) * (int64_t(w) + 1) < (int64_t(1) << 31)) &&
+      TexelsFitInt32(table, map)) {
     const hn::RebindToSigned<decltype(d)> di;
-    const uint32_t o = table.pixel_offset[map];
-    const float *pr = table.r.data() + o, *pg = table.g.data() + o, *pb = table.b.data() + o;
+    const float* texels = table.texels.data() + size_t(table.pixel_offset[map]) * kEnvironmentTexel;
     const Frame& f = table.to_world[map];
     const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     const auto uniform_pdf = hn::Set(d, table.luminance_integral[map] > 0 ? kInv4Pi : 0.0f);
@@ -171,7 +181,7 @@ HWY_INLINE void EvalEnvironmentBatchKernel(const EnvironmentMapTable& table, uin
       const auto u = hn::Min(hn::Max(hn::Mul(phi, hn::Set(d, kInv2Pi)), zero), one);
       const auto v = hn::Min(hn::Max(hn::Mul(theta, hn::Set(d, kInvPi)), zero), one);
       hn::Vec<decltype(d)> cr, cg, cb;
-      EnvironmentLookup8(d, pr, pg, pb, w, h, u, v, &cr, &cg, &cb);
+      EnvironmentLookup8(d, texels, w, h, u, v, &cr, &cg, &cb);
       // A direction that is not finite sees black (Lookup's test of x and y).
       const auto finite = hn::And(hn::IsFinite(u), hn::IsFinite(v));
       hn::StoreU(hn::IfThenElseZero(finite, cr), d, out.r + i);

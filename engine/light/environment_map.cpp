@@ -67,17 +67,17 @@ Status CheckPixels(const Image& image, float scale, const std::string& name) {
 }
 
 struct PixelView {
-  const float *r, *g, *b;
+  const float* texels;
   int w, h;
   Color3f At(int x, int y) const {
-    const size_t k = size_t(y) * size_t(w) + size_t(x);
-    return {r[k], g[k], b[k]};
+    const float* t = texels + (size_t(y) * size_t(w) + size_t(x)) * kEnvironmentTexel;
+    return {t[0], t[1], t[2]};
   }
 };
 
 PixelView Pixels(const EnvironmentMapTable& t, uint32_t row) {
-  const uint32_t o = t.pixel_offset[row];
-  return {t.r.data() + o, t.g.data() + o, t.b.data() + o, t.width[row], t.height[row]};
+  return {t.texels.data() + size_t(t.pixel_offset[row]) * kEnvironmentTexel, t.width[row],
+          t.height[row]};
 }
 
 // Bilinear interpolation of the pixel centres at (u, v): wraps in u, clamps in v.
@@ -132,18 +132,19 @@ StatusOr<uint32_t> AddEnvironmentMap(const Image& image, const EnvironmentMapDes
   EnvironmentMapTable& t = *table;
   const int w = image.width, h = image.height;
   const uint32_t row = uint32_t(t.size());
-  const size_t offset = t.r.size(), count = size_t(w) * size_t(h);
+  const size_t offset = t.texels.size() / kEnvironmentTexel, count = size_t(w) * size_t(h);
   t.width.push_back(w);
   t.height.push_back(h);
   t.pixel_offset.push_back(uint32_t(offset));
   t.sampling.push_back(desc.sampling);
   t.to_world.push_back(desc.to_world);
-  t.r.resize(offset + count), t.g.resize(offset + count), t.b.resize(offset + count);
+  t.texels.resize((offset + count) * kEnvironmentTexel, 0.0f);
   std::vector<double> luminance(count);
   for (size_t k = 0; k < count; ++k) {
     const Color3f c = {image.rgb[3 * k] * desc.scale, image.rgb[3 * k + 1] * desc.scale,
                        image.rgb[3 * k + 2] * desc.scale};
-    t.r[offset + k] = c.r, t.g[offset + k] = c.g, t.b[offset + k] = c.b;
+    float* texel = &t.texels[(offset + k) * kEnvironmentTexel];
+    texel[0] = c.r, texel[1] = c.g, texel[2] = c.b;
     luminance[k] = Luminance(c);
   }
 

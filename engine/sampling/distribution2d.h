@@ -62,16 +62,16 @@ inline void BuildPiecewiseConstantGuide(const float* cdf, int n, uint32_t* guide
 
 /// Inverts the CDF at u ∈ [0,1): *x ∈ [0,1) lies in bin *bin (PiecewiseConstantBin(*x) == *bin,
 /// guaranteed despite rounding), linearly placed within it; *pdf is the bin's density (> 0).
-/// With the CDF's guide (BuildPiecewiseConstantGuide) the bin is found in the guide's bucket
-/// of u; the result is the same bin either way. Returns false, touching nothing, when the
-/// distribution is empty.
+/// Returns false, touching nothing, when the distribution is empty. The search is over the
+/// whole CDF: in renders of the Venice map a guide table made this scalar search slower (the
+/// demo's --scalar task-clock 2.08 → 2.16 s), where it makes the 8-wide search of
+/// simd/distribution8-inl.h faster.
 inline bool SamplePiecewiseConstant1D(const float* cdf, int n, float u, float* x, int* bin,
-                                      float* pdf, const uint32_t* guide = nullptr) {
+                                      float* pdf) {
   if (!PiecewiseConstantNonEmpty(cdf, n)) return false;
   u = u >= 0.0f ? std::min(u, kOneMinusEpsilon) : 0.0f;  // also maps NaN to 0
   // The last i with cdf[i] <= u: skips bins of zero width, and is < n because u < 1 = cdf[n].
-  const int i = guide ? int(GuidedUpperBound(cdf + 1, uint32_t(n), guide, u))
-                      : int(std::upper_bound(cdf, cdf + n + 1, u) - cdf) - 1;
+  const int i = int(std::upper_bound(cdf, cdf + n + 1, u) - cdf) - 1;
   const float lo = cdf[i], width = cdf[i + 1] - lo;
   float t = (u - lo) / width;
   float v = (float(i) + std::min(t, 1.0f)) / float(n);
@@ -119,14 +119,12 @@ struct Distribution2DView {
   const float* marginal_cdf = nullptr;     // nv + 1
   const float* conditional_cdf = nullptr;  // nv × (nu + 1)
   int nu = 0, nv = 0;
-  // Optional guide tables (BuildDistribution2DGuides), laid out as the CDFs; null: none.
+  // Optional guide tables (BuildDistribution2DGuides), laid out as the CDFs; null: none. Read
+  // by the 8-wide inversion (simd/distribution8-inl.h) only.
   const uint32_t* marginal_guide = nullptr;
   const uint32_t* conditional_guide = nullptr;
 
   const float* Row(int j) const { return conditional_cdf + size_t(j) * size_t(nu + 1); }
-  const uint32_t* RowGuide(int j) const {
-    return conditional_guide ? conditional_guide + size_t(j) * size_t(nu + 1) : nullptr;
-  }
   bool NonEmpty() const { return PiecewiseConstantNonEmpty(marginal_cdf, nv); }
 };
 
@@ -164,9 +162,8 @@ inline bool SampleDistribution2D(const Distribution2DView& d, const Vec2f& u, Ve
                                  int* column = nullptr, int* row = nullptr) {
   float y, x, pdf_y, pdf_x;
   int j, i;
-  if (!SamplePiecewiseConstant1D(d.marginal_cdf, d.nv, u.y, &y, &j, &pdf_y, d.marginal_guide))
-    return false;
-  if (!SamplePiecewiseConstant1D(d.Row(j), d.nu, u.x, &x, &i, &pdf_x, d.RowGuide(j))) return false;
+  if (!SamplePiecewiseConstant1D(d.marginal_cdf, d.nv, u.y, &y, &j, &pdf_y)) return false;
+  if (!SamplePiecewiseConstant1D(d.Row(j), d.nu, u.x, &x, &i, &pdf_x)) return false;
   *p = {x, y};
   *pdf = Distribution2DCellPdf(d, i, j);
   if (column) *column = i;

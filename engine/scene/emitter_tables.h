@@ -37,18 +37,22 @@ enum class EnvironmentSampling : uint8_t {
 /// Environment maps (Mitsuba `envmap`), one row per emitter; built by AddEnvironmentMap
 /// (engine/light/environment_map.h), which documents the lat-long convention. Per-row columns
 /// index into pooled columns: pixels (premultiplied by `scale`, row-major, row 0 = up) at
-/// pixel_offset; the importance distribution (engine/sampling/distribution2d.h layout) at
+/// pixel_offset, as texels of four floats (r, g, b, 0: a bilinear lookup's 2 × 2 pixels then
+/// share two cache lines instead of six); the importance distribution (engine/sampling/distribution2d.h layout) at
 /// marginal_offset (height + 1 floats) and conditional_offset (height × (width + 1) floats),
 /// each CDF with its guide table beside it at the same offsets (engine/sampling/guide_table.h:
 /// n + 1 entries for a CDF of n bins). Uniform rows store no distribution. A scene without
 /// environment maps holds empty vectors.
+/// Floats per texel of EnvironmentMapTable::texels: r, g, b and a zero pad.
+inline constexpr size_t kEnvironmentTexel = 4;
+
 struct EnvironmentMapTable {
   std::vector<int32_t> width, height;
   std::vector<uint32_t> pixel_offset, marginal_offset, conditional_offset;
   std::vector<EnvironmentSampling> sampling;
   std::vector<Frame> to_world;             // rotation: local (s, t, n) axes in world space
   std::vector<float> luminance_integral;   // ≈ ∫ luminance dω (sr); 0 = black: never sampled
-  AlignedVector<float> r, g, b;            // pooled pixels
+  AlignedVector<float> texels;             // pooled pixels, kEnvironmentTexel floats each
   AlignedVector<float> marginal_cdf, conditional_cdf;  // pooled importance CDFs
   AlignedVector<uint32_t> marginal_guide, conditional_guide;  // their guide tables
 

@@ -69,19 +69,12 @@ void ExpectBatchMatchesOracle(const EnvironmentMapTable& guided, uint32_t map, s
   const EnvironmentBatchInputs in{u_x.data(), u_y.data()};
   SampleColumns want(n);
   SampleEnvironmentBatch(guided, map, n, in, want.Out());
-  // The guide tables change how a bin is found, not which: without them (a whole-CDF binary
-  // search) the oracle gives the same rows bit for bit, and the SIMD batch is held to the same
-  // contract on both tables.
+  // The guide tables change how the 8-wide search finds a bin, not which: the batch is held
+  // to the same contract with them and without them (a whole-CDF bisection).
   EnvironmentMapTable copy = guided;
   copy.marginal_guide.clear(), copy.conditional_guide.clear();
   const EnvironmentMapTable& unguided = copy;
   ASSERT_EQ(EnvironmentDistribution(unguided, map).marginal_guide, nullptr);
-  SampleColumns plain(n);
-  SampleEnvironmentBatch(unguided, map, n, in, plain.Out());
-  for (size_t c = 0; c < 7; ++c)
-    for (size_t i = 0; i < n; ++i)
-      ASSERT_EQ(std::bit_cast<uint32_t>(plain.col[c][i]), std::bit_cast<uint32_t>(want.col[c][i]))
-          << "column " << c << " row " << i << " u = (" << u_x[i] << ", " << u_y[i] << ")";
   for (const EnvironmentMapTable* table : {&guided, &unguided}) {
     test::ForEachTarget(simd::Environment8TargetName, [&](const char* target) {
       // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
@@ -227,8 +220,10 @@ float LargestPixelAround(const EnvironmentMapTable& table, uint32_t map, Vec2f u
   for (int dy = -1; dy <= 2; ++dy)
     for (int dx = -1; dx <= 2; ++dx) {
       const int px = ((x + dx) % w + w) % w, py = std::clamp(y + dy, 0, h - 1);
-      const size_t k = table.pixel_offset[map] + size_t(py) * size_t(w) + size_t(px);
-      largest = std::max({largest, table.r[k], table.g[k], table.b[k]});
+      const float* t =
+          &table.texels[(table.pixel_offset[map] + size_t(py) * size_t(w) + size_t(px)) *
+                        kEnvironmentTexel];
+      largest = std::max({largest, t[0], t[1], t[2]});
     }
   return largest;
 }

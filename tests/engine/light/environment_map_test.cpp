@@ -368,7 +368,7 @@ TEST(EnvironmentMapPolicy, RejectsNonFiniteAndNegativePixels) {
                                  std::string(" R "), std::string("2 of 18 pixels")})
       EXPECT_NE(m.find(w), std::string::npos) << "'" << w << "' missing from: " << m;
     EXPECT_EQ(t.size(), 0u);
-    EXPECT_TRUE(t.r.empty());
+    EXPECT_TRUE(t.texels.empty());
   }
   Image image = RandomMap(6, 3, 18);
   image.rgb[7] = -0.0f;
