@@ -932,13 +932,17 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
   return done;
 }
 
-// An incoherent packet (lanes in several direction octants) would test every child box for
-// lanes that mostly miss it, so each lane traverses alone from the root; a coherent one
-// traverses as a packet (with the hybrid switch below single_ray_lanes).
+// An incoherent packet (lanes in several direction octants) in a large BVH would test every
+// child box for lanes that mostly miss it, so each lane traverses alone from the root; a
+// coherent one, or any in a small BVH, traverses as a packet (with the hybrid switch below
+// single_ray_lanes).
 template <bool kAnyHit>
 HWY_INLINE uint32_t TraverseLanes(const Bvh8& bvh, PacketState* s, uint32_t live,
                                   const Traverse8Options& options) {
-  if (options.octant_fallback && !s->coherent) return SingleRayLanes<kAnyHit>(bvh, 0, s, live);
+  if (options.octant_fallback && !s->coherent &&
+      bvh.num_triangles >= options.octant_fallback_min_triangles) {
+    return SingleRayLanes<kAnyHit>(bvh, 0, s, live);
+  }
   return TraversePacket<kAnyHit>(bvh, s, live, options);
 }
 
