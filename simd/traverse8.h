@@ -59,9 +59,9 @@ Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacke
 /// Occluded8's tuning (measured, BM_Tune_Occluded8 in benchmarks/traverse_bench.cpp): any hit
 /// gains from a packet's shared box tests near the root even when its lanes span several
 /// octants, and lanes from spread origins (bounce and shadow rays) go single once six or fewer
-/// need a subtree, camera packets (one origin) only at two. Against the closest-hit defaults,
-/// same run: bounce rays table +34 %, veach +68 %, terrain ±0; shadow rays +14 %, +11 %, +3 %;
-/// camera rays unchanged.
+/// need a subtree, camera packets (one origin) only at two. Against the closest-hit defaults of
+/// 2026-11-26 (octant fallback everywhere, switch at two), same run: bounce rays table +34 %,
+/// veach +68 %, terrain ±0; shadow rays +14 %, +11 %, +3 %; camera rays unchanged.
 inline constexpr Traverse8Options kOccluded8Options{.single_ray_lanes = 6,
                                                     .broadcast_leaves = true,
                                                     .octant_fallback = false,
