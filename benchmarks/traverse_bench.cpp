@@ -613,7 +613,13 @@ int RegisterAll() {
         for (uint32_t k = 0; k <= 8; ++k) {
           for (const int variant : {0, 1, 2}) {
             // 0: default leaves and octant fallback; 1: per-lane leaves; 2: no octant fallback.
-            const simd::Traverse8Options o{k, variant != 1, variant != 2};
+            // The switch k applies to every packet (shared origins too), and the fallback to
+            // BVH8s of any size.
+            const simd::Traverse8Options o{.single_ray_lanes = k,
+                                           .broadcast_leaves = variant != 1,
+                                           .octant_fallback = variant != 2,
+                                           .shared_origin_single_ray_lanes = -1,
+                                           .octant_fallback_min_triangles = 0};
             benchmark::RegisterBenchmark(
                 ("BM_Tune_" + cname + "/" + sc + "/" + st_name + "/switch:" + std::to_string(k) +
                  (variant == 0 ? "/default" : (variant == 1 ? "/per_lane_leaves" : "/no_octant")))

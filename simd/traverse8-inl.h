@@ -267,11 +267,15 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const SingleRay&
 // {t_max, kNoHit} (or a packet lane's hit so far) and is updated. Any hit: returns whether
 // something was hit.
 template <bool kAnyHit>
-HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& r, LaneBest* best) {
+HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& r,
+                               LaneBest* best_io) {
   const DF d;
   const size_t lanes = hn::Lanes(d);
   WatertightLanes rv;
   OneRayWatertight(r, &rv);
+  // The closest hit so far lives in locals (registers) until the end: through the pointer,
+  // every store to it would force the next node's far end to be reloaded from memory.
+  LaneBest best = *best_io;
   const VF ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
   const VF ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
   const VF t_min = hn::Set(d, r.t_min), scale = hn::Set(d, kRobustFarScale);
@@ -282,11 +286,12 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
   Entry stack[kStackSize];
   int sp = 0;
   Bvh8Ref cur = start;
+  bool any = false;
   for (;;) {
     if (!IsLeaf(cur)) {
       const Bvh8Node& node = bvh.nodes[cur];
       const float* planes = reinterpret_cast<const float*>(&node);
-      const VF t_max = hn::Set(d, kAnyHit ? r.t_max : best->t);
+      const VF t_max = hn::Set(d, kAnyHit ? r.t_max : best.t);
       alignas(32) float dist[8];
       uint32_t bits = 0;
       for (size_t i = 0; i < 8; i += lanes) {
@@ -305,13 +310,18 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
         if constexpr (!kAnyHit) hn::Store(t0, d, dist + i);
       }
       if (bits != 0) {
-        if ((bits & (bits - 1)) == 0) {
-          cur = node.child[std::countr_zero(bits)];
+        const int c0 = std::countr_zero(bits);
+        bits &= bits - 1;
+        if (bits == 0) {
+          cur = node.child[c0];
           continue;
         }
         if constexpr (kAnyHit) {
           // Any hit ends the ray wherever it is found, so the children are not sorted: the
           // last one is visited next, the others pushed in the node's order.
+          PTLAB_DCHECK(sp + std::popcount(bits) <= kStackSize);
+          stack[sp++] = {node.child[c0], 0.0f};
+          PrefetchChild(bvh, node.child[c0]);
           for (; (bits & (bits - 1)) != 0; bits &= bits - 1) {
             const Bvh8Ref ref = node.child[std::countr_zero(bits)];
             PrefetchChild(bvh, ref);
@@ -320,35 +330,57 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
           cur = node.child[std::countr_zero(bits)];
           continue;
         }
-        // Nearest child next, the others pushed farthest first.
-        Entry hit[8];
-        int n = 0;
-        for (; bits != 0; bits &= bits - 1) {
-          const int c = std::countr_zero(bits);
-          Entry e{node.child[c], dist[c]};
+        const int c1 = std::countr_zero(bits);
+        bits &= bits - 1;
+        if (bits == 0) {
+          // Two children (the common case): the farther one is pushed, the nearer visited.
+          // Equal entries keep the insertion sort's order below (the later child is nearer).
+          const bool first_near = dist[c0] < dist[c1];
+          const int near = first_near ? c0 : c1, far = first_near ? c1 : c0;
+          const Entry e{node.child[far], dist[far]};
           PrefetchChild(bvh, e.ref);
+          PTLAB_DCHECK(sp < kStackSize);
+          stack[sp++] = e;
+          cur = node.child[near];
+          continue;
+        }
+        // Three or more: nearest child next, the others pushed farthest first.
+        Entry hit[8];
+        hit[0] = {node.child[c0], dist[c0]};
+        int n = 1;
+        for (bits |= 1u << c1; bits != 0; bits &= bits - 1) {
+          const int c = std::countr_zero(bits);
+          const Entry e{node.child[c], dist[c]};
           int k = n++;
           for (; k > 0 && hit[k - 1].t_entry < e.t_entry; --k) hit[k] = hit[k - 1];
           hit[k] = e;
         }
         PTLAB_DCHECK(sp + n - 1 <= kStackSize);
-        for (int k = 0; k < n - 1; ++k) stack[sp++] = hit[k];
+        for (int k = 0; k < n - 1; ++k) {
+          PrefetchChild(bvh, hit[k].ref);
+          stack[sp++] = hit[k];
+        }
         cur = hit[n - 1].ref;
         continue;
       }
-    } else if (LeafSingle<kAnyHit>(d, bvh, cur, r, rv, best)) {
-      return true;
+    } else if (LeafSingle<kAnyHit>(d, bvh, cur, r, rv, &best)) {
+      any = true;
+      break;
     }
     // Pop the next subtree that may still hold a hit at or before the closest one.
-    for (;;) {
-      if (sp == 0) return false;
+    bool popped = false;
+    while (sp != 0) {
       const Entry& e = stack[--sp];
-      if (kAnyHit || e.t_entry <= best->t * kRobustFarScale) {
+      if (kAnyHit || e.t_entry <= best.t * kRobustFarScale) {
         cur = e.ref;
+        popped = true;
         break;
       }
     }
+    if (!popped) break;
   }
+  if constexpr (!kAnyHit) *best_io = best;
+  return any;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -650,7 +682,14 @@ HWY_INLINE void PacketChildren(DF d, const PacketState& s, const Bvh8Node& node,
         // Any hit needs neither entry distances (pops test only the lanes still open) nor
         // an order: any hit ends a lane, wherever it is.
         hn::Store(t0, d, t_near[c] + i);
-        if (cbits[c] == 0) key[c] = t_near[c][i + std::countr_zero(bits)];
+        if (s.coherent) {
+          if (cbits[c] == 0) key[c] = t_near[c][i + std::countr_zero(bits)];
+        } else {
+          // Lanes of several octants enter a child at unrelated distances: the nearest
+          // entry orders the children (the first lane's would be arbitrary).
+          const float k = ReduceLive<false>(d, t0, MaskFromBits(d, bits));
+          key[c] = cbits[c] == 0 || k < key[c] ? k : key[c];
+        }
       }
       cbits[c] |= bits << i;
     }
@@ -766,11 +805,13 @@ HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState*
 }
 
 // Out of line, so that the single-ray loop is compiled as tightly as simd::Intersect1 and not
-// inside the much larger packet function (measured: ~15% faster on incoherent packets).
+// inside the much larger packet function (measured: ~15% faster on incoherent packets). Takes
+// the lane, not a SingleRay: the lane's constants are read where they are used instead of
+// being copied into a struct on the caller's side and read back.
 template <bool kAnyHit>
-HWY_NOINLINE bool TraverseSingleOutOfLine(const Bvh8& bvh, Bvh8Ref start, const SingleRay& r,
-                                          LaneBest* best) {
-  return TraverseSingle<kAnyHit>(bvh, start, r, best);
+HWY_NOINLINE bool TraverseSingleOutOfLine(const Bvh8& bvh, Bvh8Ref start, const PacketState& s,
+                                          int j, LaneBest* best) {
+  return TraverseSingle<kAnyHit>(bvh, start, LaneSingleRay(s, j), best);
 }
 
 // Each lane of m traverses the subtree `ref` alone. Returns the lanes that hit (any hit).
@@ -781,9 +822,7 @@ HWY_INLINE uint32_t SingleRayLanes(const Bvh8& bvh, Bvh8Ref ref, PacketState* s,
     const int j = std::countr_zero(m);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
-    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, LaneSingleRay(*s, j), &best)) {
-      hit_lanes |= LaneBit(j);
-    }
+    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, *s, j, &best)) hit_lanes |= LaneBit(j);
     if constexpr (!kAnyHit) {
       s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
       s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
@@ -893,13 +932,17 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
   return done;
 }
 
-// An incoherent packet (lanes in several direction octants) would test every child box for
-// lanes that mostly miss it, so each lane traverses alone from the root; a coherent one
-// traverses as a packet (with the hybrid switch below single_ray_lanes).
+// An incoherent packet (lanes in several direction octants) in a large BVH would test every
+// child box for lanes that mostly miss it, so each lane traverses alone from the root; a
+// coherent one, or any in a small BVH, traverses as a packet (with the hybrid switch below
+// single_ray_lanes).
 template <bool kAnyHit>
 HWY_INLINE uint32_t TraverseLanes(const Bvh8& bvh, PacketState* s, uint32_t live,
                                   const Traverse8Options& options) {
-  if (options.octant_fallback && !s->coherent) return SingleRayLanes<kAnyHit>(bvh, 0, s, live);
+  if (options.octant_fallback && !s->coherent &&
+      bvh.num_triangles >= options.octant_fallback_min_triangles) {
+    return SingleRayLanes<kAnyHit>(bvh, 0, s, live);
+  }
   return TraversePacket<kAnyHit>(bvh, s, live, options);
 }
 

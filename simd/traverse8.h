@@ -27,7 +27,7 @@ struct Traverse8Options {
   /// Hybrid traversal: when at most this many lanes of a packet still need a subtree, each of
   /// them traverses it alone (single-ray BVH8 traversal, all eight child boxes in one vector)
   /// instead of the packet testing every child box for 8 lanes. 0 = pure packet traversal.
-  uint32_t single_ray_lanes = 2;
+  uint32_t single_ray_lanes = 4;
   /// In a leaf with fewer triangles than active lanes, test one triangle against all lanes at
   /// a time (each lane's vertices permuted to its own watertight axes, blended per lane when
   /// the lanes' permutations differ); else each active lane tests the whole leaf in one vector.
@@ -38,7 +38,14 @@ struct Traverse8Options {
   /// single_ray_lanes for packets whose lanes share one origin (a pinhole camera's): their
   /// rays diverge only by direction, so they stay together deeper down the tree than rays
   /// from spread origins. -1: single_ray_lanes.
-  int shared_origin_single_ray_lanes = -1;
+  int shared_origin_single_ray_lanes = 2;
+  /// The octant fallback applies only to BVH8s over at least this many triangles. Lanes of
+  /// an incoherent packet part ways after a few levels; in a small tree they still share most
+  /// of their nodes and leaves, in a large one the packet's per-child tests are mostly wasted.
+  /// Measured (same run, closest hit, against the fallback everywhere): bounce rays table
+  /// (22.7 k triangles) +10 %, veach +34 %, terrain (1.05 M) -9 %; shadow rays +29 %, +5 %,
+  /// +3 %. The threshold lies between those sizes and is not tuned further.
+  uint32_t octant_fallback_min_triangles = 1u << 17;
 };
 
 /// Closest hits of the lanes in `active` (bit i = lane i) with t in (t_min, t_max). Returns
@@ -52,9 +59,9 @@ Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacke
 /// Occluded8's tuning (measured, BM_Tune_Occluded8 in benchmarks/traverse_bench.cpp): any hit
 /// gains from a packet's shared box tests near the root even when its lanes span several
 /// octants, and lanes from spread origins (bounce and shadow rays) go single once six or fewer
-/// need a subtree, camera packets (one origin) only at two. Against the closest-hit defaults,
-/// same run: bounce rays table +34 %, veach +68 %, terrain ±0; shadow rays +14 %, +11 %, +3 %;
-/// camera rays unchanged.
+/// need a subtree, camera packets (one origin) only at two. Against the closest-hit defaults of
+/// 2026-11-26 (octant fallback everywhere, switch at two), same run: bounce rays table +34 %,
+/// veach +68 %, terrain ±0; shadow rays +14 %, +11 %, +3 %; camera rays unchanged.
 inline constexpr Traverse8Options kOccluded8Options{.single_ray_lanes = 6,
                                                     .broadcast_leaves = true,
                                                     .octant_fallback = false,

@@ -360,6 +360,10 @@ TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
     CompareAll(bvh8, some, some_expected, {"packet, per-lane leaves", {0, false, false}}, false,
                &mm);
     CompareAll(bvh8, some, some_expected, {"mostly single-ray", {7, true, false}}, false, &mm);
+    // The octant fallback of large BVH8s (incoherent packets' lanes alone from the root),
+    // here on a small one.
+    CompareAll(bvh8, some, some_expected,
+               {"octant fallback", {.octant_fallback_min_triangles = 0}}, false, &mm);
     CompareAll(bvh8, some, some_expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
     EXPECT_EQ(mm.count, 0);
   });
