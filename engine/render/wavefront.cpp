@@ -23,16 +23,12 @@ namespace {
 
 using integrator::AreaEmitterSampleRequest;
 using integrator::DrawBsdfNumbers;
-using integrator::DrawEmitterNumbers;
 using integrator::Emitted;
-using integrator::EmitterNumbers;
 using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
-using integrator::EmitterSampleResult;
 using integrator::Escaped;
 using integrator::InfiniteEmitterSampleRequest;
 using integrator::MisWeight;
-using integrator::PickEmitter;
 using integrator::PrepareEmitterSampleFrom;
 using integrator::SpawnOrigin;
 using integrator::kInfinity;
@@ -171,7 +167,8 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,
                           slot_, results_);
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
-    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, requests_, occluded_, nee_paths_);
+    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_, request_shadow_,
+                          request_contribution_, occluded_, nee_paths_);
     bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
@@ -328,9 +325,13 @@ class alignas(kColumnAlignment) Wavefront {
   void Sample(int depth) {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
-    requests_.clear(), nee_paths_.clear();
+    nee_paths_.clear();
     bsdf_.Clear();
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
+    // Requests are SoA columns written in place (a row's flag, its ray and contribution only
+    // when it traces): no request struct per row. The columns only grow.
+    n_requests_ = 0;
+    GrowColumns(emitter_rows, &request_traced_, &request_shadow_, &request_contribution_);
     area_.Clear(emitter_rows);
     for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
     for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
@@ -348,23 +349,25 @@ class alignas(kColumnAlignment) Wavefront {
       const bool delta = IsDeltaMaterial(its.material.tag());
       if (rules_.nee && (!delta || rules_.nee_on_delta)) {
         for (int s = 0; s < n_light; ++s) {
-          if (!emitters) {
-            requests_.push_back({});
-            continue;
-          }
-          // PrepareEmitterSample's numbers and pick; area-light, environment-map and distant-disk
-          // picks go to the emitter stage's batches, the delta lights are prepared here.
-          EmitterNumbers numbers;
-          if (sobol_) {
-            numbers.point = light_point_[size_t(s) * m + k], numbers.folded = true;
-          } else {
-            numbers = DrawEmitterNumbers(sampler, depth, uint32_t(s), uint32_t(n_light));
-          }
+          const uint32_t request = uint32_t(n_requests_++);
+          request_traced_[request] = 0;
+          if (!emitters) continue;
+          // PrepareEmitterSample's numbers and pick (DrawEmitterNumbers, PickEmitter), as
+          // plain floats; area-light, environment-map and distant-disk picks go to the emitter
+          // stage's batches, the delta lights are prepared here.
           float pick_pmf = 0.0f;
-          const EmitterRef emitter = PickEmitter(*scene_, &numbers, &pick_pmf);
-          const Vec2f& u = numbers.point;
-          const uint32_t request = uint32_t(requests_.size());
-          requests_.push_back({});
+          EmitterRef emitter;
+          Vec2f u;
+          if (sobol_) {
+            u = light_point_[size_t(s) * m + k];
+            emitter = SelectEmitter(*scene_, u.x, &pick_pmf, &u.x);
+          } else {
+            const float pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick),
+                                             uint32_t(s), uint32_t(n_light));
+            u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), uint32_t(s),
+                              uint32_t(n_light));
+            emitter = SelectEmitter(*scene_, pick, &pick_pmf);
+          }
           if (!(pick_pmf > 0)) continue;
           switch (emitter.tag()) {
             case EmitterTag::kArea:
@@ -380,8 +383,8 @@ class alignas(kColumnAlignment) Wavefront {
             case EmitterTag::kPoint:
             case EmitterTag::kDirectional:
             case EmitterTag::kSpot:
-              requests_[request] =
-                  PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis, emitter, pick_pmf, u);
+              StoreRequest(request, PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis,
+                                                             emitter, pick_pmf, u));
               break;
           }
         }
@@ -415,9 +418,19 @@ class alignas(kColumnAlignment) Wavefront {
     }
     SampleAreaLights();
     SampleInfiniteLights();
-    for (size_t r = 0; r < requests_.size(); ++r)
-      if (requests_[r].traced) shadows_.Push(requests_[r].shadow, uint32_t(r));
+    for (size_t r = 0; r < n_requests_; ++r)
+      if (request_traced_[r]) shadows_.Push(request_shadow_[r], uint32_t(r));
     SampleBsdfs();
+  }
+
+  // Row r of the request columns from a finished request; the row's flag is already 0 and
+  // stays so when the request traces nothing. Field by field, so the request stays in
+  // registers instead of being assembled on the stack and copied.
+  void StoreRequest(uint32_t r, const EmitterSampleRequest& req) {
+    if (!req.traced) return;
+    request_traced_[r] = 1;
+    request_shadow_[r] = req.shadow;
+    request_contribution_[r] = req.contribution;
   }
 
   // The emitter stage: the kernel table's area_light slot over the wave's area-light picks,
@@ -440,8 +453,8 @@ class alignas(kColumnAlignment) Wavefront {
       ls.pdf = a.pdf[c];
       ls.radiance = scene_->area_lights.radiance[a.light[c]];
       const size_t q = a.entry[c];
-      requests_[a.request[c]] =
-          AreaEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis, ls, a.pick_pmf[c]);
+      StoreRequest(a.request[c], AreaEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis,
+                                                          ls, a.pick_pmf[c]));
     }
   }
 
@@ -456,8 +469,8 @@ class alignas(kColumnAlignment) Wavefront {
         const EnvironmentSample es{
             {e.wi_x[c], e.wi_y[c], e.wi_z[c]}, {e.r[c], e.g[c], e.b[c]}, e.pdf[c]};
         const size_t q = e.entry[c];
-        requests_[e.request[c]] =
-            InfiniteEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis, es, e.pick_pmf[c]);
+        StoreRequest(e.request[c], InfiniteEmitterSampleRequest(*scene_, its_[q], wo_[q],
+                                                                rules_.mis, es, e.pick_pmf[c]));
       }
     };
     for (uint32_t map = 0; map < environment_.size(); ++map) {
@@ -569,7 +582,7 @@ class alignas(kColumnAlignment) Wavefront {
   }
 
   void TraceShadows() {
-    occluded_.assign(requests_.size(), 0);
+    occluded_.assign(n_requests_, 0);
     for (size_t k = 0; k < shadows_.packets.size(); ++k) {
       const Mask8 active = shadows_.Active(k);
       const Mask8 occ = kernels_->occluded8(kernels_->accel, shadows_.packets[k], active) & active;
@@ -591,7 +604,9 @@ class alignas(kColumnAlignment) Wavefront {
       Color3f direct;
       for (int s = 0; s < n_light; ++s) {
         const size_t r = p * size_t(n_light) + size_t(s);
-        direct += EmitterSampleResult(requests_[r], occluded_[r] != 0);
+        // EmitterSampleResult: adding its zero for an untraced or occluded sample changes no
+        // bit (direct starts at +0 and never becomes -0), so those rows are skipped.
+        if (request_traced_[r] && !occluded_[r]) direct += request_contribution_[r];
       }
       L_[i] += nee_throughput_[i] * direct * inv_n;
     }
@@ -789,7 +804,11 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
   std::vector<uint8_t> goes_on_;
-  std::vector<EmitterSampleRequest> requests_;
+  // The emitter samples' requests (EmitterSampleRequest as columns), rows [0, n_requests_).
+  std::vector<uint8_t> request_traced_;
+  std::vector<Ray> request_shadow_;
+  std::vector<Color3f> request_contribution_;
+  size_t n_requests_ = 0;
   std::vector<uint8_t> occluded_;
   std::vector<uint32_t> nee_paths_;
   BsdfColumns bsdf_;
