@@ -44,10 +44,12 @@ inline void SetInteractionRow(const InteractionColumns& out, size_t q,
   out.n_x[q] = its.frame.n.x, out.n_y[q] = its.frame.n.y, out.n_z[q] = its.frame.n.z;
 }
 
-/// The SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim): the frame
-/// built from n, the material and emitter looked up by prim. Bit-identical to MakeInteraction
-/// when the row came from MakeInteractionBatch.
-SurfaceInteraction InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q,
-                                 uint32_t prim);
+/// Writes *its: the SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim):
+/// the frame built from n, the material and emitter looked up by prim. Bit-identical to
+/// MakeInteraction when the row came from MakeInteractionBatch. Every field is written in place
+/// (no returned struct: a caller storing one copied it from the stack, 16 bytes at a time over
+/// the callee's narrower stores, which stalls store forwarding).
+void InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q, uint32_t prim,
+                   SurfaceInteraction* its);
 
 }  // namespace ptlab

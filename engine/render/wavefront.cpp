@@ -293,7 +293,8 @@ class alignas(kColumnAlignment) Wavefront {
         }
         continue;
       }
-      const SurfaceInteraction its = InteractionAt(*scene_, points, q, hits_[k].prim[j]);
+      SurfaceInteraction& its = its_[q];  // built in place: the sampling stage reads it there
+      InteractionAt(*scene_, points, q, hits_[k].prim[j], &its);
       if (rules_.normals) {
         const Vec3f a = Abs(its.frame.n);
         L_[i] = {a.x, a.y, a.z};
@@ -312,7 +313,6 @@ class alignas(kColumnAlignment) Wavefront {
         L_[i] += throughput_[i] * Le * w;
       }
       if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
-      its_[q] = its;
       wo_[q] = its.frame.ToLocal(wo_world);
       goes_on_[q] = 1;
     }
