@@ -326,7 +326,7 @@ class alignas(kColumnAlignment) Wavefront {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
     nee_paths_.clear();
-    bsdf_.Clear();
+    bsdf_.Clear(rays_.size());
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
     // Requests are SoA columns written in place (a row's flag, its ray and contribution only
     // when it traces): no request struct per row. The columns only grow.
@@ -494,7 +494,6 @@ class alignas(kColumnAlignment) Wavefront {
     BsdfColumns& b = bsdf_;
     const size_t n = b.size();
     if (n == 0) return;
-    b.Resize(n);
     ShadeInputs in;
     in.wo = {b.wo_x.data(), b.wo_y.data(), b.wo_z.data()};
     in.u_lobe = b.u_lobe.data(), in.u_x = b.u_x.data(), in.u_y = b.u_y.data();
@@ -653,27 +652,27 @@ class alignas(kColumnAlignment) Wavefront {
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
 
-    size_t size() const { return path.size(); }
+    size_t rows = 0;
+
+    size_t size() const { return rows; }
     size_t Bytes() const {
       return VectorsBytes(path, entry, material, roulette_scale, wo_x, wo_y, wo_z, u_lobe, u_x, u_y,
                           wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
     }
-    void Clear() {
-      for (auto* v : {&path, &entry}) v->clear();
-      material.clear(), roulette_scale.clear();
-      for (auto* v : {&wo_x, &wo_y, &wo_z, &u_lobe, &u_x, &u_y}) v->clear();
+    /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
+    /// place; only grows.
+    void Clear(size_t capacity) {
+      rows = 0;
+      GrowColumns(capacity, &path, &entry, &material, &roulette_scale, &wo_x, &wo_y, &wo_z,
+                  &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
+                  &eta);
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
-      path.push_back(path_id), entry.push_back(queue_entry), material.push_back(ref);
-      roulette_scale.push_back(scale);
-      wo_x.push_back(wo.x), wo_y.push_back(wo.y), wo_z.push_back(wo.z);
-      u_lobe.push_back(lobe), u_x.push_back(dir.x), u_y.push_back(dir.y);
-    }
-    /// Sizes the output columns for n rows.
-    void Resize(size_t n) {
-      for (auto* v : {&wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf, &eta})
-        v->resize(n);
+      const size_t c = rows++;
+      path[c] = path_id, entry[c] = queue_entry, material[c] = ref, roulette_scale[c] = scale;
+      wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
+      u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
     }
   };
 
