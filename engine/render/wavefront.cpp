@@ -161,7 +161,7 @@ class alignas(kColumnAlignment) Wavefront {
   /// Heap bytes of the path state, queues and columns: capacity × element size. They only grow
   /// (cleared, never shrunk), so this is the high-water mark of every tile rendered so far.
   size_t Bytes() const {
-    size_t bytes = VectorsBytes(sampler_, gen_px_, gen_py_, jitter_, lens_, all_paths_, continuing_,
+    size_t bytes = VectorsBytes(sampler_, gen_px_, gen_py_, gen_sx_, gen_sy_, jitter_, lens_, all_paths_, continuing_,
                                 roulette_, bsdf_lobe_, light_point_, bsdf_direction_, draw_seed_,
                                 draw_index_, draw_x_, draw_y_);
     bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,
@@ -227,10 +227,24 @@ class alignas(kColumnAlignment) Wavefront {
         lens_[i] = sampler_[i].Get2D(kDimensionLens);
       }
     }
+    // Film positions as columns, padded to whole packets (the padding lanes' rays are made
+    // and never read: Active masks them), then the camera rays eight at a time, path i in
+    // lane i % 8 of packet i / 8 (the order Push would give).
+    const size_t packets = (size_t(id) + kPacketWidth - 1) / kPacketWidth;
+    const size_t padded = packets * kPacketWidth;
+    gen_sx_.resize(padded), gen_sy_.resize(padded), lens_.resize(padded);
     for (uint32_t i = 0; i < id; ++i) {
       const float sx = float(gen_px_[i]) + jitter_[i].x, sy = float(gen_py_[i]) + jitter_[i].y;
+      gen_sx_[i] = sx, gen_sy_[i] = sy;
       results_[slot_[i]] = {sx, sy, Color3f{}, true};
-      rays_.Push(camera.GenerateRay(sx, sy, lens_[i]), i);
+    }
+    for (size_t i = id; i < padded; ++i) gen_sx_[i] = gen_sy_[i] = 0.5f, lens_[i] = {0.5f, 0.5f};
+    rays_.packets.resize(packets);
+    rays_.owner.resize(id);
+    for (uint32_t i = 0; i < id; ++i) rays_.owner[i] = i;
+    for (size_t k = 0; k < packets; ++k) {
+      const size_t i = k * kPacketWidth;
+      camera.GenerateRay8(&gen_sx_[i], &gen_sy_[i], &lens_[i], &rays_.packets[k]);
     }
     // Fewer paths than slots when pixels are inactive: Splat reads only the paths made here.
     slot_.resize(id), sampler_.resize(id);
@@ -783,6 +797,7 @@ class alignas(kColumnAlignment) Wavefront {
   bool sobol_ = false;
   // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
   std::vector<int> gen_px_, gen_py_;
+  std::vector<float> gen_sx_, gen_sy_;
   std::vector<Vec2f> jitter_, lens_;
   std::vector<uint32_t> all_paths_, continuing_;
   std::vector<float> roulette_, bsdf_lobe_;
