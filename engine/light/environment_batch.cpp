@@ -22,9 +22,13 @@ void EvalEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t
                           const EnvironmentEvalInputs& in, const EnvironmentEvalOutputs& out) {
   for (size_t i = 0; i < n; ++i) {
     const Vec3f w{in.w_x[i], in.w_y[i], in.w_z[i]};
-    const Color3f L = EnvironmentRadiance(table, map, w);
+    Color3f L;
+    if (out.pdf) {
+      out.pdf[i] = EnvironmentRadianceAndPdf(table, map, w, &L);  // one (u, v) for both
+    } else {
+      L = EnvironmentRadiance(table, map, w);
+    }
     out.r[i] = L.r, out.g[i] = L.g, out.b[i] = L.b;
-    if (out.pdf) out.pdf[i] = EnvironmentPdf(table, map, w);
   }
 }
 

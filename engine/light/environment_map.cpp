@@ -240,6 +240,21 @@ float EnvironmentPdf(const EnvironmentMapTable& t, uint32_t row, const Vec3f& w_
   return pdf_uv / (kEnvironmentTwoPiSquared * sin_theta);
 }
 
+float EnvironmentRadianceAndPdf(const EnvironmentMapTable& t, uint32_t row, const Vec3f& w_world,
+                                Color3f* radiance) {
+  // EnvironmentRadiance's and EnvironmentPdf's operations, their shared ones done once.
+  const Vec3f d = t.to_world[row].ToLocal(w_world);
+  const Vec2f uv = EnvironmentDirectionToUv(d);
+  *radiance = Lookup(Pixels(t, row), uv);
+  if (t.sampling[row] == EnvironmentSampling::kUniform)
+    return t.luminance_integral[row] > 0 ? kInv4Pi : 0.0f;
+  const float r = std::sqrt(d.x * d.x + d.z * d.z);
+  if (!(r > 0)) return 0.0f;
+  const float sin_theta = r / std::sqrt(r * r + d.y * d.y);
+  const float pdf_uv = Distribution2DPdf(EnvironmentDistribution(t, row), uv);
+  return pdf_uv / (kEnvironmentTwoPiSquared * sin_theta);
+}
+
 Image EnvironmentPdfDebugImage(const EnvironmentMapTable& t, uint32_t row) {
   PTLAB_CHECK(t.sampling[row] == EnvironmentSampling::kImportance);
   const Distribution2DView d = EnvironmentDistribution(t, row);

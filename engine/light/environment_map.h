@@ -60,6 +60,11 @@ Distribution2DView EnvironmentDistribution(const EnvironmentMapTable& table, uin
 /// bilinearly interpolated, scaled map value. What an escaping ray sees.
 Color3f EnvironmentRadiance(const EnvironmentMapTable& table, uint32_t row, const Vec3f& w_world);
 
+/// EnvironmentRadiance (into *radiance) and EnvironmentPdf of one direction, bit for bit, with
+/// the direction mapped to (u, v) once for both: what MIS weighs an escaping ray with.
+float EnvironmentRadianceAndPdf(const EnvironmentMapTable& table, uint32_t row,
+                                const Vec3f& w_world, Color3f* radiance);
+
 /// Samples a world direction with the row's strategy. Returns false (out untouched) only for a
 /// black map. A sample never lies exactly on a pole (its pdf is always finite and > 0).
 bool SampleEnvironment(const EnvironmentMapTable& table, uint32_t row, const Vec2f& u,

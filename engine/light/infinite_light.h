@@ -67,6 +67,16 @@ inline float InfiniteLightPdf(const Scene& scene, EmitterRef e, const Vec3f& w) 
   return 0.0f;  // an invalid ref
 }
 
+/// InfiniteLightRadiance (into *radiance) and InfiniteLightPdf of e and w together, bit for bit
+/// (an environment map maps w to (u, v) once for both).
+inline float InfiniteLightRadianceAndPdf(const Scene& scene, EmitterRef e, const Vec3f& w,
+                                         Color3f* radiance) {
+  if (e.valid() && e.tag() == EmitterTag::kEnvironment)
+    return EnvironmentRadianceAndPdf(scene.environment_maps, e.index(), w, radiance);
+  *radiance = InfiniteLightRadiance(scene, e, w);
+  return InfiniteLightPdf(scene, e, w);
+}
+
 /// Radiance seen by a ray leaving the scene along w (unit): the sum over every environment map
 /// and distant disk. Black (and free) when the scene has none.
 inline Color3f EscapedRadiance(const Scene& scene, const Vec3f& w) {

@@ -2,6 +2,7 @@
 #include "engine/render/camera.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "engine/sampling/warp.h"
 
@@ -47,6 +48,52 @@ Ray Camera::GenerateRay(float px, float py, const Vec2f& lens_u) const {
   ray.t_min = desc_.near_clip * inv_z;
   ray.t_max = desc_.far_clip * inv_z;
   return ray;
+}
+
+void Camera::GenerateRay8(const float* px, const float* py, const Vec2f* lens_u,
+                          RayPacket8* out) const {
+  constexpr int kLanes = int(kPacketWidth);
+  if (desc_.aperture_radius > 0) {
+    for (int j = 0; j < kLanes; ++j) SetLaneRay(out, j, GenerateRay(px[j], py[j], lens_u[j]));
+    return;
+  }
+  // GenerateRay's pinhole branch with the transform written out: the origin is the image of
+  // (0, 0, 0), the same for every lane; the direction's operations are GenerateRay's, in order.
+  // Inputs, matrix and results are locals, so that no store may alias a load.
+  const Vec3f o = desc_.camera_to_world.ApplyPoint(Vec3f{0, 0, 0});
+  const auto& m = desc_.camera_to_world.matrix().m;
+  const float a00 = m[0][0], a01 = m[0][1], a02 = m[0][2], a10 = m[1][0], a11 = m[1][1],
+              a12 = m[1][2], a20 = m[2][0], a21 = m[2][1], a22 = m[2][2];
+  const float width = float(desc_.width), height = float(desc_.height);
+  const float tan_half_fov = tan_half_fov_, aspect = aspect_;
+  const float near_clip = desc_.near_clip, far_clip = desc_.far_clip;
+  float in_x[kPacketWidth], in_y[kPacketWidth];
+  float d_x[kPacketWidth], d_y[kPacketWidth], d_z[kPacketWidth], t0[kPacketWidth],
+      t1[kPacketWidth];
+  std::memcpy(in_x, px, sizeof(in_x));
+  std::memcpy(in_y, py, sizeof(in_y));
+  for (int j = 0; j < kLanes; ++j) {
+    const float sx = in_x[j] / width, sy = in_y[j] / height;
+    const float fx = (1.0f - 2.0f * sx) * tan_half_fov;
+    const float fy = (1.0f - 2.0f * sy) * tan_half_fov / aspect;
+    const float fz = 1.0f;
+    const float inv_len = 1.0f / std::sqrt(fx * fx + fy * fy + fz * fz);  // Normalize
+    const float dx = fx * inv_len, dy = fy * inv_len, dz = fz * inv_len;
+    const float inv_z = 1.0f / dz;
+    const float wx = a00 * dx + a01 * dy + a02 * dz;  // ApplyVector
+    const float wy = a10 * dx + a11 * dy + a12 * dz;
+    const float wz = a20 * dx + a21 * dy + a22 * dz;
+    const float inv_wlen = 1.0f / std::sqrt(wx * wx + wy * wy + wz * wz);
+    d_x[j] = wx * inv_wlen, d_y[j] = wy * inv_wlen, d_z[j] = wz * inv_wlen;
+    t0[j] = near_clip * inv_z;
+    t1[j] = far_clip * inv_z;
+  }
+  for (int j = 0; j < kLanes; ++j) out->org_x[j] = o.x, out->org_y[j] = o.y, out->org_z[j] = o.z;
+  std::memcpy(out->dir_x, d_x, sizeof(d_x));
+  std::memcpy(out->dir_y, d_y, sizeof(d_y));
+  std::memcpy(out->dir_z, d_z, sizeof(d_z));
+  std::memcpy(out->t_min, t0, sizeof(t0));
+  std::memcpy(out->t_max, t1, sizeof(t1));
 }
 
 }  // namespace ptlab

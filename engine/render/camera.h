@@ -1,6 +1,7 @@
 // Camera ray generation: Nori's perspective projection, with an optional thin lens.
 #pragma once
 
+#include "engine/core/packet8.h"
 #include "engine/core/ray.h"
 #include "engine/scene/scene.h"
 
@@ -19,6 +20,12 @@ class Camera {
   /// using lens sample u in [0,1)² when the aperture is open. d is unit length; t_min/t_max are
   /// the near/far clip distances along the ray, as in Nori.
   Ray GenerateRay(float px, float py, const Vec2f& lens_u) const;
+
+  /// GenerateRay for all eight lanes of *out: lane j is GenerateRay(px[j], py[j], lens_u[j]),
+  /// bit for bit. A pinhole camera's lanes go through one loop the compiler vectorises (the
+  /// same operations in the same order, each lane exact IEEE arithmetic); a thin lens takes
+  /// GenerateRay lane by lane.
+  void GenerateRay8(const float* px, const float* py, const Vec2f* lens_u, RayPacket8* out) const;
 
   int width() const { return desc_.width; }
   int height() const { return desc_.height; }

@@ -68,9 +68,10 @@ inline Color3f Escaped(const Scene& scene, const Vec3f& w, bool mis, float bsdf_
   Color3f L;
   for (const EmitterRef e : scene.emitters) {
     if (!IsInfiniteLight(e)) continue;
-    const Color3f Le = InfiniteLightRadiance(scene, e, w);
+    Color3f Le;
+    const float pdf = InfiniteLightRadianceAndPdf(scene, e, w, &Le);
     if (IsBlack(Le)) continue;
-    L += Le * MisWeight(bsdf_pdf, InfiniteLightPdf(scene, e, w) * EmitterSelectionPmf(scene, e),
+    L += Le * MisWeight(bsdf_pdf, pdf * EmitterSelectionPmf(scene, e),
                         scene.integrator.power_heuristic);
   }
   return L;

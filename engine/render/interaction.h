@@ -57,10 +57,12 @@ inline void SetInteractionRow(const InteractionColumns& out, size_t q,
   out.u[q] = its.uv.x, out.v[q] = its.uv.y;
 }
 
-/// The SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim): the frame
-/// built from n, uv read back, the material and emitter looked up by prim. Bit-identical to MakeInteraction
-/// when the row came from MakeInteractionBatch.
-SurfaceInteraction InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q,
-                                 uint32_t prim);
+/// Writes *its: the SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim):
+/// the frame built from n, uv read back, the material and emitter looked up by prim.
+/// Bit-identical to MakeInteraction when the row came from MakeInteractionBatch. Every field is written in place
+/// (no returned struct: a caller storing one copied it from the stack, 16 bytes at a time over
+/// the callee's narrower stores, which stalls store forwarding).
+void InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q, uint32_t prim,
+                   SurfaceInteraction* its);
 
 }  // namespace ptlab

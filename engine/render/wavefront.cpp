@@ -23,16 +23,12 @@ namespace {
 
 using integrator::AreaEmitterSampleRequest;
 using integrator::DrawBsdfNumbers;
-using integrator::DrawEmitterNumbers;
 using integrator::Emitted;
-using integrator::EmitterNumbers;
 using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
-using integrator::EmitterSampleResult;
 using integrator::Escaped;
 using integrator::InfiniteEmitterSampleRequest;
 using integrator::MisWeight;
-using integrator::PickEmitter;
 using integrator::PrepareEmitterSampleFrom;
 using integrator::SpawnOrigin;
 using integrator::kInfinity;
@@ -165,13 +161,14 @@ class alignas(kColumnAlignment) Wavefront {
   /// Heap bytes of the path state, queues and columns: capacity × element size. They only grow
   /// (cleared, never shrunk), so this is the high-water mark of every tile rendered so far.
   size_t Bytes() const {
-    size_t bytes = VectorsBytes(sampler_, gen_px_, gen_py_, jitter_, lens_, all_paths_, continuing_,
+    size_t bytes = VectorsBytes(sampler_, gen_px_, gen_py_, gen_sx_, gen_sy_, jitter_, lens_, all_paths_, continuing_,
                                 roulette_, bsdf_lobe_, light_point_, bsdf_direction_, draw_seed_,
                                 draw_index_, draw_x_, draw_y_);
     bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,
                           slot_, results_);
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
-    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, requests_, occluded_, nee_paths_);
+    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_, request_shadow_,
+                          request_contribution_, occluded_, nee_paths_);
     bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
     bytes += escaped_.Bytes();
@@ -231,10 +228,24 @@ class alignas(kColumnAlignment) Wavefront {
         lens_[i] = sampler_[i].Get2D(kDimensionLens);
       }
     }
+    // Film positions as columns, padded to whole packets (the padding lanes' rays are made
+    // and never read: Active masks them), then the camera rays eight at a time, path i in
+    // lane i % 8 of packet i / 8 (the order Push would give).
+    const size_t packets = (size_t(id) + kPacketWidth - 1) / kPacketWidth;
+    const size_t padded = packets * kPacketWidth;
+    gen_sx_.resize(padded), gen_sy_.resize(padded), lens_.resize(padded);
     for (uint32_t i = 0; i < id; ++i) {
       const float sx = float(gen_px_[i]) + jitter_[i].x, sy = float(gen_py_[i]) + jitter_[i].y;
+      gen_sx_[i] = sx, gen_sy_[i] = sy;
       results_[slot_[i]] = {sx, sy, Color3f{}, true};
-      rays_.Push(camera.GenerateRay(sx, sy, lens_[i]), i);
+    }
+    for (size_t i = id; i < padded; ++i) gen_sx_[i] = gen_sy_[i] = 0.5f, lens_[i] = {0.5f, 0.5f};
+    rays_.packets.resize(packets);
+    rays_.owner.resize(id);
+    for (uint32_t i = 0; i < id; ++i) rays_.owner[i] = i;
+    for (size_t k = 0; k < packets; ++k) {
+      const size_t i = k * kPacketWidth;
+      camera.GenerateRay8(&gen_sx_[i], &gen_sy_[i], &lens_[i], &rays_.packets[k]);
     }
     // Fewer paths than slots when pixels are inactive: Splat reads only the paths made here.
     slot_.resize(id), sampler_.resize(id);
@@ -301,7 +312,8 @@ class alignas(kColumnAlignment) Wavefront {
         }
         continue;
       }
-      const SurfaceInteraction its = InteractionAt(*scene_, points, q, hits_[k].prim[j]);
+      SurfaceInteraction& its = its_[q];  // built in place: the sampling stage reads it there
+      InteractionAt(*scene_, points, q, hits_[k].prim[j], &its);
       if (rules_.normals) {
         const Vec3f a = Abs(its.frame.n);
         L_[i] = {a.x, a.y, a.z};
@@ -320,7 +332,6 @@ class alignas(kColumnAlignment) Wavefront {
         L_[i] += throughput_[i] * Le * w;
       }
       if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
-      its_[q] = its;
       wo_[q] = its.frame.ToLocal(wo_world);
       goes_on_[q] = 1;
     }
@@ -380,9 +391,13 @@ class alignas(kColumnAlignment) Wavefront {
   void Sample(int depth) {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
-    requests_.clear(), nee_paths_.clear();
-    bsdf_.Clear();
+    nee_paths_.clear();
+    bsdf_.Clear(rays_.size());
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
+    // Requests are SoA columns written in place (a row's flag, its ray and contribution only
+    // when it traces): no request struct per row. The columns only grow.
+    n_requests_ = 0;
+    GrowColumns(emitter_rows, &request_traced_, &request_shadow_, &request_contribution_);
     area_.Clear(emitter_rows);
     for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
     for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
@@ -400,23 +415,25 @@ class alignas(kColumnAlignment) Wavefront {
       const bool delta = IsDeltaMaterial(its.material.tag());
       if (rules_.nee && (!delta || rules_.nee_on_delta)) {
         for (int s = 0; s < n_light; ++s) {
-          if (!emitters) {
-            requests_.push_back({});
-            continue;
-          }
-          // PrepareEmitterSample's numbers and pick; area-light, environment-map and distant-disk
-          // picks go to the emitter stage's batches, the delta lights are prepared here.
-          EmitterNumbers numbers;
-          if (sobol_) {
-            numbers.point = light_point_[size_t(s) * m + k], numbers.folded = true;
-          } else {
-            numbers = DrawEmitterNumbers(sampler, depth, uint32_t(s), uint32_t(n_light));
-          }
+          const uint32_t request = uint32_t(n_requests_++);
+          request_traced_[request] = 0;
+          if (!emitters) continue;
+          // PrepareEmitterSample's numbers and pick (DrawEmitterNumbers, PickEmitter), as
+          // plain floats; area-light, environment-map and distant-disk picks go to the emitter
+          // stage's batches, the delta lights are prepared here.
           float pick_pmf = 0.0f;
-          const EmitterRef emitter = PickEmitter(*scene_, &numbers, &pick_pmf);
-          const Vec2f& u = numbers.point;
-          const uint32_t request = uint32_t(requests_.size());
-          requests_.push_back({});
+          EmitterRef emitter;
+          Vec2f u;
+          if (sobol_) {
+            u = light_point_[size_t(s) * m + k];
+            emitter = SelectEmitter(*scene_, u.x, &pick_pmf, &u.x);
+          } else {
+            const float pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick),
+                                             uint32_t(s), uint32_t(n_light));
+            u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), uint32_t(s),
+                              uint32_t(n_light));
+            emitter = SelectEmitter(*scene_, pick, &pick_pmf);
+          }
           if (!(pick_pmf > 0)) continue;
           switch (emitter.tag()) {
             case EmitterTag::kArea:
@@ -432,8 +449,8 @@ class alignas(kColumnAlignment) Wavefront {
             case EmitterTag::kPoint:
             case EmitterTag::kDirectional:
             case EmitterTag::kSpot:
-              requests_[request] =
-                  PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis, emitter, pick_pmf, u);
+              StoreRequest(request, PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis,
+                                                             emitter, pick_pmf, u));
               break;
           }
         }
@@ -467,9 +484,19 @@ class alignas(kColumnAlignment) Wavefront {
     }
     SampleAreaLights();
     SampleInfiniteLights();
-    for (size_t r = 0; r < requests_.size(); ++r)
-      if (requests_[r].traced) shadows_.Push(requests_[r].shadow, uint32_t(r));
+    for (size_t r = 0; r < n_requests_; ++r)
+      if (request_traced_[r]) shadows_.Push(request_shadow_[r], uint32_t(r));
     SampleBsdfs();
+  }
+
+  // Row r of the request columns from a finished request; the row's flag is already 0 and
+  // stays so when the request traces nothing. Field by field, so the request stays in
+  // registers instead of being assembled on the stack and copied.
+  void StoreRequest(uint32_t r, const EmitterSampleRequest& req) {
+    if (!req.traced) return;
+    request_traced_[r] = 1;
+    request_shadow_[r] = req.shadow;
+    request_contribution_[r] = req.contribution;
   }
 
   // The emitter stage: the kernel table's area_light slot over the wave's area-light picks,
@@ -492,8 +519,8 @@ class alignas(kColumnAlignment) Wavefront {
       ls.pdf = a.pdf[c];
       ls.radiance = scene_->area_lights.radiance[a.light[c]];
       const size_t q = a.entry[c];
-      requests_[a.request[c]] =
-          AreaEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis, ls, a.pick_pmf[c]);
+      StoreRequest(a.request[c], AreaEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis,
+                                                          ls, a.pick_pmf[c]));
     }
   }
 
@@ -508,8 +535,8 @@ class alignas(kColumnAlignment) Wavefront {
         const EnvironmentSample es{
             {e.wi_x[c], e.wi_y[c], e.wi_z[c]}, {e.r[c], e.g[c], e.b[c]}, e.pdf[c]};
         const size_t q = e.entry[c];
-        requests_[e.request[c]] =
-            InfiniteEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis, es, e.pick_pmf[c]);
+        StoreRequest(e.request[c], InfiniteEmitterSampleRequest(*scene_, its_[q], wo_[q],
+                                                                rules_.mis, es, e.pick_pmf[c]));
       }
     };
     for (uint32_t map = 0; map < environment_.size(); ++map) {
@@ -533,7 +560,6 @@ class alignas(kColumnAlignment) Wavefront {
     BsdfColumns& b = bsdf_;
     const size_t n = b.size();
     if (n == 0) return;
-    b.Resize(n);
     ShadeInputs in;
     in.wo = {b.wo_x.data(), b.wo_y.data(), b.wo_z.data()};
     in.u_lobe = b.u_lobe.data(), in.u_x = b.u_x.data(), in.u_y = b.u_y.data();
@@ -621,7 +647,7 @@ class alignas(kColumnAlignment) Wavefront {
   }
 
   void TraceShadows() {
-    occluded_.assign(requests_.size(), 0);
+    occluded_.assign(n_requests_, 0);
     for (size_t k = 0; k < shadows_.packets.size(); ++k) {
       const Mask8 active = shadows_.Active(k);
       const Mask8 occ = kernels_->occluded8(kernels_->accel, shadows_.packets[k], active) & active;
@@ -643,7 +669,9 @@ class alignas(kColumnAlignment) Wavefront {
       Color3f direct;
       for (int s = 0; s < n_light; ++s) {
         const size_t r = p * size_t(n_light) + size_t(s);
-        direct += EmitterSampleResult(requests_[r], occluded_[r] != 0);
+        // EmitterSampleResult: adding its zero for an untraced or occluded sample changes no
+        // bit (direct starts at +0 and never becomes -0), so those rows are skipped.
+        if (request_traced_[r] && !occluded_[r]) direct += request_contribution_[r];
       }
       L_[i] += nee_throughput_[i] * direct * inv_n;
     }
@@ -690,27 +718,27 @@ class alignas(kColumnAlignment) Wavefront {
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
 
-    size_t size() const { return path.size(); }
+    size_t rows = 0;
+
+    size_t size() const { return rows; }
     size_t Bytes() const {
       return VectorsBytes(path, entry, material, roulette_scale, wo_x, wo_y, wo_z, u_lobe, u_x, u_y,
                           wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
     }
-    void Clear() {
-      for (auto* v : {&path, &entry}) v->clear();
-      material.clear(), roulette_scale.clear();
-      for (auto* v : {&wo_x, &wo_y, &wo_z, &u_lobe, &u_x, &u_y}) v->clear();
+    /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
+    /// place; only grows.
+    void Clear(size_t capacity) {
+      rows = 0;
+      GrowColumns(capacity, &path, &entry, &material, &roulette_scale, &wo_x, &wo_y, &wo_z,
+                  &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
+                  &eta);
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
-      path.push_back(path_id), entry.push_back(queue_entry), material.push_back(ref);
-      roulette_scale.push_back(scale);
-      wo_x.push_back(wo.x), wo_y.push_back(wo.y), wo_z.push_back(wo.z);
-      u_lobe.push_back(lobe), u_x.push_back(dir.x), u_y.push_back(dir.y);
-    }
-    /// Sizes the output columns for n rows.
-    void Resize(size_t n) {
-      for (auto* v : {&wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf, &eta})
-        v->resize(n);
+      const size_t c = rows++;
+      path[c] = path_id, entry[c] = queue_entry, material[c] = ref, roulette_scale[c] = scale;
+      wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
+      u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
     }
   };
 
@@ -825,6 +853,7 @@ class alignas(kColumnAlignment) Wavefront {
   bool sobol_ = false;
   // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
   std::vector<int> gen_px_, gen_py_;
+  std::vector<float> gen_sx_, gen_sy_;
   std::vector<Vec2f> jitter_, lens_;
   std::vector<uint32_t> all_paths_, continuing_;
   std::vector<float> roulette_, bsdf_lobe_;
@@ -845,7 +874,11 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
   std::vector<uint8_t> goes_on_;
-  std::vector<EmitterSampleRequest> requests_;
+  // The emitter samples' requests (EmitterSampleRequest as columns), rows [0, n_requests_).
+  std::vector<uint8_t> request_traced_;
+  std::vector<Ray> request_shadow_;
+  std::vector<Color3f> request_contribution_;
+  size_t n_requests_ = 0;
   // A wave's escaped rays, when they go through the environment_eval batch (ShadeEscaped).
   struct EscapedColumns {
     std::vector<uint32_t> q;           // queue entry

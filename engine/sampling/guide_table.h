@@ -18,12 +18,24 @@ inline void BuildGuideTable(const float* cdf, uint32_t n, uint32_t* guide) {
   }
 }
 
+/// A CDF of at most this many entries is searched by GuidedUpperBound with a full branchless
+/// scan instead of its guide.
+inline constexpr uint32_t kScanUpperBoundMax = 16;
+
 /// std::upper_bound(cdf, cdf + n, u) - cdf for u in [0, 1), searching only the guide's bucket of
 /// u. The answer is verified against its neighbours and falls back to the full binary search
 /// when the guide does not bracket it (a guide built for other CDF values, or float rounding at
 /// a bucket edge), so the result never depends on the guide's contents.
 inline uint32_t GuidedUpperBound(const float* cdf, uint32_t n, const uint32_t* guide, float u) {
   if (n == 0) return 0;
+  if (n <= kScanUpperBoundMax) {
+    // upper_bound's own predicate counted over the whole sorted CDF: the same index, without
+    // the search's branches on u (random, so mispredicted about once a pick: the emitter pick
+    // of a scene with a few lights); the loop runs n times, which the branch predictor learns.
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < n; ++i) k += !(u < cdf[i]) ? 1u : 0u;
+    return k;
+  }
   const uint32_t b = std::min(n - 1, uint32_t(std::max(0.0f, u) * float(n)));
   const uint32_t lo = std::min(guide[b], n), hi = std::min(n, guide[b + 1] + 1);
   uint32_t k = lo < hi ? uint32_t(std::upper_bound(cdf + lo, cdf + hi, u) - cdf) : lo;

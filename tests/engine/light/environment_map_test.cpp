@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -346,6 +347,36 @@ TEST(EnvironmentMapEdgeCases, SeveralMapsShareTheTable) {
     const Vec3f w = Dir((k + 0.5) / 50, (k % 9 + 0.5) / 9);
     EXPECT_EQ(EnvironmentPdf(t, 2, w), EnvironmentPdf(alone, 0, w));
     EXPECT_EQ(EnvironmentRadiance(t, 2, w).r, EnvironmentRadiance(alone, 0, w).r);
+  }
+}
+
+// EnvironmentRadianceAndPdf is EnvironmentRadiance and EnvironmentPdf bit for bit: importance,
+// uniform and black maps, a rotated frame, random directions, the poles, the u seam and axes.
+TEST(EnvironmentMapRadiance, RadianceAndPdfTogetherAreBothBitForBit) {
+  const auto bits = [](float v) { return std::bit_cast<uint32_t>(v); };
+  Image black(4, 2);
+  const EnvironmentMapTable tables[] = {
+      MakeTable(RandomMap(16, 8, 21)),
+      MakeTable(RandomMap(9, 5, 22), EnvironmentSampling::kUniform),
+      MakeTable(RandomMap(7, 3, 23), EnvironmentSampling::kImportance,
+                Frame(Normalize(Vec3f{0.3f, 1, -0.2f}))),
+      MakeTable(black)};
+  std::vector<Vec3f> dirs = {{0, 1, 0},  {0, -1, 0}, {1, 0, 0},         {-1, 0, 0},
+                             {0, 0, 1},  {0, 0, -1}, {1e-30f, 1, 0},   {0, 1, -1e-30f},
+                             {-1e-7f, 0, -1}, {1e-7f, 0, -1}};
+  Pcg32 rng(24, 2);
+  for (int k = 0; k < 2000; ++k)
+    dirs.push_back(Dir(rng.NextFloat(), rng.NextFloat()));
+  for (const EnvironmentMapTable& t : tables) {
+    for (const Vec3f& w : dirs) {
+      Color3f L;
+      const float pdf = EnvironmentRadianceAndPdf(t, 0, w, &L);
+      const Color3f L1 = EnvironmentRadiance(t, 0, w);
+      ASSERT_EQ(bits(pdf), bits(EnvironmentPdf(t, 0, w)));
+      ASSERT_EQ(bits(L.r), bits(L1.r));
+      ASSERT_EQ(bits(L.g), bits(L1.g));
+      ASSERT_EQ(bits(L.b), bits(L1.b));
+    }
   }
 }
 

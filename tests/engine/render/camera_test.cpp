@@ -1,9 +1,12 @@
 // Camera: Nori's projection conventions and the thin lens.
 #include "engine/render/camera.h"
 
+#include <bit>
 #include <cmath>
 
 #include <gtest/gtest.h>
+
+#include "engine/core/rng.h"
 
 namespace ptlab {
 namespace {
@@ -68,6 +71,53 @@ TEST(Camera, ThinLensRaysMeetOnThePlaneOfFocus) {
     const Vec3f p = r.o + r.d * ((4.0f - r.o.z) / r.d.z);
     EXPECT_NEAR(p.x, focus.x, 1e-4);
     EXPECT_NEAR(p.y, focus.y, 1e-4);
+  }
+}
+
+// GenerateRay8 against GenerateRay, bit for bit, lane by lane: pinhole (the vectorised loop)
+// and thin lens, scaled and rotated transforms, film positions at the edges, centre, outside
+// the film and random, lens numbers at 0 and just under 1.
+TEST(Camera, GenerateRay8IsGenerateRayPerLane) {
+  const auto bits = [](float v) { return std::bit_cast<uint32_t>(v); };
+  Pcg32 rng(11, 3);
+  for (float aperture : {0.0f, 0.15f}) {
+    for (int t = 0; t < 3; ++t) {
+      CameraDesc d = MakeDesc(t == 2 ? 120.0f : 35.0f, 97, 61);
+      if (t >= 1)
+        d.camera_to_world = Transform::Translate({-3, 0.5f, 7}) *
+                            Transform::Rotate({0.2f, 1, -0.4f}, 71) *
+                            Transform::Scale({1, t == 2 ? -2.0f : 1.0f, 1});
+      d.aperture_radius = aperture;
+      d.focus_distance = 4.0f;
+      d.near_clip = 1e-3f, d.far_clip = 1e3f;
+      const Camera cam(d);
+      const float edges[] = {0.0f, 97.0f, 61.0f, 48.5f, 30.5f, -1.0f, 1e-7f, 96.99999f};
+      for (int round = 0; round < 200; ++round) {
+        float px[8], py[8];
+        Vec2f lens[8];
+        for (int j = 0; j < 8; ++j) {
+          const bool edge = round < 8;
+          px[j] = edge ? edges[(j + round) % 8] : 97.0f * rng.NextFloat();
+          py[j] = edge ? edges[(j * 3 + round) % 8] : 61.0f * rng.NextFloat();
+          lens[j] = edge ? Vec2f{j % 2 ? 0.99999994f : 0.0f, j % 3 ? 0.5f : 0.99999994f}
+                         : Vec2f{rng.NextFloat(), rng.NextFloat()};
+        }
+        RayPacket8 packet;
+        cam.GenerateRay8(px, py, lens, &packet);
+        for (int j = 0; j < 8; ++j) {
+          const Ray r = cam.GenerateRay(px[j], py[j], lens[j]);
+          const Ray g = GetLaneRay(packet, j);
+          ASSERT_EQ(bits(g.o.x), bits(r.o.x)) << j;
+          ASSERT_EQ(bits(g.o.y), bits(r.o.y)) << j;
+          ASSERT_EQ(bits(g.o.z), bits(r.o.z)) << j;
+          ASSERT_EQ(bits(g.d.x), bits(r.d.x)) << j;
+          ASSERT_EQ(bits(g.d.y), bits(r.d.y)) << j;
+          ASSERT_EQ(bits(g.d.z), bits(r.d.z)) << j;
+          ASSERT_EQ(bits(g.t_min), bits(r.t_min)) << j;
+          ASSERT_EQ(bits(g.t_max), bits(r.t_max)) << j;
+        }
+      }
+    }
   }
 }
 

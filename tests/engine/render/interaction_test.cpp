@@ -85,7 +85,8 @@ TEST(Interaction, InteractionAtReadsUvBack) {
                                 col[8].data(), col[9].data(), col[10].data()};
   const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.2f, 0.3f, 1});
   SetInteractionRow(cols, 0, its);
-  const SurfaceInteraction back = InteractionAt(scene, cols, 0, 1);
+  SurfaceInteraction back;
+  InteractionAt(scene, cols, 0, 1, &back);
   EXPECT_EQ(back.uv.x, its.uv.x);
   EXPECT_EQ(back.uv.y, its.uv.y);
 }

@@ -50,7 +50,7 @@ std::vector<float> HardUs(const std::vector<float>& cdf) {
 TEST(GuideTable, EqualsBinarySearchOnRandomAndHardInputs) {
   Pcg32 rng(5, 9);
   long checked = 0;
-  for (uint32_t n : {1u, 2u, 3u, 7u, 64u, 1000u, 4099u}) {
+  for (uint32_t n : {1u, 2u, 3u, 7u, 16u, 17u, 64u, 1000u, 4099u}) {
     for (uint32_t zero_every : {0u, 1u + n / 3, 2u}) {
       if (zero_every == 1 && n > 1) continue;
       std::vector<float> cdf = RandomCdf(rng, n, zero_every);
