@@ -78,20 +78,4 @@ void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitP
   }
 }
 
-void InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q, uint32_t prim,
-                   SurfaceInteraction* its) {
-  its->p = {in.p_x[q], in.p_y[q], in.p_z[q]};
-  its->ng = {in.ng_x[q], in.ng_y[q], in.ng_z[q]};
-  its->frame = Frame(Vec3f{in.n_x[q], in.n_y[q], in.n_z[q]});
-  its->uv = {in.u[q], in.v[q]};
-  its->prim = prim;
-  if (IsSphereHit(prim)) {
-    its->material = scene.spheres.material[SphereHitRow(prim)];
-    its->emitter = EmitterRef::None();
-  } else {
-    its->material = scene.shading.material[prim];
-    its->emitter = scene.meshes.emitter[scene.shading.mesh[prim]];
-  }
-}
-
 }  // namespace ptlab

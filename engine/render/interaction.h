@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/bvh/bvh.h"
+#include "engine/bvh/sphere_intersect.h"
 #include "engine/core/frame.h"
 #include "engine/core/packet8.h"
 #include "engine/core/ray.h"
@@ -59,10 +60,25 @@ inline void SetInteractionRow(const InteractionColumns& out, size_t q,
 
 /// Writes *its: the SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim):
 /// the frame built from n, uv read back, the material and emitter looked up by prim.
-/// Bit-identical to MakeInteraction when the row came from MakeInteractionBatch. Every field is written in place
-/// (no returned struct: a caller storing one copied it from the stack, 16 bytes at a time over
-/// the callee's narrower stores, which stalls store forwarding).
-void InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q, uint32_t prim,
-                   SurfaceInteraction* its);
+/// Bit-identical to MakeInteraction when the row came from MakeInteractionBatch. Every field is
+/// written in place (no returned struct: a caller storing one copied it from the stack, 16 bytes at
+/// a time over the callee's narrower stores, which stalls store forwarding). Inline, so a caller
+/// reading the frame right after reuses its registers instead of loading 8 bytes across 4-byte
+/// stores.
+inline void InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q, uint32_t prim,
+                          SurfaceInteraction* its) {
+  its->p = {in.p_x[q], in.p_y[q], in.p_z[q]};
+  its->ng = {in.ng_x[q], in.ng_y[q], in.ng_z[q]};
+  its->frame = Frame(Vec3f{in.n_x[q], in.n_y[q], in.n_z[q]});
+  its->uv = {in.u[q], in.v[q]};
+  its->prim = prim;
+  if (IsSphereHit(prim)) {
+    its->material = scene.spheres.material[SphereHitRow(prim)];
+    its->emitter = EmitterRef::None();
+  } else {
+    its->material = scene.shading.material[prim];
+    its->emitter = scene.meshes.emitter[scene.shading.mesh[prim]];
+  }
+}
 
 }  // namespace ptlab

@@ -314,12 +314,16 @@ class alignas(kColumnAlignment) Wavefront {
       }
       SurfaceInteraction& its = its_[q];  // built in place: the sampling stage reads it there
       InteractionAt(*scene_, points, q, hits_[k].prim[j], &its);
+      // wo in the frame now, while the frame is in registers: after the stores to L_ below
+      // the compiler reloads it 8 bytes wide over InteractionAt's 4-byte stores (a
+      // store-forwarding stall per hit).
+      const Vec3f wo_world = -d / Length(d);
+      const Vec3f wo_local = its.frame.ToLocal(wo_world);
       if (rules_.normals) {
         const Vec3f a = Abs(its.frame.n);
         L_[i] = {a.x, a.y, a.z};
         continue;
       }
-      const Vec3f wo_world = -d / Length(d);
       const Color3f Le = Emitted(*scene_, its, wo_world);
       if (!IsBlack(Le)) {
         float w = 1.0f;
@@ -332,7 +336,7 @@ class alignas(kColumnAlignment) Wavefront {
         L_[i] += throughput_[i] * Le * w;
       }
       if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
-      wo_[q] = its.frame.ToLocal(wo_world);
+      wo_[q] = wo_local;
       goes_on_[q] = 1;
     }
     if (batch_escaped) ShadeEscaped();
@@ -495,8 +499,15 @@ class alignas(kColumnAlignment) Wavefront {
   void StoreRequest(uint32_t r, const EmitterSampleRequest& req) {
     if (!req.traced) return;
     request_traced_[r] = 1;
-    request_shadow_[r] = req.shadow;
-    request_contribution_[r] = req.contribution;
+    // Float by float: a whole-Ray copy is read back from the stack 16 bytes wide across the
+    // narrower stores that built it (a store-forwarding stall on every traced request).
+    Ray& shadow = request_shadow_[r];
+    shadow.o.x = req.shadow.o.x, shadow.o.y = req.shadow.o.y, shadow.o.z = req.shadow.o.z;
+    shadow.d.x = req.shadow.d.x, shadow.d.y = req.shadow.d.y, shadow.d.z = req.shadow.d.z;
+    shadow.t_min = req.shadow.t_min, shadow.t_max = req.shadow.t_max;
+    Color3f& contribution = request_contribution_[r];
+    contribution.r = req.contribution.r, contribution.g = req.contribution.g;
+    contribution.b = req.contribution.b;
   }
 
   // The emitter stage: the kernel table's area_light slot over the wave's area-light picks,
