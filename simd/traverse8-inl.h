@@ -392,17 +392,27 @@ struct PacketState {
   WatertightLanes wt;  // and the lanes' t_min, t_max
   alignas(32) float best_t[8], best_b1[8], best_b2[8];
   alignas(32) int32_t best_prim[8];
-  int8_t k_x[8], k_y[8], k_z[8];  // the lane's watertight axes
   uint32_t neg_bits[3];           // lanes whose 1/d is negative, per axis
   int uniform_neg[3];             // -1 mixed, else 0/1 shared by all live lanes
   int uniform_k[3];               // the (kx, ky, kz) shared by all live lanes; kx = -1 if mixed
-  uint32_t k_is[3][2];            // lanes whose kx (ky, kz) is axis 0 / axis 1 (else axis 2)
+  uint32_t k_is[3][2];            // lanes whose kx (ky, kz) is axis 0 / axis 1 (else axis 2):
+                                  // the lanes' watertight axes (LaneWatertightAxis)
   bool coherent;                  // all live lanes share the sign of 1/d on every axis (one octant)
   bool frustum;                   // coherent, and every 1/d finite
   bool shared_origin;             // frustum, and all live lanes start at one point
   // Interval bounds of the live lanes (the packet's frustum), valid when `frustum` is set.
   float o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], t_min_lo;
 };
+
+// Watertight axis a (0 = kx, 1 = ky, 2 = kz) of lane j, from the lane masks: only lanes that
+// go single or test a leaf alone need it, so the packet's setup stores no per-lane axes.
+HWY_INLINE int LaneWatertightAxis(const PacketState& s, int a, int j) {
+  // Branch-free (the masks are exclusive: 0, 1 or neither = 2): the lanes' axes vary
+  // unpredictably in incoherent packets.
+  const int is0 = static_cast<int>((s.k_is[a][0] >> j) & 1u);
+  const int is1 = static_cast<int>((s.k_is[a][1] >> j) & 1u);
+  return 2 - 2 * is0 - is1;
+}
 
 // Lane j as a single ray (for the single-ray switch and per-lane leaf tests); the same values
 // MakeSingleRay computes from the lane's ray.
@@ -416,7 +426,8 @@ HWY_INLINE SingleRay LaneSingleRay(const PacketState& s, int j) {
     r.near[a] = neg ? hi[a] : lo[a];
     r.far[a] = neg ? lo[a] : hi[a];
   }
-  r.wt.kx = s.k_x[j], r.wt.ky = s.k_y[j], r.wt.kz = s.k_z[j];
+  r.wt.kx = LaneWatertightAxis(s, 0, j), r.wt.ky = LaneWatertightAxis(s, 1, j);
+  r.wt.kz = LaneWatertightAxis(s, 2, j);
   r.wt.sx = s.wt.sx[j], r.wt.sy = s.wt.sy[j], r.wt.sz = s.wt.sz[j];
   r.wt.ox = s.wt.ox[j], r.wt.oy = s.wt.oy[j], r.wt.oz = s.wt.oz[j];
   r.t_min = s.wt.t_min[j];
@@ -492,6 +503,7 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
     hn::Store(ix, d, s->inv_x + i), hn::Store(iy, d, s->inv_y + i), hn::Store(iz, d, s->inv_z + i);
     hn::Store(tn, d, s->wt.t_min + i), hn::Store(tx, d, s->wt.t_max + i);
     hn::Store(tx, d, s->best_t + i);
+    hn::Store(hn::Set(DI(), static_cast<int32_t>(kNoHit)), DI(), s->best_prim + i);
     hn::Store(zero, d, s->best_b1 + i), hn::Store(zero, d, s->best_b2 + i);
     s->neg_bits[0] |= MaskBits(d, hn::Lt(ix, zero)) << i;
     s->neg_bits[1] |= MaskBits(d, hn::Lt(iy, zero)) << i;
@@ -526,14 +538,6 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
                                hn::Lt(hn::Abs(iz), inf));
     finite_bits |= MaskBits(d, fin_inv) << i;
   }
-  for (int j = 0; j < 8; ++j) {
-    const int kz = LaneActive(kz0_bits, j) ? 0 : (LaneActive(kz1_bits, j) ? 1 : 2);
-    int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
-    if (LaneActive(swap_bits, j)) std::swap(kx, ky);
-    s->k_x[j] = static_cast<int8_t>(kx), s->k_y[j] = static_cast<int8_t>(ky);
-    s->k_z[j] = static_cast<int8_t>(kz);
-    s->best_prim[j] = LaneActive(live, j) ? static_cast<int32_t>(kNoHit) : -1;
-  }
   // The same axes as lane masks: kz = 0 (kz0), 1 (kz1) or 2; (kx, ky) = (kz + 1, kz + 2)
   // mod 3, exchanged where swap is set.
   const uint32_t z0 = kz0_bits, z1 = kz1_bits, z2 = ~(kz0_bits | kz1_bits), sw = swap_bits;
@@ -553,7 +557,7 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   s->uniform_k[0] = -1;
   if (live != 0 && same_kz && same_swap) {
     const int j = std::countr_zero(live);
-    s->uniform_k[0] = s->k_x[j], s->uniform_k[1] = s->k_y[j], s->uniform_k[2] = s->k_z[j];
+    for (int a = 0; a < 3; ++a) s->uniform_k[a] = LaneWatertightAxis(*s, a, j);
   }
   s->coherent = live != 0 && uniform;
   s->frustum = s->coherent && (finite_bits & live) == live;
