@@ -228,31 +228,34 @@ bool SampleEnvironment(const EnvironmentMapTable& t, uint32_t row, const Vec2f& 
   return true;
 }
 
-float EnvironmentPdf(const EnvironmentMapTable& t, uint32_t row, const Vec3f& w_world) {
+namespace {
+
+// EnvironmentPdf at local direction d; *uv is d's (u, v) when the caller has it already, else
+// null (computed here only where it is needed).
+float PdfAtLocal(const EnvironmentMapTable& t, uint32_t row, const Vec3f& d, const Vec2f* uv) {
   if (t.sampling[row] == EnvironmentSampling::kUniform)
     return t.luminance_integral[row] > 0 ? kInv4Pi : 0.0f;
-  const Vec3f d = t.to_world[row].ToLocal(w_world);
   const float r = std::sqrt(d.x * d.x + d.z * d.z);
   if (!(r > 0)) return 0.0f;
   const float sin_theta = r / std::sqrt(r * r + d.y * d.y);
   const float pdf_uv =
-      Distribution2DPdf(EnvironmentDistribution(t, row), EnvironmentDirectionToUv(d));
+      Distribution2DPdf(EnvironmentDistribution(t, row), uv ? *uv : EnvironmentDirectionToUv(d));
   return pdf_uv / (kEnvironmentTwoPiSquared * sin_theta);
+}
+
+}  // namespace
+
+float EnvironmentPdf(const EnvironmentMapTable& t, uint32_t row, const Vec3f& w_world) {
+  return PdfAtLocal(t, row, t.to_world[row].ToLocal(w_world), nullptr);
 }
 
 float EnvironmentRadianceAndPdf(const EnvironmentMapTable& t, uint32_t row, const Vec3f& w_world,
                                 Color3f* radiance) {
-  // EnvironmentRadiance's and EnvironmentPdf's operations, their shared ones done once.
+  // EnvironmentRadiance's and EnvironmentPdf's operations, (u, v) computed once for both.
   const Vec3f d = t.to_world[row].ToLocal(w_world);
   const Vec2f uv = EnvironmentDirectionToUv(d);
   *radiance = Lookup(Pixels(t, row), uv);
-  if (t.sampling[row] == EnvironmentSampling::kUniform)
-    return t.luminance_integral[row] > 0 ? kInv4Pi : 0.0f;
-  const float r = std::sqrt(d.x * d.x + d.z * d.z);
-  if (!(r > 0)) return 0.0f;
-  const float sin_theta = r / std::sqrt(r * r + d.y * d.y);
-  const float pdf_uv = Distribution2DPdf(EnvironmentDistribution(t, row), uv);
-  return pdf_uv / (kEnvironmentTwoPiSquared * sin_theta);
+  return PdfAtLocal(t, row, d, &uv);
 }
 
 Image EnvironmentPdfDebugImage(const EnvironmentMapTable& t, uint32_t row) {
