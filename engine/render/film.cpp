@@ -13,16 +13,6 @@ void FilmBlock::Reset(int x0, int y0, int width, int height) {
 
 void FilmBlock::Clear() { std::fill(sum_.begin(), sum_.end(), 0.0f); }
 
-SplatFootprint FilmBlock::Footprint(float radius, float sx, float sy) const {
-  // Pixels whose centre lies within the radius: i + 0.5 in [sx - r, sx + r].
-  SplatFootprint f;
-  f.ix0 = std::max(x0_, int(std::ceil(sx - 0.5f - radius)));
-  f.ix1 = std::min(x0_ + width_ - 1, int(std::floor(sx - 0.5f + radius)));
-  f.iy0 = std::max(y0_, int(std::ceil(sy - 0.5f - radius)));
-  f.iy1 = std::min(y0_ + height_ - 1, int(std::floor(sy - 0.5f + radius)));
-  return f;
-}
-
 void FilmBlock::Splat(const PixelFilter& filter, float sx, float sy, const Color3f& radiance) {
   const SplatFootprint f = Footprint(filter.radius(), sx, sy);
   const int nx = std::min(kMaxFilterTaps, f.ix1 - f.ix0 + 1);

@@ -1,6 +1,8 @@
 // Film: weighted radiance sums per pixel, filled by splatting samples through the pixel filter.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -47,7 +49,16 @@ class FilmBlock {
   /// centre at (i + 0.5, j + 0.5).
   void Splat(const PixelFilter& filter, float sx, float sy, const Color3f& radiance);
   /// The pixels of this block whose centre lies within `radius` of (sx, sy) on both axes.
-  SplatFootprint Footprint(float radius, float sx, float sy) const;
+  /// Inline: the SIMD splat calls it per sample.
+  SplatFootprint Footprint(float radius, float sx, float sy) const {
+    // Pixels whose centre lies within the radius: i + 0.5 in [sx - r, sx + r].
+    SplatFootprint f;
+    f.ix0 = std::max(x0_, int(std::ceil(sx - 0.5f - radius)));
+    f.ix1 = std::min(x0_ + width_ - 1, int(std::floor(sx - 0.5f + radius)));
+    f.iy0 = std::max(y0_, int(std::ceil(sy - 0.5f - radius)));
+    f.iy1 = std::min(y0_ + height_ - 1, int(std::floor(sy - 0.5f + radius)));
+    return f;
+  }
   /// The r, g, b, w accumulators of pixel (x, y) (image coordinates, inside the block) and the
   /// pixels after it in its row.
   float* PixelSums(int x, int y) {

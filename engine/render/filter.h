@@ -30,6 +30,11 @@ class PixelFilter {
     lookup_scale_ = desc.radius > 0 ? float(kFilterTableSize) / desc.radius : 0.0f;
   }
   float radius() const { return desc_.radius; }
+  /// The table Eval interpolates: kFilterTableSize + 1 samples over [0, radius], and the scale
+  /// from |x| to a table position (kFilterTableSize / radius); for kernels that evaluate many
+  /// offsets at once with Eval's operations (simd/splat8-inl.h).
+  const float* table() const { return table_; }
+  float lookup_scale() const { return lookup_scale_; }
 
   /// The filter at offset x (pixels) from the table: what the film splats with.
   float Eval(float x) const {

@@ -1,6 +1,6 @@
 // simd::SplatSamples against its oracle ptlab::SplatSamples: bit-identical film sums on every
 // compiled target, for every filter shape and radius, samples inside, on the edges of and
-// outside the block.
+// outside the block, in random and in the wavefront's order, with extreme radiance.
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/splat8.h"
 
@@ -74,6 +74,41 @@ TEST(Splat8, MatchesOracleBitForBitOnEveryTarget) {
     double total = 0;
     for (const float v : oracle.sums()) total += v;
     EXPECT_GT(total, 0.0);  // the samples reached the block
+  }
+}
+
+// The wavefront's order (row, pixel, 8 samples per pixel: runs of samples on one pixel, whose
+// footprints overlap and shift by one pixel) with extreme radiance: zero, subnormal, tiny,
+// huge (w·L overflows to infinity), on a block whose edges cut the footprints.
+TEST(Splat8, MatchesOracleInWaveOrderWithExtremeRadianceOnEveryTarget) {
+  using T = FilterDesc::Type;
+  const float radiance[] = {0.0f, 1e-41f, 1e-30f, 0.5f, 7.0f, 1e30f, 3e38f};
+  for (const FilterDesc& desc : {FilterDesc{T::kGaussian, 2.0f, 0.5f},
+                                 FilterDesc{T::kTent, 1.5f, 0}, FilterDesc{T::kBox, 0.5f, 0}}) {
+    const PixelFilter filter(desc);
+    Pcg32 rng(17, 3);
+    Columns c;
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 20; ++x)
+        for (int s = 0; s < 8; ++s) {
+          // Every fourth sample on a pixel edge or centre (taps exactly at the radius).
+          const bool edge = rng.NextFloat() < 0.25f;
+          c.sx.push_back(float(x) + (edge ? 0.5f * float(s & 1) : rng.NextFloat()));
+          c.sy.push_back(float(y) + (edge ? 0.5f * float(s >> 2) : rng.NextFloat()));
+          c.r.push_back(radiance[rng.NextUint() % 7]), c.g.push_back(radiance[rng.NextUint() % 7]);
+          c.b.push_back(radiance[rng.NextUint() % 7]);
+        }
+    // The block starts inside the samples' range and ends before it: clipped footprints.
+    FilmBlock oracle(1, 2, 17, 9);
+    SplatSamples(filter, c.View(), &oracle);
+    test::ForEachTarget(simd::SplatTargetName, [&](const char* target) {
+      FilmBlock block(1, 2, 17, 9);
+      simd::SplatSamples(filter, c.View(), &block);
+      size_t differ = 0;
+      for (size_t i = 0; i < block.sums().size(); ++i)
+        differ += std::memcmp(&block.sums()[i], &oracle.sums()[i], sizeof(float)) != 0;
+      EXPECT_EQ(differ, 0u) << target << " radius " << desc.radius;
+    });
   }
 }
 
