@@ -41,6 +41,8 @@ constexpr int kLanes = static_cast<int>(kPacketWidth);
 /// Pixel rows of a tile traced together as one wave (even: camera packets are 4x2 pixels).
 /// With 16 samples per pass and 32-pixel tiles a wave holds 2048 paths.
 constexpr int kWaveRows = 4;
+/// A result slot without a path (its pixel is inactive).
+constexpr uint32_t kNoPath = ~uint32_t{0};
 
 /// What each integrator does at a path vertex. Every integrator of integrator.cpp is one set of
 /// rules over the same vertex stages; the rules reproduce its operations in its order.
@@ -165,7 +167,7 @@ class alignas(kColumnAlignment) Wavefront {
                                 roulette_, bsdf_lobe_, light_point_, bsdf_direction_, draw_seed_,
                                 draw_index_, draw_x_, draw_y_);
     bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,
-                          slot_, results_);
+                          path_of_slot_);
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_, request_shadow_,
                           request_contribution_, occluded_, nee_paths_);
@@ -188,11 +190,11 @@ class alignas(kColumnAlignment) Wavefront {
     const uint64_t width = uint64_t(camera.width());
     const size_t samples = s_end - s_begin, tile_w = size_t(x1 - x0);
     const size_t n = size_t(y1 - y0) * tile_w * samples;
-    sampler_.resize(n), slot_.resize(n);
+    sampler_.resize(n);
     L_.assign(n, Color3f{}), throughput_.assign(n, Color3f{1, 1, 1}), nee_throughput_.resize(n);
     eta_.assign(n, 1.0f), prev_pdf_.assign(n, 0.0f), prev_p_.resize(n);
     specular_.assign(n, 1);  // the camera ray counts as specular: emission is always seen
-    results_.assign(n, Result{});
+    path_of_slot_.assign(n, kNoPath);
     rays_.Clear();
     gen_px_.clear(), gen_py_.clear();
     uint32_t id = 0;
@@ -205,8 +207,8 @@ class alignas(kColumnAlignment) Wavefront {
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
             if (pixels && pixels->active && !pixels->active[pixel]) continue;
             sampler_[id] = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
-            slot_[id] = uint32_t((size_t(py - y0) * tile_w + size_t(px - x0)) * samples +
-                                 (s - s_begin));
+            const size_t slot = (size_t(py - y0) * tile_w + size_t(px - x0)) * samples;
+            path_of_slot_[slot + (s - s_begin)] = id;
             gen_px_.push_back(px), gen_py_.push_back(py);
             ++id;
           }
@@ -237,7 +239,6 @@ class alignas(kColumnAlignment) Wavefront {
     for (uint32_t i = 0; i < id; ++i) {
       const float sx = float(gen_px_[i]) + jitter_[i].x, sy = float(gen_py_[i]) + jitter_[i].y;
       gen_sx_[i] = sx, gen_sy_[i] = sy;
-      results_[slot_[i]] = {sx, sy, Color3f{}, true};
     }
     for (size_t i = id; i < padded; ++i) gen_sx_[i] = gen_sy_[i] = 0.5f, lens_[i] = {0.5f, 0.5f};
     rays_.packets.resize(packets);
@@ -247,8 +248,7 @@ class alignas(kColumnAlignment) Wavefront {
       const size_t i = k * kPacketWidth;
       camera.GenerateRay8(&gen_sx_[i], &gen_sy_[i], &lens_[i], &rays_.packets[k]);
     }
-    // Fewer paths than slots when pixels are inactive: Splat reads only the paths made here.
-    slot_.resize(id), sampler_.resize(id);
+    sampler_.resize(id);
     stats_->seconds.sampling += Seconds(t0, Clock::now());
   }
 
@@ -693,8 +693,7 @@ class alignas(kColumnAlignment) Wavefront {
   void Splat(const PixelFilter& filter, int x0, int y0, int x1, int y1, size_t samples,
              FilmBlock* block, const PixelSampling* pixels) {
     const auto t0 = Clock::now();
-    splat_.Clear();
-    for (size_t i = 0; i < slot_.size(); ++i) results_[slot_[i]].L = L_[i];
+    splat_.Clear(path_of_slot_.size());
     const size_t tile_w = size_t(x1 - x0);
     for (int y = y0; y < y1; ++y) {
       for (size_t px = 0; px < tile_w; ++px) {
@@ -703,14 +702,15 @@ class alignas(kColumnAlignment) Wavefront {
                 ? &pixels->moments[uint64_t(y) * pixels->width + uint64_t(x0) + px]
                 : nullptr;
         for (size_t s = 0; s < samples; ++s) {
-          const Result& r = results_[(size_t(y - y0) * tile_w + px) * samples + s];
-          if (!r.used) continue;  // an inactive pixel (adaptive sampling)
-          if (moments) AddPixelSample(r.L, moments);
-          if (!IsFinite(r.L)) {
+          const uint32_t i = path_of_slot_[(size_t(y - y0) * tile_w + px) * samples + s];
+          if (i == kNoPath) continue;  // an inactive pixel (adaptive sampling)
+          const Color3f L = L_[i];
+          if (moments) AddPixelSample(L, moments);
+          if (!IsFinite(L)) {
             if (stats_->nonfinite++ == 0) stats_->first_x = x0 + int(px), stats_->first_y = y;
             continue;
           }
-          splat_.Push(r.sx, r.sy, r.L);
+          splat_.Push(gen_sx_[i], gen_sy_[i], L);
         }
       }
     }
@@ -832,25 +832,23 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
-  /// The splat stage's SoA columns: film position and radiance of each finite sample.
+  /// The splat stage's SoA columns: film position and radiance of each finite sample, rows
+  /// [0, rows).
   struct SplatColumns {
     AlignedVector<float> sx, sy, r, g, b;
+    size_t rows = 0;
     size_t Bytes() const { return VectorsBytes(sx, sy, r, g, b); }
-    void Clear() {
-      for (auto* v : {&sx, &sy, &r, &g, &b}) v->clear();
+    /// Room for `capacity` rows, written in place (no push_back's capacity check per column
+    /// and row); only grows.
+    void Clear(size_t capacity) {
+      rows = 0;
+      GrowColumns(capacity, &sx, &sy, &r, &g, &b);
     }
     void Push(float x, float y, const Color3f& L) {
-      sx.push_back(x), sy.push_back(y), r.push_back(L.r), g.push_back(L.g), b.push_back(L.b);
+      const size_t c = rows++;
+      sx[c] = x, sy[c] = y, r[c] = L.r, g[c] = L.g, b[c] = L.b;
     }
-    FilmSamples View() const {
-      return {sx.data(), sy.data(), r.data(), g.data(), b.data(), sx.size()};
-    }
-  };
-
-  struct Result {
-    float sx = 0, sy = 0;
-    Color3f L;
-    bool used = false;
+    FilmSamples View() const { return {sx.data(), sy.data(), r.data(), g.data(), b.data(), rows}; }
   };
 
   // The tile being rendered (RenderTile sets them).
@@ -875,8 +873,9 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<float> eta_, prev_pdf_;
   std::vector<Vec3f> prev_p_;
   std::vector<uint8_t> specular_;
-  std::vector<uint32_t> slot_;
-  std::vector<Result> results_;
+  // The path of each result slot (scalar splat order: row, pixel, sample), kNoPath for the
+  // slots of inactive pixels; Splat reads the path's film position and radiance through it.
+  std::vector<uint32_t> path_of_slot_;
   // Queues and per-bounce scratch.
   RayQueue rays_, next_rays_, shadows_;
   std::vector<HitPacket8> hits_;
