@@ -35,25 +35,41 @@ void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* materi
 }
 
 void PartitionByMaterial(const MaterialRef* refs, size_t n, MaterialPartition* out) {
-  uint32_t count[kMaterialTagCount] = {};
-  for (size_t i = 0; i < n; ++i) {
-    const int t = static_cast<int>(refs[i].tag());
-    if (t < kMaterialTagCount) ++count[t];
-  }
+  // The rows in two halves, counted and placed side by side: `++count[t]` and `next[t]++` are
+  // load-add-store chains through memory whenever consecutive rows share a tag (the usual
+  // case), and two independent halves halve their length. The tag is the ref's top 4 bits;
+  // tags from kMaterialTagCount on (MaterialRef::None()) are counted and never placed.
+  constexpr int kTagValues = 16;
+  const auto tag = [refs](size_t i) { return refs[i].bits >> 28; };
+  const size_t half = n / 2;
+  uint32_t count_a[kTagValues] = {}, count_b[kTagValues] = {};
+  for (size_t i = 0; i < half; ++i) ++count_a[tag(i)], ++count_b[tag(half + i)];
+  if (n % 2 != 0) ++count_b[tag(n - 1)];
+  uint32_t next_a[kTagValues], next_b[kTagValues];
   out->begin[0] = 0;
-  for (int t = 0; t < kMaterialTagCount; ++t) out->begin[t + 1] = out->begin[t] + count[t];
+  for (int t = 0; t < kMaterialTagCount; ++t) {
+    next_a[t] = out->begin[t], next_b[t] = out->begin[t] + count_a[t];
+    out->begin[t + 1] = next_b[t] + count_b[t];
+  }
   const size_t total = out->begin[kMaterialTagCount];
   out->slot.resize(total);
   out->index.resize(total);
-  uint32_t next[kMaterialTagCount];
-  for (int t = 0; t < kMaterialTagCount; ++t) next[t] = out->begin[t];
-  for (size_t i = 0; i < n; ++i) {
-    const int t = static_cast<int>(refs[i].tag());
-    if (t >= kMaterialTagCount) continue;
-    const uint32_t k = next[t]++;
-    out->slot[k] = static_cast<uint32_t>(i);
-    out->index[k] = refs[i].index();
+  uint32_t* slot = out->slot.data();
+  uint32_t* index = out->index.data();
+  for (int t = 0; t < kMaterialTagCount; ++t) {
+    if (count_a[t] + count_b[t] != n) continue;
+    // One tag for every row: the group is the input itself, no cursor chain.
+    for (size_t i = 0; i < n; ++i) slot[i] = uint32_t(i), index[i] = refs[i].index();
+    return;
   }
+  const auto place = [&](uint32_t* next, size_t i) {
+    const uint32_t t = tag(i);
+    if (t >= uint32_t(kMaterialTagCount)) return;
+    const uint32_t k = next[t]++;
+    slot[k] = uint32_t(i), index[k] = refs[i].index();
+  };
+  for (size_t i = 0; i < half; ++i) place(next_a, i), place(next_b, half + i);
+  if (n % 2 != 0) place(next_b, n - 1);
 }
 
 void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const ShadeInputs& in,

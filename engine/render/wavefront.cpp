@@ -207,8 +207,8 @@ class alignas(kColumnAlignment) Wavefront {
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
             if (pixels && pixels->active && !pixels->active[pixel]) continue;
             sampler_[id] = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
-            const size_t slot = (size_t(py - y0) * tile_w + size_t(px - x0)) * samples;
-            path_of_slot_[slot + (s - s_begin)] = id;
+            const size_t pixel_slot = (size_t(py - y0) * tile_w + size_t(px - x0)) * samples;
+            path_of_slot_[pixel_slot + (s - s_begin)] = id;
             gen_px_.push_back(px), gen_py_.push_back(py);
             ++id;
           }
