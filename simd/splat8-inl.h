@@ -52,25 +52,24 @@ HWY_INLINE void SplatOne(const PixelFilter& filter, float sx, float sy, const fl
 
 // HWY_SCALAR has one lane and lacks the ops below; it takes SplatOne's path.
 #if HWY_TARGET != HWY_SCALAR
-/// The separable path's constants on this target: a sample's x and y taps share one 8-lane
-/// weight vector (x offsets in lanes 0-3, y offsets in lanes 4-7: two 8-lane gathers per
-/// sample, half the cost of 16 lanes), and a row of the block's accumulators is read
-/// Lanes(D) / 4 pixels per vector (4 on AVX3, 2 on AVX2). D has 8 or 16 lanes.
+/// The separable path's constants on this target. Taps: at most kTaps (4) per axis, evaluated
+/// 8 lanes at a time (a sample's x taps in lanes 0-3 and y taps in lanes 4-7, or one tap of
+/// eight samples). Rows: a row of the block's accumulators is read Lanes(D) / 4 pixels per
+/// vector (4 on AVX3, 2 on AVX2). D has 8 or 16 lanes.
 template <class D>
 struct SeparableSplat {
   using DT = hn::CappedTag<float, 8>;
   using DI = hn::RebindToSigned<D>;
   using DTI = hn::RebindToSigned<DT>;
-  static constexpr size_t kHalf = 4;  // taps per axis in the weight vector
+  static constexpr size_t kTaps = 4;
   D d;
   DI di;
   DT dt;
   DTI dti;
-  hn::Mask<DT> x_lanes = hn::FirstN(dt, kHalf);
-  hn::Vec<DTI> tap = hn::And(hn::Iota(dti, 0), hn::Set(dti, int32_t(kHalf - 1)));  // lane % 4
-  // Lane k of a row vector is pixel (first + k / 4) of the row: the lane of its tap weight.
-  hn::Vec<DI> spread0 = hn::ShiftRight<2>(hn::Iota(di, 0));
-  hn::Vec<DI> spread1 = hn::Add(spread0, hn::Set(di, int32_t(hn::Lanes(d) / 4)));
+  hn::Mask<DT> x_lanes = hn::FirstN(dt, kTaps);
+  hn::Vec<DTI> tap = hn::And(hn::Iota(dti, 0), hn::Set(dti, int32_t(kTaps - 1)));  // lane % 4
+  // Lane l of a row vector is pixel l / 4 of the vector's pixels.
+  hn::Vec<DI> pixel_of_lane = hn::ShiftRight<2>(hn::Iota(di, 0));
   // (r, g, b, 1) per pixel: which lanes take r, g and b.
   hn::Mask<D> r_lanes, g_lanes, b_lanes;
 
@@ -79,15 +78,6 @@ struct SeparableSplat {
     r_lanes = hn::RebindMask(d, hn::Eq(channel, hn::Zero(di)));
     g_lanes = hn::RebindMask(d, hn::Eq(channel, hn::Set(di, 1)));
     b_lanes = hn::RebindMask(d, hn::Eq(channel, hn::Set(di, 2)));
-  }
-
-  /// The 8 tap weights as a row vector (lanes 8-15 zero on AVX3).
-  hn::Vec<D> Widen(hn::Vec<DT> w) const {
-    if constexpr (hn::MaxLanes(D()) == 2 * hn::MaxLanes(DT())) {
-      return hn::ZeroExtendVector(d, w);
-    } else {
-      return w;
-    }
   }
 };
 
@@ -119,47 +109,132 @@ HWY_INLINE void AccumulateRow(D d, hn::Vec<D> c, size_t floats, float* sums) {
   }
 }
 
-/// One sample through the separable path when its taps fit half a vector per axis: the x and y
-/// weights from one EvalFilter, then per row of the footprint its pixels' (r, g, b, w) as whole
-/// vectors, weight wx·wy·(r, g, b, 1) with FilmBlock::Splat's operations per lane. Returns
-/// false (nothing done) when the taps do not fit.
+/// Adds the footprint rows of one sample, its footprint and taps given: x weights wx[0],
+/// wx[stride], ..., y weights likewise (nx, ny ≤ kTaps), r, g, b its radiance. Each row is one
+/// or two vectors of (r, g, b, w) accumulators, wx·wy·(r, g, b, 1) with FilmBlock::Splat's
+/// operations per lane.
 template <class D>
-HWY_INLINE bool SplatSeparable(const SeparableSplat<D>& k, const PixelFilter& filter, float sx,
-                               float sy, float r, float g, float b, FilmBlock* block) {
+HWY_INLINE void AddFootprint(const SeparableSplat<D>& k, int ix0, int iy0, int nx, int ny,
+                             const float* wx, const float* wy, size_t stride, float r, float g,
+                             float b, FilmBlock* block) {
   const D d = k.d;
-  const SplatFootprint f = block->Footprint(filter.radius(), sx, sy);
-  const int nx = f.ix1 - f.ix0 + 1, ny = f.iy1 - f.iy0 + 1;
-  if (nx <= 0 || ny <= 0) return true;  // no pixel of the block: FilmBlock::Splat adds nothing
-  if (size_t(nx) > k.kHalf || size_t(ny) > k.kHalf) return false;
-  // Offsets float(i) + 0.5f - s per tap, as FilmBlock::Splat computes them.
-  const auto first = hn::IfThenElse(hn::RebindMask(k.dti, k.x_lanes), hn::Set(k.dti, f.ix0),
-                                    hn::Set(k.dti, f.iy0));
-  const auto s = hn::IfThenElse(k.x_lanes, hn::Set(k.dt, sx), hn::Set(k.dt, sy));
-  const auto x =
-      hn::Sub(hn::Add(hn::ConvertTo(k.dt, hn::Add(first, k.tap)), hn::Set(k.dt, 0.5f)), s);
-  const auto weights = EvalFilter(k.dt, filter, x);
-  HWY_ALIGN float w[hn::MaxLanes(k.dt)];
-  hn::Store(weights, k.dt, w);
-  // wx per accumulator lane, for the first and second vector of a row.
-  const auto wide = k.Widen(weights);
-  const auto wx0 = hn::TableLookupLanes(wide, hn::IndicesFromVec(d, k.spread0));
+  constexpr size_t kPixels = hn::MaxLanes(D()) / 4, kTaps = SeparableSplat<D>::kTaps;
+  // wx per accumulator lane: lane l holds pixel l / 4 of the row; of the second vector (8-lane
+  // targets), pixel l / 4 + 2.
+  auto wx0 = hn::Set(d, wx[0]), wx1 = wx0;
+  for (size_t p = 1; p < kPixels; ++p) {
+    const auto lanes = hn::RebindMask(d, hn::Eq(k.pixel_of_lane, hn::Set(k.di, int32_t(p))));
+    wx0 = hn::IfThenElse(lanes, hn::Set(d, wx[p * stride]), wx0);
+  }
+  if constexpr (kPixels < kTaps) {
+    wx1 = hn::Set(d, wx[kPixels * stride]);
+    for (size_t p = 1; p < kPixels; ++p) {
+      const auto lanes = hn::RebindMask(d, hn::Eq(k.pixel_of_lane, hn::Set(k.di, int32_t(p))));
+      wx1 = hn::IfThenElse(lanes, hn::Set(d, wx[(kPixels + p) * stride]), wx1);
+    }
+  }
   const auto radiance =
       hn::IfThenElse(k.r_lanes, hn::Set(d, r),
                      hn::IfThenElse(k.g_lanes, hn::Set(d, g),
                                     hn::IfThenElse(k.b_lanes, hn::Set(d, b), hn::Set(d, 1.0f))));
   const size_t floats = size_t(nx) * 4, lanes = hn::Lanes(d);
   for (int j = 0; j < ny; ++j) {
-    const float wy = w[k.kHalf + size_t(j)];
-    if (wy == 0.0f) continue;
-    float* row = block->PixelSums(f.ix0, f.iy0 + j);
-    const auto wyv = hn::Set(d, wy);
+    const float wy_j = wy[size_t(j) * stride];
+    if (wy_j == 0.0f) continue;
+    float* row = block->PixelSums(ix0, iy0 + j);
+    const auto wyv = hn::Set(d, wy_j);
     AccumulateRow(d, hn::Mul(hn::Mul(wx0, wyv), radiance), std::min(floats, lanes), row);
     if (floats > lanes) {  // 8-lane targets: pixels 2 and 3
-      const auto wx1 = hn::TableLookupLanes(wide, hn::IndicesFromVec(d, k.spread1));
       AccumulateRow(d, hn::Mul(hn::Mul(wx1, wyv), radiance), floats - lanes, row + lanes);
     }
   }
+}
+
+/// One sample through the separable path when its footprint has at most 4 pixels per axis:
+/// its x and y taps from one 8-lane EvalFilter, then AddFootprint. Returns false (nothing
+/// done) when the taps do not fit. For the samples outside whole groups of eight.
+template <class D>
+HWY_INLINE bool SplatSeparable(const SeparableSplat<D>& k, const PixelFilter& filter, float sx,
+                               float sy, float r, float g, float b, FilmBlock* block) {
+  const SplatFootprint f = block->Footprint(filter.radius(), sx, sy);
+  const int nx = f.ix1 - f.ix0 + 1, ny = f.iy1 - f.iy0 + 1;
+  if (nx <= 0 || ny <= 0) return true;  // no pixel of the block: FilmBlock::Splat adds nothing
+  if (size_t(nx) > k.kTaps || size_t(ny) > k.kTaps) return false;
+  // Offsets float(i) + 0.5f - s per tap, as FilmBlock::Splat computes them.
+  const auto first = hn::IfThenElse(hn::RebindMask(k.dti, k.x_lanes), hn::Set(k.dti, f.ix0),
+                                    hn::Set(k.dti, f.iy0));
+  const auto s = hn::IfThenElse(k.x_lanes, hn::Set(k.dt, sx), hn::Set(k.dt, sy));
+  const auto x =
+      hn::Sub(hn::Add(hn::ConvertTo(k.dt, hn::Add(first, k.tap)), hn::Set(k.dt, 0.5f)), s);
+  HWY_ALIGN float w[hn::MaxLanes(k.dt)];
+  hn::Store(EvalFilter(k.dt, filter, x), k.dt, w);
+  AddFootprint(k, f.ix0, f.iy0, nx, ny, w, w + k.kTaps, 1, r, g, b, block);
   return true;
+}
+
+/// Sample `row` alone: SplatSeparable, or SplatOne when its taps do not fit.
+template <class D>
+HWY_INLINE void SplatSample(const SeparableSplat<D>& k, const PixelFilter& filter,
+                            const FilmSamples& samples, size_t row, FilmBlock* block) {
+  const float sx = samples.sx[row], sy = samples.sy[row];
+  const float r = samples.r[row], g = samples.g[row], b = samples.b[row];
+  if (SplatSeparable(k, filter, sx, sy, r, g, b, block)) return;
+  const float rgb1[4] = {r, g, b, 1.0f};
+  SplatOne(filter, sx, sy, rgb1, block);  // more than 4 taps on an axis
+}
+
+/// Samples [i, i + 8) in order: their footprints and the 4 x and 4 y taps of all eight as
+/// vectors over the samples (eight independent filter evaluations instead of one long chain
+/// per sample: the per-sample path was latency-bound), then each sample's rows. The vector
+/// footprint is FilmBlock::Footprint's operations; for positions of magnitude 2^24 or more
+/// (or not finite) the group takes the per-sample path, where that equality is not argued.
+template <class D>
+HWY_INLINE void SplatGroup(const SeparableSplat<D>& k, const PixelFilter& filter,
+                           const FilmSamples& samples, size_t i, FilmBlock* block) {
+  const typename SeparableSplat<D>::DT dt;
+  const typename SeparableSplat<D>::DTI dti;
+  constexpr size_t kGroup = 8, kTaps = SeparableSplat<D>::kTaps;
+  const auto sx = hn::LoadU(dt, samples.sx + i), sy = hn::LoadU(dt, samples.sy + i);
+  const auto limit = hn::Set(dt, 16777216.0f);
+  if (!hn::AllTrue(dt, hn::And(hn::Lt(hn::Abs(sx), limit), hn::Lt(hn::Abs(sy), limit)))) {
+    for (size_t s = i; s < i + kGroup; ++s) SplatSample(k, filter, samples, s, block);
+    return;
+  }
+  const auto half = hn::Set(dt, 0.5f), radius = hn::Set(dt, filter.radius());
+  const auto cx = hn::Sub(sx, half), cy = hn::Sub(sy, half);
+  const auto ix0 =
+      hn::Max(hn::Set(dti, block->x0()), hn::ConvertTo(dti, hn::Ceil(hn::Sub(cx, radius))));
+  const auto ix1 = hn::Min(hn::Set(dti, block->x0() + block->width() - 1),
+                           hn::ConvertTo(dti, hn::Floor(hn::Add(cx, radius))));
+  const auto iy0 =
+      hn::Max(hn::Set(dti, block->y0()), hn::ConvertTo(dti, hn::Ceil(hn::Sub(cy, radius))));
+  const auto iy1 = hn::Min(hn::Set(dti, block->y0() + block->height() - 1),
+                           hn::ConvertTo(dti, hn::Floor(hn::Add(cy, radius))));
+  HWY_ALIGN int32_t x0[kGroup], y0[kGroup], nx[kGroup], ny[kGroup];
+  hn::Store(ix0, dti, x0), hn::Store(iy0, dti, y0);
+  hn::Store(hn::Add(hn::Sub(ix1, ix0), hn::Set(dti, 1)), dti, nx);
+  hn::Store(hn::Add(hn::Sub(iy1, iy0), hn::Set(dti, 1)), dti, ny);
+  // Tap t of every sample: offset float(i0 + t) + 0.5f - s, as FilmBlock::Splat computes it.
+  HWY_ALIGN float wx[kTaps][kGroup], wy[kTaps][kGroup];
+  for (size_t t = 0; t < kTaps; ++t) {
+    const auto tap = hn::Set(dti, int32_t(t));
+    hn::Store(
+        EvalFilter(dt, filter, hn::Sub(hn::Add(hn::ConvertTo(dt, hn::Add(ix0, tap)), half), sx)),
+        dt, wx[t]);
+    hn::Store(
+        EvalFilter(dt, filter, hn::Sub(hn::Add(hn::ConvertTo(dt, hn::Add(iy0, tap)), half), sy)),
+        dt, wy[t]);
+  }
+  for (size_t s = 0; s < kGroup; ++s) {
+    if (nx[s] <= 0 || ny[s] <= 0) continue;  // no pixel of the block
+    const size_t row = i + s;
+    if (size_t(nx[s]) > kTaps || size_t(ny[s]) > kTaps) {
+      SplatSample(k, filter, samples, row, block);  // SplatOne's path
+      continue;
+    }
+    AddFootprint(k, x0[s], y0[s], nx[s], ny[s], &wx[0][s], &wy[0][s], kGroup, samples.r[row],
+                 samples.g[row], samples.b[row], block);
+  }
 }
 
 #endif  // HWY_TARGET != HWY_SCALAR
@@ -178,14 +253,9 @@ HWY_INLINE void SplatSamplesWithTag(D, const PixelFilter& filter, const FilmSamp
   } else {
 #if HWY_TARGET != HWY_SCALAR
     const SeparableSplat<D> k;
-    for (size_t i = 0; i < samples.n; ++i) {
-      const float sx = samples.sx[i], sy = samples.sy[i];
-      if (SplatSeparable(k, filter, sx, sy, samples.r[i], samples.g[i], samples.b[i], block)) {
-        continue;
-      }
-      const float rgb1[4] = {samples.r[i], samples.g[i], samples.b[i], 1.0f};
-      SplatOne(filter, sx, sy, rgb1, block);  // more than 4 taps on an axis
-    }
+    size_t i = 0;
+    for (; i + 8 <= samples.n; i += 8) SplatGroup(k, filter, samples, i, block);
+    for (; i < samples.n; ++i) SplatSample(k, filter, samples, i, block);
 #endif
   }
 }

@@ -98,6 +98,13 @@ TEST(Splat8, MatchesOracleInWaveOrderWithExtremeRadianceOnEveryTarget) {
           c.r.push_back(radiance[rng.NextUint() % 7]), c.g.push_back(radiance[rng.NextUint() % 7]);
           c.b.push_back(radiance[rng.NextUint() % 7]);
         }
+    // Positions from 2^24 on (the 8-sample groups' vector footprint hands them to the
+    // per-sample path), in the middle of the samples.
+    for (const float far : {16777216.0f, -16777216.0f, 3e7f, 16777215.0f}) {
+      c.sx.insert(c.sx.begin() + 100, far), c.sy.insert(c.sy.begin() + 100, 3.5f);
+      c.r.insert(c.r.begin() + 100, 1.0f), c.g.insert(c.g.begin() + 100, 1.0f);
+      c.b.insert(c.b.begin() + 100, 1.0f);
+    }
     // The block starts inside the samples' range and ends before it: clipped footprints.
     FilmBlock oracle(1, 2, 17, 9);
     SplatSamples(filter, c.View(), &oracle);
