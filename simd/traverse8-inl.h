@@ -133,17 +133,24 @@ HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF
   VF v = EdgeFunction(a_x, a_y, c_x, c_y);
   VF w = EdgeFunction(b_x, b_y, a_x, a_y);
   const VF zero = hn::Zero(d);
-  const MF on_edge =
-      hn::And(valid, hn::Or(hn::Or(hn::Eq(u, zero), hn::Eq(v, zero)), hn::Eq(w, zero)));
-  if (HWY_UNLIKELY(!hn::AllFalse(d, on_edge))) {
-    EdgeFallback(d, on_edge, a_x, a_y, b_x, b_y, c_x, c_y, &u, &v, &w);
-  }
   // Mixed signs (some < 0 and some > 0): min < 0 and max > 0. For finite u, v, w this is
   // the oracle's test; a NaN among them makes det NaN, which every later test rejects on
   // both paths, so the final answer is the same either way.
-  const MF any_neg = hn::Lt(hn::Min(hn::Min(u, v), w), zero);
-  const MF any_pos = hn::Gt(hn::Max(hn::Max(u, v), w), zero);
-  MF ok = hn::AndNot(hn::And(any_neg, any_pos), valid);
+  const auto mixed = [&] {
+    return hn::And(hn::Lt(hn::Min(hn::Min(u, v), w), zero),
+                   hn::Gt(hn::Max(hn::Max(u, v), w), zero));
+  };
+  MF ok = hn::AndNot(mixed(), valid);
+  // Most tests end here, before the zero check: the fallback keeps every non-zero value's
+  // sign (a float difference of rounded products is non-zero only with the exact sign, which
+  // the exact double products keep), so a lane with mixed non-zero signs misses either way,
+  // and with a NaN the min/max above see mixed signs only between two non-NaN values.
+  if (hn::AllFalse(d, ok)) return ok;
+  const MF on_edge = hn::And(ok, hn::Or(hn::Or(hn::Eq(u, zero), hn::Eq(v, zero)), hn::Eq(w, zero)));
+  if (HWY_UNLIKELY(!hn::AllFalse(d, on_edge))) {
+    EdgeFallback(d, on_edge, a_x, a_y, b_x, b_y, c_x, c_y, &u, &v, &w);
+    ok = hn::AndNot(mixed(), ok);
+  }
   const VF det = hn::Add(hn::Add(u, v), w);
   ok = hn::AndNot(hn::Eq(det, zero), ok);
   if (hn::AllFalse(d, ok)) return ok;
