@@ -27,7 +27,9 @@ struct Traverse8Options {
   /// Hybrid traversal: when at most this many lanes of a packet still need a subtree, each of
   /// them traverses it alone (single-ray BVH8 traversal, all eight child boxes in one vector)
   /// instead of the packet testing every child box for 8 lanes. 0 = pure packet traversal.
-  uint32_t single_ray_lanes = 4;
+  /// Measured (closest hit, same run, against 4): shadow rays veach +5 to +9 %, table -1 to
+  /// -5 %, bounce rays table -1 to -2 %, the rest and the rendered scenes unchanged.
+  uint32_t single_ray_lanes = 6;
   /// In a leaf with fewer triangles than active lanes, test one triangle against all lanes at
   /// a time (each lane's vertices permuted to its own watertight axes, blended per lane when
   /// the lanes' permutations differ); else each active lane tests the whole leaf in one vector.

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -369,6 +370,20 @@ TEST(Traverse8, MatchesOracleLaneByLaneOnEveryTarget) {
   });
 }
 
+// Eight points of triangle `row` for a packet to aim at: its vertices, edge midpoints, centroid
+// and a point a quarter along an edge.
+std::array<Vec3f, 8> TriangleTargets(const TriangleTable& table, uint32_t row) {
+  const Vec3f a = table.V0(row), b = table.V1(row), c = table.V2(row);
+  return {a,
+          b,
+          c,
+          (a + b) * 0.5f,
+          (b + c) * 0.5f,
+          (c + a) * 0.5f,
+          (a + b + c) * (1.0f / 3.0f),
+          a + (b - a) * 0.25f};
+}
+
 // Packets from one origin into one octant (coherent: the frustum and broadcast-leaf paths),
 // whose lanes' intervals end before, exactly at, just after and well after their oracle hit
 // (the interval is open), so that the lanes of an any-hit packet stop at different times.
@@ -384,9 +399,7 @@ std::vector<Ray> MakeSharedOriginRays(const TriangleTable& table, const Bvh& bvh
   while (rays.size() < count) {
     const Vec3f o = UniformInBox(rng, outer_lo, outer_hi);
     const uint32_t row = rng.NextUint() % n;
-    const Vec3f a = table.V0(row), b = table.V1(row), c = table.V2(row);
-    const Vec3f targets[8] = {a, b, c, (a + b) * 0.5f, (b + c) * 0.5f, (c + a) * 0.5f,
-                              (a + b + c) * (1.0f / 3.0f), a + (b - a) * 0.25f};
+    const std::array<Vec3f, 8> targets = TriangleTargets(table, row);
     const uint32_t shift = rng.NextUint() % 8;  // which lane gets which interval
     for (uint32_t j = 0; j < 8; ++j) {
       Ray r{o, targets[j] - o};
@@ -422,12 +435,8 @@ std::vector<Ray> MakeSharedOriginRays(const TriangleTable& table, const Bvh& bvh
   return rays;
 }
 
-TEST(Traverse8, OcclusionOfSharedOriginPacketsMatchesOracle) {
-  const Fixture& f = AdversarialFixture();
-  const Bvh8 bvh8 = BuildBvh8(f.bvh);
-  const std::vector<Ray> rays = MakeSharedOriginRays(f.table, f.bvh, size_t{1} << 16, 3);
-  const std::vector<Expected> expected = Oracle(f.bvh, rays);
-  // The packets must mostly be coherent (one octant), or the frustum path is not reached.
+// Packets (rays [8k, 8k + 8)) whose lanes all point into one direction octant.
+size_t OneOctantPackets(const std::vector<Ray>& rays) {
   size_t one_octant = 0;
   for (size_t base = 0; base + 8 <= rays.size(); base += 8) {
     bool same = true;
@@ -438,7 +447,16 @@ TEST(Traverse8, OcclusionOfSharedOriginPacketsMatchesOracle) {
     }
     one_octant += same;
   }
-  EXPECT_GT(one_octant, rays.size() / 8 / 2);
+  return one_octant;
+}
+
+TEST(Traverse8, OcclusionOfSharedOriginPacketsMatchesOracle) {
+  const Fixture& f = AdversarialFixture();
+  const Bvh8 bvh8 = BuildBvh8(f.bvh);
+  const std::vector<Ray> rays = MakeSharedOriginRays(f.table, f.bvh, size_t{1} << 16, 3);
+  const std::vector<Expected> expected = Oracle(f.bvh, rays);
+  // The packets must mostly be coherent (one octant), or the frustum path is not reached.
+  EXPECT_GT(OneOctantPackets(rays), rays.size() / 8 / 2);
   size_t occluded = 0;
   for (const Expected& e : expected) occluded += e.occluded;
   EXPECT_GT(occluded, rays.size() / 8);
@@ -447,6 +465,57 @@ TEST(Traverse8, OcclusionOfSharedOriginPacketsMatchesOracle) {
     Mismatches mm;
     CompareAll(bvh8, rays, expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
     CompareAll(bvh8, rays, expected, {"hybrid", {}}, /*single_ray=*/true, &mm);
+    CompareAll(bvh8, rays, expected, {"packet, broadcast leaves", {0, true, false}}, false, &mm);
+    EXPECT_EQ(mm.count, 0);
+  });
+}
+
+// Packets into one octant from eight different origins (a jittered bundle aimed at the
+// vertices, edge midpoints and centroid of one triangle): the frustum path with spread origins,
+// whose bounds fold every live lane's origin, 1/d and t_min (shared-origin packets cannot tell
+// a lane's origin from another's). Lanes start before, on and beyond the triangle's plane.
+std::vector<Ray> MakeSpreadOriginRays(const TriangleTable& table, const Bvh& bvh, size_t count,
+                                      uint64_t seed) {
+  const Vec3f lo = bvh.nodes[0].bounds_min, hi = bvh.nodes[0].bounds_max;
+  const float size = MaxComponent(hi - lo);
+  const Vec3f outer_lo = lo - Vec3f{size, size, size}, outer_hi = hi + Vec3f{size, size, size};
+  Pcg32 rng(seed, 17);
+  const uint32_t n = static_cast<uint32_t>(table.size());
+  std::vector<Ray> rays;
+  rays.reserve(count + 8);
+  while (rays.size() < count) {
+    const Vec3f o = UniformInBox(rng, outer_lo, outer_hi);
+    const uint32_t row = rng.NextUint() % n;
+    const std::array<Vec3f, 8> targets = TriangleTargets(table, row);
+    // Jitter of up to 1/2 (1/64 in every other packet) of the scene, so that lanes still
+    // mostly share an octant.
+    const float jitter = size * ((rng.NextUint() & 1) ? 0.5f : 1.0f / 64.0f);
+    for (uint32_t j = 0; j < 8; ++j) {
+      const Vec3f oj = o + Vec3f{Uniform(rng, -jitter, jitter), Uniform(rng, -jitter, jitter),
+                                 Uniform(rng, -jitter, jitter)};
+      Ray r{oj, targets[j] - oj};
+      if (j == 5) r.t_min = Uniform(rng, 0.0f, 1.5f);  // may start beyond the target
+      if (j == 6) r.t_max = Uniform(rng, 0.5f, 1.5f);  // may end before it
+      rays.push_back(r);
+    }
+  }
+  rays.resize(count);
+  return rays;
+}
+
+TEST(Traverse8, CoherentPacketsFromSpreadOriginsMatchOracle) {
+  const Fixture& f = AdversarialFixture();
+  const Bvh8 bvh8 = BuildBvh8(f.bvh);
+  const std::vector<Ray> rays = MakeSpreadOriginRays(f.table, f.bvh, size_t{1} << 16, 4);
+  const std::vector<Expected> expected = Oracle(f.bvh, rays);
+  EXPECT_GT(OneOctantPackets(rays), rays.size() / 8 / 4);
+  size_t hits = 0;
+  for (const Expected& e : expected) hits += e.hit;
+  EXPECT_GT(hits, rays.size() / 4);
+  ForEachTarget([&] {
+    Mismatches mm;
+    CompareAll(bvh8, rays, expected, {"hybrid", {}}, /*single_ray=*/false, &mm);
+    CompareAll(bvh8, rays, expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
     CompareAll(bvh8, rays, expected, {"packet, broadcast leaves", {0, true, false}}, false, &mm);
     EXPECT_EQ(mm.count, 0);
   });
