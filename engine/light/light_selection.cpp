@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/core/check.h"
 #include "engine/sampling/guide_table.h"
 
 namespace ptlab {
@@ -112,24 +111,6 @@ void BuildEmitterSelection(Scene* scene) {
   }
   t.guide.resize(n + 1);
   BuildGuideTable(t.cdf.data(), uint32_t(n), t.guide.data());
-}
-
-EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf, float* u_remapped) {
-  const size_t n = scene.emitters.size();
-  PTLAB_DCHECK(n > 0);
-  if (scene.integrator.light_selection == LightSelection::kUniform) {
-    const size_t k = std::min(n - 1, size_t(u * float(n)));
-    *pmf = 1.0f / float(n);
-    if (u_remapped) *u_remapped = std::min(u * float(n) - float(k), kOneMinusEpsilon);
-    return scene.emitters[k];
-  }
-  const EmitterSelectionTable& t = scene.emitter_selection;
-  PTLAB_CHECK(t.size() == n);  // BuildEmitterSelection ran after the last emitter was added
-  const CdfPick pick = PickCdfBin(t.cdf.data(), uint32_t(n), t.guide.data(), u);
-  const uint32_t k = pick.bin;
-  *pmf = t.pmf[k];
-  if (u_remapped) *u_remapped = pick.u_remapped;
-  return scene.emitters[k];
 }
 
 }  // namespace ptlab

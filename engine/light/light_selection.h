@@ -3,6 +3,8 @@
 
 #include <cstdint>
 
+#include "engine/core/check.h"
+#include "engine/sampling/guide_table.h"
 #include "engine/scene/refs.h"
 #include "engine/scene/scene.h"
 
@@ -34,6 +36,25 @@ inline float EmitterSelectionPmf(const Scene& scene, EmitterRef e) {
 /// `u_remapped`, also u stretched back to [0, 1) over the picked emitter's interval of [0, 1),
 /// a number independent of the pick (the Sobol' sampler reuses it for the point on the emitter,
 /// so the points that land on each emitter are themselves stratified).
-EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf, float* u_remapped = nullptr);
+/// Inline: the wavefront picks once per emitter sample, and a call costs it the pmf's round
+/// trip through memory and the remapped u's division where nobody asks for it.
+inline EmitterRef SelectEmitter(const Scene& scene, float u, float* pmf,
+                                float* u_remapped = nullptr) {
+  const size_t n = scene.emitters.size();
+  PTLAB_DCHECK(n > 0);
+  if (scene.integrator.light_selection == LightSelection::kUniform) {
+    const size_t k = std::min(n - 1, size_t(u * float(n)));
+    *pmf = 1.0f / float(n);
+    if (u_remapped) *u_remapped = std::min(u * float(n) - float(k), kOneMinusEpsilon);
+    return scene.emitters[k];
+  }
+  const EmitterSelectionTable& t = scene.emitter_selection;
+  PTLAB_CHECK(t.size() == n);  // BuildEmitterSelection ran after the last emitter was added
+  const CdfPick pick = PickCdfBin(t.cdf.data(), uint32_t(n), t.guide.data(), u);
+  const uint32_t k = pick.bin;
+  *pmf = t.pmf[k];
+  if (u_remapped) *u_remapped = pick.u_remapped;
+  return scene.emitters[k];
+}
 
 }  // namespace ptlab

@@ -108,7 +108,10 @@ struct RayQueue {
   }
   void Push(const Ray& r, uint32_t who) {
     const size_t q = owner.size();
-    if (q % kLanes == 0) packets.emplace_back();
+    // A new packet starts as a copy of an empty one: emplace_back's zeroing compiles to a
+    // `rep stos` of 256 bytes, whose start-up cost showed at every eighth push.
+    static constexpr RayPacket8 kEmptyPacket{};
+    if (q % kLanes == 0) packets.push_back(kEmptyPacket);
     SetLaneRay(&packets.back(), int(q % kLanes), r);
     owner.push_back(who);
   }
@@ -169,7 +172,7 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,
                           path_of_slot_);
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
-    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_, request_shadow_,
+    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_,
                           request_contribution_, occluded_, nee_paths_);
     bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
@@ -401,7 +404,7 @@ class alignas(kColumnAlignment) Wavefront {
     // Requests are SoA columns written in place (a row's flag, its ray and contribution only
     // when it traces): no request struct per row. The columns only grow.
     n_requests_ = 0;
-    GrowColumns(emitter_rows, &request_traced_, &request_shadow_, &request_contribution_);
+    GrowColumns(emitter_rows, &request_traced_, &request_contribution_);
     area_.Clear(emitter_rows);
     for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
     for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
@@ -488,23 +491,19 @@ class alignas(kColumnAlignment) Wavefront {
     }
     SampleAreaLights();
     SampleInfiniteLights();
-    for (size_t r = 0; r < n_requests_; ++r)
-      if (request_traced_[r]) shadows_.Push(request_shadow_[r], uint32_t(r));
     SampleBsdfs();
   }
 
   // Row r of the request columns from a finished request; the row's flag is already 0 and
   // stays so when the request traces nothing. Field by field, so the request stays in
-  // registers instead of being assembled on the stack and copied.
+  // registers instead of being assembled on the stack and copied. The shadow ray goes straight
+  // into the shadow queue (owner r), in the order the requests finish (delta lights, then
+  // area, environment, disk batches): TraceShadows answers by owner, so the order changes no
+  // result, and with one kind of emitter it is request order.
   void StoreRequest(uint32_t r, const EmitterSampleRequest& req) {
     if (!req.traced) return;
     request_traced_[r] = 1;
-    // Float by float: a whole-Ray copy is read back from the stack 16 bytes wide across the
-    // narrower stores that built it (a store-forwarding stall on every traced request).
-    Ray& shadow = request_shadow_[r];
-    shadow.o.x = req.shadow.o.x, shadow.o.y = req.shadow.o.y, shadow.o.z = req.shadow.o.z;
-    shadow.d.x = req.shadow.d.x, shadow.d.y = req.shadow.d.y, shadow.d.z = req.shadow.d.z;
-    shadow.t_min = req.shadow.t_min, shadow.t_max = req.shadow.t_max;
+    shadows_.Push(req.shadow, r);
     Color3f& contribution = request_contribution_[r];
     contribution.r = req.contribution.r, contribution.g = req.contribution.g;
     contribution.b = req.contribution.b;
@@ -886,7 +885,6 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<uint8_t> goes_on_;
   // The emitter samples' requests (EmitterSampleRequest as columns), rows [0, n_requests_).
   std::vector<uint8_t> request_traced_;
-  std::vector<Ray> request_shadow_;
   std::vector<Color3f> request_contribution_;
   size_t n_requests_ = 0;
   // A wave's escaped rays, when they go through the environment_eval batch (ShadeEscaped).

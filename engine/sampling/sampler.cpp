@@ -1,4 +1,4 @@
-// Sampler names.
+// Sampler names; PathSampler's Sobol' draws.
 #include "engine/sampling/sampler.h"
 
 namespace ptlab {
@@ -9,6 +9,14 @@ const char* SamplerTypeName(SamplerType type) {
     case SamplerType::kSobol: return "sobol";
   }
   return "";
+}
+
+float PathSampler::Sobol1D(uint32_t dim, uint32_t sub, uint32_t sub_count) const {
+  return ScrambledSobol1D(index_ * sub_count + sub, Seeds(dim));
+}
+
+Vec2f PathSampler::Sobol2D(uint32_t dim, uint32_t sub, uint32_t sub_count) const {
+  return ScrambledSobol2D(index_ * sub_count + sub, Seeds(dim));
 }
 
 bool SamplerTypeFromName(std::string_view name, SamplerType* type) {

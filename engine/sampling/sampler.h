@@ -62,7 +62,7 @@ class PathSampler {
   /// taken sub_count times per vertex (emitter samples).
   float Get1D(uint32_t dim, uint32_t sub = 0, uint32_t sub_count = 1) {
     if (type_ == SamplerType::kIndependent) return rng_.NextFloat();
-    return ScrambledSobol1D(index_ * sub_count + sub, Seeds(dim));
+    return Sobol1D(dim, sub, sub_count);
   }
 
   /// A point in [0, 1)² for dimension `dim` (see Get1D).
@@ -71,11 +71,16 @@ class PathSampler {
       const float a = rng_.NextFloat();
       return {a, rng_.NextFloat()};
     }
-    return ScrambledSobol2D(index_ * sub_count + sub, Seeds(dim));
+    return Sobol2D(dim, sub, sub_count);
   }
 
  private:
   SobolSeeds Seeds(uint32_t dim) const { return DimensionSeeds(pixel_seed32_, dim); }
+  // The Sobol' branches out of line (sampler.cpp): inline, their hashing made Get2D too big to
+  // inline, so the independent sampler's two PCG32 steps became a call in the wavefront's
+  // per-path loop. The wavefront draws Sobol' numbers in batches and never calls these.
+  float Sobol1D(uint32_t dim, uint32_t sub, uint32_t sub_count) const;
+  Vec2f Sobol2D(uint32_t dim, uint32_t sub, uint32_t sub_count) const;
 
   Pcg32 rng_;
   uint32_t pixel_seed32_ = 0;  // the pixel's seed folded to 32 bits (Sobol' scrambles)
