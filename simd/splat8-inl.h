@@ -50,36 +50,20 @@ HWY_INLINE void SplatOne(const PixelFilter& filter, float sx, float sy, const fl
   }
 }
 
+/// Sample `row` alone, through SplatOne: the samples outside whole groups of eight, those with
+/// more than 4 taps on an axis and groups SplatGroup leaves to the per-sample path.
+HWY_INLINE void SplatSample(const PixelFilter& filter, const FilmSamples& samples, size_t row,
+                            FilmBlock* block) {
+  const float rgb1[4] = {samples.r[row], samples.g[row], samples.b[row], 1.0f};
+  SplatOne(filter, samples.sx[row], samples.sy[row], rgb1, block);
+}
+
 // HWY_SCALAR has one lane and lacks the ops below; it takes SplatOne's path.
 #if HWY_TARGET != HWY_SCALAR
-/// The separable path's constants on this target. Taps: at most kTaps (4) per axis, evaluated
-/// 8 lanes at a time (a sample's x taps in lanes 0-3 and y taps in lanes 4-7, or one tap of
-/// eight samples). Rows: a row of the block's accumulators is read Lanes(D) / 4 pixels per
-/// vector (4 on AVX3, 2 on AVX2). D has 8 or 16 lanes.
-template <class D>
-struct SeparableSplat {
-  using DT = hn::CappedTag<float, 8>;
-  using DI = hn::RebindToSigned<D>;
-  using DTI = hn::RebindToSigned<DT>;
-  static constexpr size_t kTaps = 4;
-  D d;
-  DI di;
-  DT dt;
-  DTI dti;
-  hn::Mask<DT> x_lanes = hn::FirstN(dt, kTaps);
-  hn::Vec<DTI> tap = hn::And(hn::Iota(dti, 0), hn::Set(dti, int32_t(kTaps - 1)));  // lane % 4
-  // Lane l of a row vector is pixel l / 4 of the vector's pixels.
-  hn::Vec<DI> pixel_of_lane = hn::ShiftRight<2>(hn::Iota(di, 0));
-  // (r, g, b, 1) per pixel: which lanes take r, g and b.
-  hn::Mask<D> r_lanes, g_lanes, b_lanes;
-
-  SeparableSplat() {
-    const hn::Vec<DI> channel = hn::And(hn::Iota(di, 0), hn::Set(di, 3));
-    r_lanes = hn::RebindMask(d, hn::Eq(channel, hn::Zero(di)));
-    g_lanes = hn::RebindMask(d, hn::Eq(channel, hn::Set(di, 1)));
-    b_lanes = hn::RebindMask(d, hn::Eq(channel, hn::Set(di, 2)));
-  }
-};
+/// The separable path: at most kSplatTaps taps per axis, evaluated for kSplatGroup samples at
+/// a time (one tap of eight samples per vector); a row of the block's accumulators is read
+/// Lanes(D) / 4 pixels per vector (4 on AVX3, 2 on AVX2; D has 8 or 16 lanes).
+constexpr size_t kSplatTaps = 4, kSplatGroup = 8;
 
 /// PixelFilter::Eval at every lane of `x`, the same float operations lane by lane (the table
 /// reads as gathers). Lanes out of the table's range read index 0 and are zeroed.
@@ -109,34 +93,36 @@ HWY_INLINE void AccumulateRow(D d, hn::Vec<D> c, size_t floats, float* sums) {
   }
 }
 
-/// Adds the footprint rows of one sample, its footprint and taps given: x weights wx[0],
-/// wx[stride], ..., y weights likewise (nx, ny ≤ kTaps), r, g, b its radiance. Each row is one
-/// or two vectors of (r, g, b, w) accumulators, wx·wy·(r, g, b, 1) with FilmBlock::Splat's
-/// operations per lane.
+/// Adds the footprint rows of one sample, its footprint and taps given in SplatGroup's layout:
+/// x weights wx[0], wx[kSplatGroup], ..., y weights likewise (nx, ny ≤ kSplatTaps), r, g, b its
+/// radiance. Each row is one or two vectors of (r, g, b, w) accumulators, wx·wy·(r, g, b, 1)
+/// with FilmBlock::Splat's operations per lane.
 template <class D>
-HWY_INLINE void AddFootprint(const SeparableSplat<D>& k, int ix0, int iy0, int nx, int ny,
-                             const float* wx, const float* wy, size_t stride, float r, float g,
-                             float b, FilmBlock* block) {
-  const D d = k.d;
-  constexpr size_t kPixels = hn::MaxLanes(D()) / 4, kTaps = SeparableSplat<D>::kTaps;
+HWY_INLINE void AddFootprint(D d, int ix0, int iy0, int nx, int ny, const float* wx,
+                             const float* wy, float r, float g, float b, FilmBlock* block) {
+  constexpr size_t kPixels = hn::MaxLanes(D()) / 4, stride = kSplatGroup;
+  // Lane l of a row vector is channel l % 4 of pixel l / 4 of the vector's pixels.
+  const hn::RebindToSigned<D> di;
+  const auto lane = hn::Iota(di, 0);
+  const auto pixel_of_lane = hn::ShiftRight<2>(lane), channel = hn::And(lane, hn::Set(di, 3));
   // wx per accumulator lane: lane l holds pixel l / 4 of the row; of the second vector (8-lane
   // targets), pixel l / 4 + 2.
   auto wx0 = hn::Set(d, wx[0]), wx1 = wx0;
   for (size_t p = 1; p < kPixels; ++p) {
-    const auto lanes = hn::RebindMask(d, hn::Eq(k.pixel_of_lane, hn::Set(k.di, int32_t(p))));
+    const auto lanes = hn::RebindMask(d, hn::Eq(pixel_of_lane, hn::Set(di, int32_t(p))));
     wx0 = hn::IfThenElse(lanes, hn::Set(d, wx[p * stride]), wx0);
   }
-  if constexpr (kPixels < kTaps) {
+  if constexpr (kPixels < kSplatTaps) {
     wx1 = hn::Set(d, wx[kPixels * stride]);
     for (size_t p = 1; p < kPixels; ++p) {
-      const auto lanes = hn::RebindMask(d, hn::Eq(k.pixel_of_lane, hn::Set(k.di, int32_t(p))));
+      const auto lanes = hn::RebindMask(d, hn::Eq(pixel_of_lane, hn::Set(di, int32_t(p))));
       wx1 = hn::IfThenElse(lanes, hn::Set(d, wx[(kPixels + p) * stride]), wx1);
     }
   }
-  const auto radiance =
-      hn::IfThenElse(k.r_lanes, hn::Set(d, r),
-                     hn::IfThenElse(k.g_lanes, hn::Set(d, g),
-                                    hn::IfThenElse(k.b_lanes, hn::Set(d, b), hn::Set(d, 1.0f))));
+  const auto is = [&](int c) { return hn::RebindMask(d, hn::Eq(channel, hn::Set(di, c))); };
+  const auto radiance = hn::IfThenElse(
+      is(0), hn::Set(d, r),
+      hn::IfThenElse(is(1), hn::Set(d, g), hn::IfThenElse(is(2), hn::Set(d, b), hn::Set(d, 1.0f))));
   const size_t floats = size_t(nx) * 4, lanes = hn::Lanes(d);
   for (int j = 0; j < ny; ++j) {
     const float wy_j = wy[size_t(j) * stride];
@@ -150,54 +136,21 @@ HWY_INLINE void AddFootprint(const SeparableSplat<D>& k, int ix0, int iy0, int n
   }
 }
 
-/// One sample through the separable path when its footprint has at most 4 pixels per axis:
-/// its x and y taps from one 8-lane EvalFilter, then AddFootprint. Returns false (nothing
-/// done) when the taps do not fit. For the samples outside whole groups of eight.
-template <class D>
-HWY_INLINE bool SplatSeparable(const SeparableSplat<D>& k, const PixelFilter& filter, float sx,
-                               float sy, float r, float g, float b, FilmBlock* block) {
-  const SplatFootprint f = block->Footprint(filter.radius(), sx, sy);
-  const int nx = f.ix1 - f.ix0 + 1, ny = f.iy1 - f.iy0 + 1;
-  if (nx <= 0 || ny <= 0) return true;  // no pixel of the block: FilmBlock::Splat adds nothing
-  if (size_t(nx) > k.kTaps || size_t(ny) > k.kTaps) return false;
-  // Offsets float(i) + 0.5f - s per tap, as FilmBlock::Splat computes them.
-  const auto first = hn::IfThenElse(hn::RebindMask(k.dti, k.x_lanes), hn::Set(k.dti, f.ix0),
-                                    hn::Set(k.dti, f.iy0));
-  const auto s = hn::IfThenElse(k.x_lanes, hn::Set(k.dt, sx), hn::Set(k.dt, sy));
-  const auto x =
-      hn::Sub(hn::Add(hn::ConvertTo(k.dt, hn::Add(first, k.tap)), hn::Set(k.dt, 0.5f)), s);
-  HWY_ALIGN float w[hn::MaxLanes(k.dt)];
-  hn::Store(EvalFilter(k.dt, filter, x), k.dt, w);
-  AddFootprint(k, f.ix0, f.iy0, nx, ny, w, w + k.kTaps, 1, r, g, b, block);
-  return true;
-}
-
-/// Sample `row` alone: SplatSeparable, or SplatOne when its taps do not fit.
-template <class D>
-HWY_INLINE void SplatSample(const SeparableSplat<D>& k, const PixelFilter& filter,
-                            const FilmSamples& samples, size_t row, FilmBlock* block) {
-  const float sx = samples.sx[row], sy = samples.sy[row];
-  const float r = samples.r[row], g = samples.g[row], b = samples.b[row];
-  if (SplatSeparable(k, filter, sx, sy, r, g, b, block)) return;
-  const float rgb1[4] = {r, g, b, 1.0f};
-  SplatOne(filter, sx, sy, rgb1, block);  // more than 4 taps on an axis
-}
-
 /// Samples [i, i + 8) in order: their footprints and the 4 x and 4 y taps of all eight as
 /// vectors over the samples (eight independent filter evaluations instead of one long chain
 /// per sample: the per-sample path was latency-bound), then each sample's rows. The vector
 /// footprint is FilmBlock::Footprint's operations; for positions of magnitude 2^24 or more
 /// (or not finite) the group takes the per-sample path, where that equality is not argued.
 template <class D>
-HWY_INLINE void SplatGroup(const SeparableSplat<D>& k, const PixelFilter& filter,
-                           const FilmSamples& samples, size_t i, FilmBlock* block) {
-  const typename SeparableSplat<D>::DT dt;
-  const typename SeparableSplat<D>::DTI dti;
-  constexpr size_t kGroup = 8, kTaps = SeparableSplat<D>::kTaps;
+HWY_INLINE void SplatGroup(D d, const PixelFilter& filter, const FilmSamples& samples, size_t i,
+                           FilmBlock* block) {
+  const hn::CappedTag<float, 8> dt;
+  const hn::RebindToSigned<decltype(dt)> dti;
+  constexpr size_t kGroup = kSplatGroup, kTaps = kSplatTaps;
   const auto sx = hn::LoadU(dt, samples.sx + i), sy = hn::LoadU(dt, samples.sy + i);
   const auto limit = hn::Set(dt, 16777216.0f);
   if (!hn::AllTrue(dt, hn::And(hn::Lt(hn::Abs(sx), limit), hn::Lt(hn::Abs(sy), limit)))) {
-    for (size_t s = i; s < i + kGroup; ++s) SplatSample(k, filter, samples, s, block);
+    for (size_t s = i; s < i + kGroup; ++s) SplatSample(filter, samples, s, block);
     return;
   }
   const auto half = hn::Set(dt, 0.5f), radius = hn::Set(dt, filter.radius());
@@ -229,10 +182,10 @@ HWY_INLINE void SplatGroup(const SeparableSplat<D>& k, const PixelFilter& filter
     if (nx[s] <= 0 || ny[s] <= 0) continue;  // no pixel of the block
     const size_t row = i + s;
     if (size_t(nx[s]) > kTaps || size_t(ny[s]) > kTaps) {
-      SplatSample(k, filter, samples, row, block);  // SplatOne's path
+      SplatSample(filter, samples, row, block);
       continue;
     }
-    AddFootprint(k, x0[s], y0[s], nx[s], ny[s], &wx[0][s], &wy[0][s], kGroup, samples.r[row],
+    AddFootprint(d, x0[s], y0[s], nx[s], ny[s], &wx[0][s], &wy[0][s], samples.r[row],
                  samples.g[row], samples.b[row], block);
   }
 }
@@ -246,16 +199,13 @@ HWY_INLINE void SplatSamplesWithTag(D, const PixelFilter& filter, const FilmSamp
                                     FilmBlock* block) {
   if constexpr (hn::MaxLanes(D()) < 8) {
     // 128-bit targets: a row vector holds one pixel, the per-pixel path is as good.
-    for (size_t i = 0; i < samples.n; ++i) {
-      const float rgb1[4] = {samples.r[i], samples.g[i], samples.b[i], 1.0f};
-      SplatOne(filter, samples.sx[i], samples.sy[i], rgb1, block);
-    }
+    for (size_t i = 0; i < samples.n; ++i) SplatSample(filter, samples, i, block);
   } else {
 #if HWY_TARGET != HWY_SCALAR
-    const SeparableSplat<D> k;
     size_t i = 0;
-    for (; i + 8 <= samples.n; i += 8) SplatGroup(k, filter, samples, i, block);
-    for (; i < samples.n; ++i) SplatSample(k, filter, samples, i, block);
+    for (; i + kSplatGroup <= samples.n; i += kSplatGroup)
+      SplatGroup(D(), filter, samples, i, block);
+    for (; i < samples.n; ++i) SplatSample(filter, samples, i, block);
 #endif
   }
 }
