@@ -8,6 +8,7 @@
 #define PTLAB_SIMD_EMITTER8_INL_H_
 #endif
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -31,34 +32,93 @@ struct AreaLightLanes {
   alignas(64) float u_x[8], inv_area[8], valid[8], vertex_normal[8];
 };
 
-/// Fills `l` for rows [row, row + lanes); returns whether any lane is valid. The triangle pick
-/// (PickAreaLightTriangle) runs as vectors: the guide table's bucket of u, then a masked
-/// linear scan over the bucket for the first CDF entry above u (std::upper_bound over the
-/// bucket, without its unpredictable branches), and the same exactness check; a lane whose
-/// bucket does not bracket the answer takes the scalar pick (its full binary search).
+/// Lights a scene may have for the kernel to hold their per-light values in vectors (one or
+/// two per value) and pick each lane's with a lane permute instead of a gather.
+inline constexpr size_t kRegisterLights = 8;
+
+/// The per-light values the triangle pick reads, for a scene of at most kRegisterLights lights,
+/// as each lane needs them: a zero-area light (never sampled) reads row 0 of a one-entry CDF,
+/// and 1 / area is the vector path's own quotient (both correctly rounded). Built once a call.
+struct AreaLightRegisterTable {
+  alignas(64) float area[kRegisterLights], inv_area[kRegisterLights];
+  alignas(64) int32_t count[kRegisterLights], cdf_at[kRegisterLights];
+  alignas(64) int32_t guide_at[kRegisterLights], first[kRegisterLights];
+
+  explicit AreaLightRegisterTable(const Scene& scene) {
+    const AreaLightTable& lights = scene.area_lights;
+    for (size_t i = 0; i < kRegisterLights; ++i) {
+      const bool valid = i < lights.size() && lights.area[i] > 0;
+      area[i] = i < lights.size() ? lights.area[i] : 0.0f;
+      inv_area[i] = valid ? 1.0f / area[i] : 0.0f;
+      const uint32_t mesh = i < lights.size() ? lights.mesh[i] : 0;
+      count[i] = valid ? int32_t(scene.meshes.triangle_count[mesh]) : 1;
+      cdf_at[i] = valid ? int32_t(lights.cdf_offset[i]) : 0;
+      guide_at[i] = valid ? int32_t(lights.guide_offset[i]) : 0;
+      first[i] = i < lights.size() ? int32_t(scene.meshes.first_triangle[mesh]) : 0;
+    }
+  }
+};
+
+/// table[light] per lane for light < min(kRegisterLights, 2 lanes): one permute of the table's
+/// first vector, or two and a select on targets of fewer than kRegisterLights lanes.
+template <class D, class VI>
+HWY_INLINE hn::Vec<D> LookupLight(D d, const hn::TFromD<D>* table, VI light) {
+  const hn::RebindToSigned<D> di;
+  const size_t lanes = hn::Lanes(d);
+  const auto low = hn::And(light, hn::Set(di, int32_t(lanes - 1)));
+  const auto first = hn::TableLookupLanes(hn::Load(d, table), hn::IndicesFromVec(d, low));
+  if (lanes >= kRegisterLights) return first;
+  const auto second = hn::TableLookupLanes(hn::Load(d, table + lanes), hn::IndicesFromVec(d, low));
+  return hn::IfThenElse(hn::RebindMask(d, hn::Gt(light, hn::Set(di, int32_t(lanes - 1)))), second,
+                        first);
+}
+
+/// Fills `l` for rows [row, row + lanes); returns whether any lane is valid. The per-light
+/// values come from `table` where the scene has one (few lights), else from gathers. The
+/// triangle pick (PickAreaLightTriangle) runs as vectors: the guide table's bucket of u, then a
+/// masked linear scan over the bucket for the first CDF entry above u (std::upper_bound over
+/// the bucket, without its unpredictable branches; its first two entries gathered together),
+/// and the same exactness check; a lane whose bucket does not bracket the answer takes the
+/// scalar pick (its full binary search).
 template <class D>
-HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightBatchInputs& in, size_t row,
-                          AreaLightLanes* l) {
+HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightRegisterTable* table,
+                          const AreaLightBatchInputs& in, size_t row, AreaLightLanes* l) {
   const hn::RebindToSigned<D> di;
   const size_t lanes = hn::Lanes(d);
   const AreaLightTable& lights = scene.area_lights;
   const TriangleShadingTable& sh = scene.shading;
   const auto zero = hn::Zero(d);
-  const auto light = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.light + row));
-  const auto area = hn::GatherIndex(d, lights.area.data(), light);
-  const auto valid = hn::Gt(area, zero);
-  if (hn::AllFalse(d, valid)) return false;
-  const auto valid_i = hn::RebindMask(di, valid);
   const auto as_i = [](const uint32_t* p) { return reinterpret_cast<const int32_t*>(p); };
   const auto zero_i = hn::Zero(di), one_i = hn::Set(di, 1);
-  // Lanes of zero-area lights read row 0 of a one-entry CDF (present: a valid lane has one).
-  const auto mesh = hn::GatherIndex(di, as_i(lights.mesh.data()), light);
-  const auto count = hn::IfThenElse(
-      valid_i, hn::GatherIndex(di, as_i(scene.meshes.triangle_count.data()), mesh), one_i);
-  const auto cdf_at = hn::IfThenElseZero(
-      valid_i, hn::GatherIndex(di, as_i(lights.cdf_offset.data()), light));
-  const auto guide_at = hn::IfThenElseZero(
-      valid_i, hn::GatherIndex(di, as_i(lights.guide_offset.data()), light));
+  const auto light = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.light + row));
+  hn::Vec<D> area, inv_area;
+  hn::Vec<decltype(di)> count, cdf_at, guide_at, first;
+  if (table != nullptr) {
+    area = LookupLight(d, table->area, light);
+    if (hn::AllFalse(d, hn::Gt(area, zero))) return false;
+    inv_area = LookupLight(d, table->inv_area, light);
+    count = LookupLight(di, table->count, light);
+    cdf_at = LookupLight(di, table->cdf_at, light);
+    guide_at = LookupLight(di, table->guide_at, light);
+    first = LookupLight(di, table->first, light);
+  } else {
+    area = hn::GatherIndex(d, lights.area.data(), light);
+    const auto valid = hn::Gt(area, zero);
+    if (hn::AllFalse(d, valid)) return false;
+    const auto valid_i = hn::RebindMask(di, valid);
+    // Lanes of zero-area lights read row 0 of a one-entry CDF (present: a valid lane has one).
+    const auto mesh = hn::GatherIndex(di, as_i(lights.mesh.data()), light);
+    count = hn::IfThenElse(
+        valid_i, hn::GatherIndex(di, as_i(scene.meshes.triangle_count.data()), mesh), one_i);
+    cdf_at =
+        hn::IfThenElseZero(valid_i, hn::GatherIndex(di, as_i(lights.cdf_offset.data()), light));
+    guide_at =
+        hn::IfThenElseZero(valid_i, hn::GatherIndex(di, as_i(lights.guide_offset.data()), light));
+    first = hn::GatherIndex(di, as_i(scene.meshes.first_triangle.data()), mesh);
+    inv_area = hn::IfThenElseZero(valid, hn::Div(hn::Set(d, 1.0f), area));
+  }
+  const auto valid = hn::Gt(area, zero);
+  const auto valid_i = hn::RebindMask(di, valid);
   const float* cdf = lights.triangle_cdf.data();
   const int32_t* guide = as_i(lights.triangle_guide.data());
   const auto u = hn::LoadU(d, in.u_x + row);
@@ -68,32 +128,39 @@ HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightBatchInputs& i
   const auto lo = hn::Min(hn::GatherIndex(di, guide, hn::Add(guide_at, b)), count);
   const auto hi =
       hn::Min(count, hn::Add(hn::GatherIndex(di, guide, hn::Add(hn::Add(guide_at, b), one_i)), one_i));
+  // The scan: k steps on while k < hi and cdf[k] is not above u. Its first two entries are
+  // gathered together, not one after the other (a bucket rarely holds more).
   auto k = lo;
-  for (auto scan = hn::Lt(k, hi); !hn::AllFalse(di, scan);) {
-    const auto c = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Min(k, last)));
-    const auto step = hn::AndNot(hn::RebindMask(di, hn::Gt(c, u)), scan);
-    k = hn::Add(k, hn::IfThenElseZero(step, one_i));
-    scan = hn::And(step, hn::Lt(k, hi));
-  }
+  auto scan = hn::Lt(k, hi);
+  const auto step = [&](hn::Vec<D> c) {
+    const auto on = hn::AndNot(hn::RebindMask(di, hn::Gt(c, u)), scan);
+    k = hn::Add(k, hn::IfThenElseZero(on, one_i));
+    scan = hn::And(on, hn::Lt(k, hi));
+  };
+  const auto c0 = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Min(lo, last)));
+  const auto c1 = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Min(hn::Add(lo, one_i), last)));
+  step(c0), step(c1);
+  while (!hn::AllFalse(di, scan)) step(hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Min(k, last))));
+  // The CDF entries around k: at = cdf[min(k, last)], below = cdf[k - 1] (k = count: at).
+  const auto k_in = hn::Min(k, last);
+  const auto at = hn::GatherIndex(d, cdf, hn::Add(cdf_at, k_in));
+  const auto before =
+      hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Max(hn::Sub(k_in, one_i), zero_i)));
+  const auto below = hn::IfThenElse(hn::RebindMask(d, hn::Eq(k, count)), at, before);
   const auto has_below = hn::Gt(k, zero_i);
-  const auto below = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Max(hn::Sub(k, one_i), zero_i)));
-  const auto at = hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Min(k, last)));
   const auto below_ok = hn::Or(hn::Not(has_below), hn::RebindMask(di, hn::Not(hn::Gt(below, u))));
   const auto at_ok = hn::Or(hn::Eq(k, count), hn::RebindMask(di, hn::Gt(at, u)));
   const auto exact = hn::And(below_ok, at_ok);
   // The chosen triangle's CDF interval and u rescaled to it.
-  k = hn::Min(k, last);
-  const auto c_lo = hn::IfThenElseZero(
-      hn::RebindMask(d, hn::Gt(k, zero_i)),
-      hn::GatherIndex(d, cdf, hn::Add(cdf_at, hn::Max(hn::Sub(k, one_i), zero_i))));
-  const auto width = hn::Sub(hn::GatherIndex(d, cdf, hn::Add(cdf_at, k)), c_lo);
+  k = k_in;
+  const auto c_lo = hn::IfThenElseZero(hn::RebindMask(d, hn::Gt(k, zero_i)), before);
+  const auto width = hn::Sub(at, c_lo);
   const auto rescaled = hn::Min(hn::Div(hn::Sub(u, c_lo), width), hn::Set(d, kOneMinusEpsilon));
   const auto u_x = hn::Max(hn::IfThenElse(hn::Gt(width, zero), rescaled, hn::Set(d, 0.5f)), zero);
-  const auto first = hn::GatherIndex(di, as_i(scene.meshes.first_triangle.data()), mesh);
   const auto tri = hn::IfThenElseZero(valid_i, hn::Add(first, k));
   hn::Store(tri, di, l->tri);
   hn::Store(hn::IfThenElse(valid, u_x, hn::Set(d, 0.5f)), d, l->u_x);
-  hn::Store(hn::IfThenElseZero(valid, hn::Div(hn::Set(d, 1.0f), area)), d, l->inv_area);
+  hn::Store(inv_area, d, l->inv_area);
   hn::Store(hn::IfThenElseZero(valid, hn::Set(d, 1.0f)), d, l->valid);
   // A lane whose bucket misses the answer: the scalar pick.
   const auto redo = hn::AndNot(exact, valid_i);
@@ -137,8 +204,10 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
   if (mode == TriangleSampling::kArea) {
     const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     AreaLightLanes l;
+    const bool few_lights = scene.area_lights.size() <= std::min(kRegisterLights, 2 * lanes);
+    const AreaLightRegisterTable table(scene);
     for (; i + lanes <= n; i += lanes) {
-      if (!PickLanes(d, scene, in, i, &l)) {
+      if (!PickLanes(d, scene, few_lights ? &table : nullptr, in, i, &l)) {
         for (float* col : {out.p_x, out.p_y, out.p_z, out.n_x, out.n_y, out.n_z, out.ng_x,
                            out.ng_y, out.ng_z, out.pdf})
           hn::StoreU(zero, d, col + i);

@@ -9,11 +9,13 @@
 namespace ptlab::simd {
 
 /// SampleAreaLight for n rows, eight rows per step (hn::CappedTag<float, 8>): each lane picks
-/// its triangle with the scalar PickAreaLightTriangle (guide table and CDF, a short data-
-/// dependent search), then the point uniform by area, the shading normal (interpolated vertex
-/// normals or the geometric one), the geometric normal and the solid-angle pdf run as vectors
-/// over gathered triangle and normal data. kSolidAngle batches, and the rows after the last
-/// full vector, take the scalar SampleAreaLight row by row (Arvo's construction stays scalar).
+/// its triangle as PickAreaLightTriangle does (guide table and CDF; the per-light values held in
+/// vectors when the scene has at most 8 lights, gathered otherwise; a lane whose guide bucket
+/// misses takes the scalar pick), then the point uniform by area, the shading normal
+/// (interpolated vertex normals or the geometric one), the geometric normal and the solid-angle
+/// pdf run as vectors over gathered triangle and normal data. kSolidAngle batches, and the rows
+/// after the last full vector, take the scalar SampleAreaLight row by row (Arvo's construction
+/// stays scalar).
 /// Oracle: ptlab::SampleAreaLightBatch. Contract: every output bit-identical to the oracle's
 /// on every target (the oracle's float operations in its order; FMA contraction is off, and
 /// Highway's Sqrt and Div are correctly rounded). tests/simd/emitter8_test.cpp.

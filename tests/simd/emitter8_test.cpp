@@ -58,6 +58,16 @@ void AddHardLights(Scene* scene) {
   }
 }
 
+// Copies of the scene's lights (the same meshes and CDFs) until it has `lights` rows: a scene
+// of many lights, whose per-light values the kernel gathers instead of holding in registers.
+void AddLightCopies(Scene* scene, size_t lights) {
+  AreaLightTable& l = scene->area_lights;
+  for (size_t i = 0; l.size() < lights; ++i) {
+    l.radiance.push_back(l.radiance[i]), l.mesh.push_back(l.mesh[i]), l.area.push_back(l.area[i]);
+    l.cdf_offset.push_back(l.cdf_offset[i]), l.guide_offset.push_back(l.guide_offset[i]);
+  }
+}
+
 // `random` rows of random lights, reference points in the scene's box and numbers, then the
 // hard cases: reference points on the lights' vertices and planes (grazing), numbers on the
 // CDF's entries and the ends of [0, 1).
@@ -98,12 +108,14 @@ Rows MakeRows(const Scene& scene, size_t random, Pcg32& rng) {
   return r;
 }
 
-void ExpectBatchMatchesOracle(const std::string& path) {
+// `lights`: the scene's lights are copied up to that many first (0: as loaded).
+void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
   ASSERT_GT(scene.area_lights.size(), 0u);
+  AddLightCopies(&scene, lights);
   AddHardLights(&scene);
   Pcg32 rng(7, 11);
   Rows rows = MakeRows(scene, 1000003, rng);
@@ -157,6 +169,12 @@ TEST(Emitter8, AreaLightBatchMatchesOracleOnCbox) {
 
 TEST(Emitter8, AreaLightBatchMatchesOracleOnVeach) {  // sphere lights with vertex normals
   ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/veach_mi/veach_mis.xml");
+}
+
+// More lights than the kernel holds in registers (simd/emitter8-inl.h, kRegisterLights = 8):
+// the gathered per-light values, which the loaded scenes' few lights no longer reach.
+TEST(Emitter8, AreaLightBatchMatchesOracleWithManyLights) {
+  ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/veach_mi/veach_mis.xml", 17);
 }
 
 TEST(Emitter8, AreaLightBatchMatchesOracleOnTable) {
