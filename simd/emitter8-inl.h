@@ -203,54 +203,65 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
   size_t i = 0;
   if (mode == TriangleSampling::kArea) {
     const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    AreaLightLanes l;
     const bool few_lights = scene.area_lights.size() <= std::min(kRegisterLights, 2 * lanes);
     const AreaLightRegisterTable table(scene);
-    for (; i + lanes <= n; i += lanes) {
-      if (!PickLanes(d, scene, few_lights ? &table : nullptr, in, i, &l)) {
-        for (float* col : {out.p_x, out.p_y, out.p_z, out.n_x, out.n_y, out.n_z, out.ng_x,
-                           out.ng_y, out.ng_z, out.pdf})
-          hn::StoreU(zero, d, col + i);
-        continue;
+    // Picks for a chunk of vectors, then their points: two short loops whose iterations the
+    // core overlaps better than one long one with a chain of dependent gathers.
+    constexpr size_t kChunk = 8;
+    AreaLightLanes chunk[kChunk];
+    bool picked[kChunk];
+    while (i + lanes <= n) {
+      const size_t m = std::min(kChunk, (n - i) / lanes);
+      for (size_t j = 0; j < m; ++j)
+        picked[j] =
+            PickLanes(d, scene, few_lights ? &table : nullptr, in, i + j * lanes, &chunk[j]);
+      for (size_t j = 0; j < m; ++j, i += lanes) {
+        const AreaLightLanes& l = chunk[j];
+        if (!picked[j]) {
+          for (float* col : {out.p_x, out.p_y, out.p_z, out.n_x, out.n_y, out.n_z, out.ng_x,
+                             out.ng_y, out.ng_z, out.pdf})
+            hn::StoreU(zero, d, col + i);
+          continue;
+        }
+        const auto tri = hn::Load(di, l.tri);
+        // SampleUniformTriangle, then p = V0 b0 + V1 b1 + V2 b2 with b0 = 1 - b1 - b2.
+        const auto su = hn::Sqrt(hn::Load(d, l.u_x));
+        const auto b1 = hn::Sub(one, su), b2 = hn::Mul(hn::LoadU(d, in.u_y + i), su);
+        const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
+        const auto vertex_normal = hn::Gt(hn::Load(d, l.vertex_normal), zero);
+        const auto i0 = hn::Load(di, l.i0), i1 = hn::Load(di, l.i1), i2 = hn::Load(di, l.i2);
+        // p, the geometric normal g (+z where degenerate) and ShadingNormalAt's n.
+        auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
+        auto nx = zero, ny = zero, nz = zero;
+        auto has_ng = hn::Gt(zero, zero);
+        TrianglePoint8(d, scene, tri, b0, b1, b2, vertex_normal, i0, i1, i2, px, py, pz, gx, gy, gz,
+                       nx, ny, nz, has_ng);
+        // ng: the unit geometric normal, or n for a degenerate triangle.
+        const auto ngx = hn::IfThenElse(has_ng, gx, nx);
+        const auto ngy = hn::IfThenElse(has_ng, gy, ny);
+        const auto ngz = hn::IfThenElse(has_ng, gz, nz);
+        // AreaToSolidAngle(1 / area, p, n, ref).
+        const auto dx = hn::Sub(px, hn::LoadU(d, in.ref_x + i));
+        const auto dy = hn::Sub(py, hn::LoadU(d, in.ref_y + i));
+        const auto dz = hn::Sub(pz, hn::LoadU(d, in.ref_z + i));
+        const auto dist2 = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
+        const auto n_dot_d = hn::Add(hn::Add(hn::Mul(nx, dx), hn::Mul(ny, dy)), hn::Mul(nz, dz));
+        const auto cos_l = hn::Div(hn::Neg(n_dot_d), hn::Sqrt(dist2));
+        const auto solid = hn::And(hn::Gt(dist2, zero), hn::Gt(cos_l, zero));
+        const auto pdf = hn::Div(hn::Mul(hn::Load(d, l.inv_area), dist2), cos_l);
+        // Lanes of zero-area lights: AreaLightSample{} (all zero).
+        const auto valid = hn::Gt(hn::Load(d, l.valid), zero);
+        hn::StoreU(hn::IfThenElseZero(valid, px), d, out.p_x + i);
+        hn::StoreU(hn::IfThenElseZero(valid, py), d, out.p_y + i);
+        hn::StoreU(hn::IfThenElseZero(valid, pz), d, out.p_z + i);
+        hn::StoreU(hn::IfThenElseZero(valid, nx), d, out.n_x + i);
+        hn::StoreU(hn::IfThenElseZero(valid, ny), d, out.n_y + i);
+        hn::StoreU(hn::IfThenElseZero(valid, nz), d, out.n_z + i);
+        hn::StoreU(hn::IfThenElseZero(valid, ngx), d, out.ng_x + i);
+        hn::StoreU(hn::IfThenElseZero(valid, ngy), d, out.ng_y + i);
+        hn::StoreU(hn::IfThenElseZero(valid, ngz), d, out.ng_z + i);
+        hn::StoreU(hn::IfThenElseZero(hn::And(valid, solid), pdf), d, out.pdf + i);
       }
-      const auto tri = hn::Load(di, l.tri);
-      // SampleUniformTriangle, then p = V0 b0 + V1 b1 + V2 b2 with b0 = 1 - b1 - b2.
-      const auto su = hn::Sqrt(hn::Load(d, l.u_x));
-      const auto b1 = hn::Sub(one, su), b2 = hn::Mul(hn::LoadU(d, in.u_y + i), su);
-      const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
-      const auto vertex_normal = hn::Gt(hn::Load(d, l.vertex_normal), zero);
-      const auto i0 = hn::Load(di, l.i0), i1 = hn::Load(di, l.i1), i2 = hn::Load(di, l.i2);
-      // p, the geometric normal g (+z where degenerate) and ShadingNormalAt's n.
-      auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
-      auto nx = zero, ny = zero, nz = zero;
-      auto has_ng = hn::Gt(zero, zero);
-      TrianglePoint8(d, scene, tri, b0, b1, b2, vertex_normal, i0, i1, i2, px, py, pz, gx, gy,
-                     gz, nx, ny, nz, has_ng);
-      // ng: the unit geometric normal, or n for a degenerate triangle.
-      const auto ngx = hn::IfThenElse(has_ng, gx, nx);
-      const auto ngy = hn::IfThenElse(has_ng, gy, ny);
-      const auto ngz = hn::IfThenElse(has_ng, gz, nz);
-      // AreaToSolidAngle(1 / area, p, n, ref).
-      const auto dx = hn::Sub(px, hn::LoadU(d, in.ref_x + i));
-      const auto dy = hn::Sub(py, hn::LoadU(d, in.ref_y + i));
-      const auto dz = hn::Sub(pz, hn::LoadU(d, in.ref_z + i));
-      const auto dist2 = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
-      const auto n_dot_d = hn::Add(hn::Add(hn::Mul(nx, dx), hn::Mul(ny, dy)), hn::Mul(nz, dz));
-      const auto cos_l = hn::Div(hn::Neg(n_dot_d), hn::Sqrt(dist2));
-      const auto solid = hn::And(hn::Gt(dist2, zero), hn::Gt(cos_l, zero));
-      const auto pdf = hn::Div(hn::Mul(hn::Load(d, l.inv_area), dist2), cos_l);
-      // Lanes of zero-area lights: AreaLightSample{} (all zero).
-      const auto valid = hn::Gt(hn::Load(d, l.valid), zero);
-      hn::StoreU(hn::IfThenElseZero(valid, px), d, out.p_x + i);
-      hn::StoreU(hn::IfThenElseZero(valid, py), d, out.p_y + i);
-      hn::StoreU(hn::IfThenElseZero(valid, pz), d, out.p_z + i);
-      hn::StoreU(hn::IfThenElseZero(valid, nx), d, out.n_x + i);
-      hn::StoreU(hn::IfThenElseZero(valid, ny), d, out.n_y + i);
-      hn::StoreU(hn::IfThenElseZero(valid, nz), d, out.n_z + i);
-      hn::StoreU(hn::IfThenElseZero(valid, ngx), d, out.ng_x + i);
-      hn::StoreU(hn::IfThenElseZero(valid, ngy), d, out.ng_y + i);
-      hn::StoreU(hn::IfThenElseZero(valid, ngz), d, out.ng_z + i);
-      hn::StoreU(hn::IfThenElseZero(hn::And(valid, solid), pdf), d, out.pdf + i);
     }
   }
   // kSolidAngle, and the rows after the last full vector: the scalar code row by row.
