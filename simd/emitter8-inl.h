@@ -73,20 +73,19 @@ HWY_INLINE hn::Vec<D> LookupLight(D d, const hn::TFromD<D>* table, VI light) {
                         first);
 }
 
-/// Fills `l` for rows [row, row + lanes); returns whether any lane is valid. The per-light
-/// values come from `table` where the scene has one (few lights), else from gathers. The
-/// triangle pick (PickAreaLightTriangle) runs as vectors: the guide table's bucket of u, then a
-/// masked linear scan over the bucket for the first CDF entry above u (std::upper_bound over
-/// the bucket, without its unpredictable branches; its first two entries gathered together),
-/// and the same exactness check; a lane whose bucket does not bracket the answer takes the
-/// scalar pick (its full binary search).
+/// Fills `l` for rows [row, row + lanes), all but the vertex rows (VertexRowLanes); returns
+/// whether any lane is valid. The per-light values come from `table` where the scene has one
+/// (few lights), else from gathers. The triangle pick (PickAreaLightTriangle) runs as vectors:
+/// the guide table's bucket of u, then a masked linear scan over the bucket for the first CDF
+/// entry above u (std::upper_bound over the bucket, without its unpredictable branches; its
+/// first two entries gathered together), and the same exactness check; a lane whose bucket
+/// does not bracket the answer takes the scalar pick (its full binary search).
 template <class D>
 HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightRegisterTable* table,
                           const AreaLightBatchInputs& in, size_t row, AreaLightLanes* l) {
   const hn::RebindToSigned<D> di;
   const size_t lanes = hn::Lanes(d);
   const AreaLightTable& lights = scene.area_lights;
-  const TriangleShadingTable& sh = scene.shading;
   const auto zero = hn::Zero(d);
   const auto as_i = [](const uint32_t* p) { return reinterpret_cast<const int32_t*>(p); };
   const auto zero_i = hn::Zero(di), one_i = hn::Set(di, 1);
@@ -174,6 +173,19 @@ HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightRegisterTable*
       l->tri[j] = int32_t(pick.tri), l->u_x[j] = pick.u_x;
     }
   }
+  return true;
+}
+
+/// Fills the vertex rows of `l`'s triangles' normals (0 where the mesh has none) and
+/// vertex_normal, once PickLanes has filled the rest.
+template <class D>
+HWY_INLINE void VertexRowLanes(D d, const Scene& scene, AreaLightLanes* l) {
+  const hn::RebindToSigned<D> di;
+  const TriangleShadingTable& sh = scene.shading;
+  const auto zero = hn::Zero(d);
+  const auto zero_i = hn::Zero(di);
+  const auto as_i = [](const uint32_t* p) { return reinterpret_cast<const int32_t*>(p); };
+  const auto valid_i = hn::RebindMask(di, hn::Gt(hn::Load(d, l->valid), zero));
   // The vertex rows of the triangles' normals where the mesh has them.
   const auto t = hn::Load(di, l->tri);
   const auto v0 = hn::GatherIndex(di, as_i(sh.vertex0.data()), t);
@@ -182,7 +194,7 @@ HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightRegisterTable*
   if (scene.vertices.n_x.empty() || hn::AllFalse(di, vertex_normal)) {
     hn::Store(zero_i, di, l->i0), hn::Store(zero_i, di, l->i1), hn::Store(zero_i, di, l->i2);
     hn::Store(zero, d, l->vertex_normal);
-    return true;
+    return;
   }
   hn::Store(hn::IfThenElseZero(vertex_normal, v0), di, l->i0);
   hn::Store(hn::IfThenElseZero(vertex_normal, hn::GatherIndex(di, as_i(sh.vertex1.data()), t)), di,
@@ -191,7 +203,6 @@ HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightRegisterTable*
             l->i2);
   hn::Store(hn::IfThenElseZero(hn::RebindMask(d, vertex_normal), hn::Set(d, 1.0f)), d,
             l->vertex_normal);
-  return true;
 }
 
 HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling mode, size_t n,
@@ -205,8 +216,9 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
     const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     const bool few_lights = scene.area_lights.size() <= std::min(kRegisterLights, 2 * lanes);
     const AreaLightRegisterTable table(scene);
-    // Picks for a chunk of vectors, then their points: two short loops whose iterations the
-    // core overlaps better than one long one with a chain of dependent gathers.
+    // Picks for a chunk of vectors, then their vertex rows, then their points: short loops
+    // whose iterations the core overlaps better than one long one with a chain of dependent
+    // gathers.
     constexpr size_t kChunk = 8;
     AreaLightLanes chunk[kChunk];
     bool picked[kChunk];
@@ -215,6 +227,8 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
       for (size_t j = 0; j < m; ++j)
         picked[j] =
             PickLanes(d, scene, few_lights ? &table : nullptr, in, i + j * lanes, &chunk[j]);
+      for (size_t j = 0; j < m; ++j)
+        if (picked[j]) VertexRowLanes(d, scene, &chunk[j]);
       for (size_t j = 0; j < m; ++j, i += lanes) {
         const AreaLightLanes& l = chunk[j];
         if (!picked[j]) {
