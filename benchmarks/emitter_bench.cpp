@@ -40,7 +40,7 @@ struct Batch {
 };
 
 // Null when the shared data is missing.
-const Batch* LoadBatch(const std::string& relative) {
+Batch* LoadBatch(const std::string& relative) {
   const std::string path = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/" + relative;
   if (!std::filesystem::exists(path)) return nullptr;
   StatusOr<Scene> loaded = LoadSceneFile(path);
@@ -61,12 +61,11 @@ const Batch* LoadBatch(const std::string& relative) {
 }
 
 void BM_Emitter_AreaLight(benchmark::State& state, const char* relative, bool simd) {
-  static const Batch* const veach = LoadBatch("nori/epfl/scenes/pa5/veach_mi/veach_mis.xml");
-  static const Batch* const table = LoadBatch("nori/epfl/scenes/pa5/table/table_mis.xml");
-  const Batch* b = std::string(relative) == "veach" ? veach : table;
+  static Batch* const veach = LoadBatch("nori/epfl/scenes/pa5/veach_mi/veach_mis.xml");
+  static Batch* const table = LoadBatch("nori/epfl/scenes/pa5/table/table_mis.xml");
+  Batch* b = std::string(relative) == "veach" ? veach : table;
   if (b == nullptr) return state.SkipWithError("shared data not found");
-  Batch& out = const_cast<Batch&>(*b);
-  const AreaLightBatchOutputs o = out.Out();
+  const AreaLightBatchOutputs o = b->Out();
   for (auto _ : state) {
     if (simd) {
       simd::SampleAreaLightBatch(b->scene, TriangleSampling::kArea, kBatch, b->In(), o);
