@@ -286,6 +286,15 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
   const VF ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
   const VF ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
   const VF t_min = hn::Set(d, r.t_min), scale = hn::Set(d, kRobustFarScale);
+  const VF inf = hn::Set(d, kInf);
+  // Any hit: a segment that ends inside the scene (a shadow ray) visits the children nearest
+  // first, the ones around its origin last: its occluders lie between its ends, while the
+  // surface it starts on rarely occludes it (traverse_bench Occluded1 shadow rays: veach
+  // +21 %, table -1 %). A longer ray keeps the children's order: nearest first measured 30 %
+  // slower for table bounce rays, whose nearest boxes ahead hold geometry the ray only grazes.
+  const float min_inv =
+      std::min(std::abs(r.inv_d[0]), std::min(std::abs(r.inv_d[1]), std::abs(r.inv_d[2])));
+  const bool nearest_first = !kAnyHit || r.t_max < bvh.extent * min_inv;
   struct Entry {
     Bvh8Ref ref;
     float t_entry;
@@ -314,7 +323,8 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
         const VF t0 = hn::Max(nz, hn::Max(ny, hn::Max(nx, t_min)));
         const VF t1 = hn::Min(fz, hn::Min(fy, hn::Min(fx, t_max)));
         bits |= MaskBits(d, hn::Le(t0, hn::Mul(t1, scale))) << i;
-        if constexpr (!kAnyHit) hn::Store(t0, d, dist + i);
+        // Any hit sorts by entry with the children around the origin last (key +inf).
+        hn::Store(kAnyHit ? hn::IfThenElse(hn::Gt(t0, t_min), t0, inf) : t0, d, dist + i);
       }
       if (bits != 0) {
         const int c0 = std::countr_zero(bits);
@@ -323,9 +333,8 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
           cur = node.child[c0];
           continue;
         }
-        if constexpr (kAnyHit) {
-          // Any hit ends the ray wherever it is found, so the children are not sorted: the
-          // last one is visited next, the others pushed in the node's order.
+        if (kAnyHit && !nearest_first) {
+          // The last one is visited next, the others pushed in the node's order.
           PTLAB_DCHECK(sp + std::popcount(bits) <= kStackSize);
           stack[sp++] = {node.child[c0], 0.0f};
           PrefetchChild(bvh, node.child[c0]);
