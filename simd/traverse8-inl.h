@@ -269,6 +269,29 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const SingleRay&
   return false;
 }
 
+// The children of `node` that are leaves, as bits.
+HWY_INLINE uint32_t LeafChildren(DF d, const Bvh8Node& node) {
+  const DI di;
+  uint32_t bits = 0;
+  for (size_t i = 0; i < 8; i += hn::Lanes(d)) {
+    // The leaf bit is the sign bit of the reference.
+    const VI refs = hn::LoadU(di, reinterpret_cast<const int32_t*>(node.child) + i);
+    bits |= MaskBits(d, hn::RebindMask(d, hn::Lt(refs, hn::Zero(di)))) << i;
+  }
+  return bits;
+}
+
+// The children whose entry distance (dist, one per child) is within the closest hit at
+// best_t: the pop test of TraverseSingle's stack, for eight children at once.
+HWY_INLINE uint32_t ChildrenBefore(DF d, const float* dist, float best_t) {
+  const VF far = hn::Set(d, best_t * kRobustFarScale);
+  uint32_t bits = 0;
+  for (size_t i = 0; i < 8; i += hn::Lanes(d)) {
+    bits |= MaskBits(d, hn::Le(hn::Load(d, dist + i), far)) << i;
+  }
+  return bits;
+}
+
 // Single-ray traversal of the subtree `start` (the oracle's order-independent closest-hit
 // rule, so the result does not depend on the visiting order). Closest hit: *best starts as
 // {t_max, kNoHit} (or a packet lane's hit so far) and is updated. Any hit: returns whether
@@ -325,6 +348,20 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
         bits |= MaskBits(d, hn::Le(t0, hn::Mul(t1, scale))) << i;
         // Any hit sorts by entry with the children around the origin last (key +inf).
         hn::Store(kAnyHit ? hn::IfThenElse(hn::Gt(t0, t_min), t0, inf) : t0, d, dist + i);
+      }
+      // The leaf children hit are tested at once, before any inner child is pushed: a hit
+      // there ends an any-hit ray, and culls the inner children of a closest-hit one.
+      if (const uint32_t leaves = bits & LeafChildren(d, node); leaves != 0) {
+        bool hit = false;
+        for (uint32_t l = leaves; l != 0 && !hit; l &= l - 1) {
+          hit = LeafSingle<kAnyHit>(d, bvh, node.child[std::countr_zero(l)], r, rv, &best);
+        }
+        if (kAnyHit && hit) {
+          any = true;
+          break;
+        }
+        bits &= ~leaves;
+        if constexpr (!kAnyHit) bits &= ChildrenBefore(d, dist, best.t);
       }
       if (bits != 0) {
         const int c0 = std::countr_zero(bits);
