@@ -58,6 +58,7 @@ struct Bvh8 {
   AlignedVector<uint32_t> prim;
   uint32_t num_triangles = 0;
   uint32_t depth = 0;  // nodes on the longest root-to-leaf path
+  float extent = 0.0f;  // largest side of the triangles' bounding box
   SphereTable spheres;  // the Bvh's spheres, tested beside the tree by every ray
 
   /// No triangle can be hit (spheres may still be).

@@ -167,6 +167,8 @@ Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options) {
   if (bvh.empty()) return out;
   PTLAB_CHECK(bvh.leaf_triangles.size() < kBvh8MaxTriangles);
   Collapser(bvh, options, &out).Run();
+  const Vec3f side = bvh.nodes[0].bounds_max - bvh.nodes[0].bounds_min;
+  out.extent = std::max(side.x, std::max(side.y, side.z));
   return out;
 }
 

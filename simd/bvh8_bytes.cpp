@@ -5,8 +5,10 @@
 
 namespace ptlab::simd {
 
+// The scalar members (num_triangles, depth, extent) are padded to the next 8 bytes.
 static_assert(sizeof(Bvh8) == sizeof(AlignedVector<Bvh8Node>) + sizeof(AlignedVector<float>) +
-                                  sizeof(AlignedVector<uint32_t>) + 2 * sizeof(uint32_t) +
+                                  sizeof(AlignedVector<uint32_t>) +
+                                  (2 * sizeof(uint32_t) + sizeof(float) + 7) / 8 * 8 +
                                   sizeof(SphereTable),
               "a member added to Bvh8 must be counted in Bvh8Bytes");
 
