@@ -193,13 +193,13 @@ class alignas(kColumnAlignment) Wavefront {
     const uint64_t width = uint64_t(camera.width());
     const size_t samples = s_end - s_begin, tile_w = size_t(x1 - x0);
     const size_t n = size_t(y1 - y0) * tile_w * samples;
-    sampler_.resize(n);
-    L_.assign(n, Color3f{}), throughput_.assign(n, Color3f{1, 1, 1}), nee_throughput_.resize(n);
-    eta_.assign(n, 1.0f), prev_pdf_.assign(n, 0.0f), prev_p_.resize(n);
-    specular_.assign(n, 1);  // the camera ray counts as specular: emission is always seen
+    // Room for every slot's path, padded to whole packets; rows [0, id) are written below, one
+    // pass per path (state, numbers, film position), instead of zero-filling every column.
+    const size_t room = (n + kPacketWidth - 1) / kPacketWidth * kPacketWidth;
+    GrowColumns(room, &sampler_, &L_, &throughput_, &nee_throughput_, &eta_, &prev_pdf_,
+                &prev_p_, &specular_, &gen_sx_, &gen_sy_, &lens_);
     path_of_slot_.assign(n, kNoPath);
-    rays_.Clear();
-    gen_px_.clear(), gen_py_.clear();
+    if (sobol_) GrowColumns(room, &gen_px_, &gen_py_);
     uint32_t id = 0;
     for (int y = y0; y < y1; y += 2) {
       for (int bx = x0; bx < x1; bx += 4) {
@@ -209,41 +209,43 @@ class alignas(kColumnAlignment) Wavefront {
             if (px >= x1 || py >= y1) continue;
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
             if (pixels && pixels->active && !pixels->active[pixel]) continue;
-            sampler_[id] = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
+            PathSampler& sampler = sampler_[id];
+            sampler = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
             const size_t pixel_slot = (size_t(py - y0) * tile_w + size_t(px - x0)) * samples;
             path_of_slot_[pixel_slot + (s - s_begin)] = id;
-            gen_px_.push_back(px), gen_py_.push_back(py);
+            L_[id] = Color3f{}, throughput_[id] = Color3f{1, 1, 1};
+            eta_[id] = 1.0f, prev_pdf_[id] = 0.0f;
+            specular_[id] = 1;  // the camera ray counts as specular: emission is always seen
+            if (sobol_) {
+              gen_px_[id] = px, gen_py_[id] = py;
+            } else {
+              // Film, then lens position: the path's stream in the scalar order.
+              const Vec2f jitter = sampler.Get2D(kDimensionPixel);
+              gen_sx_[id] = float(px) + jitter.x, gen_sy_[id] = float(py) + jitter.y;
+              lens_[id] = sampler.Get2D(kDimensionLens);
+            }
             ++id;
           }
         }
       }
     }
-    // Film and lens positions: with `sobol`, one batch draw per dimension for all the paths;
-    // otherwise each path's stream in the scalar order (pixel, then lens).
-    jitter_.resize(id), lens_.resize(id);
+    // With `sobol`, film and lens positions as one batch draw per dimension for all the paths.
     if (sobol_) {
-      all_paths_.resize(id);
+      all_paths_.resize(id), jitter_.resize(id);
       for (uint32_t i = 0; i < id; ++i) all_paths_[i] = i;
       FillSobolRows(all_paths_, 0, 1);
       DrawSobol2D(kDimensionPixel, jitter_.data());
       DrawSobol2D(kDimensionLens, lens_.data());
-    } else {
       for (uint32_t i = 0; i < id; ++i) {
-        jitter_[i] = sampler_[i].Get2D(kDimensionPixel);
-        lens_[i] = sampler_[i].Get2D(kDimensionLens);
+        gen_sx_[i] = float(gen_px_[i]) + jitter_[i].x, gen_sy_[i] = float(gen_py_[i]) + jitter_[i].y;
       }
     }
-    // Film positions as columns, padded to whole packets (the padding lanes' rays are made
-    // and never read: Active masks them), then the camera rays eight at a time, path i in
-    // lane i % 8 of packet i / 8 (the order Push would give).
+    // The camera rays eight at a time, path i in lane i % 8 of packet i / 8 (the order Push
+    // would give); the padding lanes' rays are made and never read (Active masks them).
     const size_t packets = (size_t(id) + kPacketWidth - 1) / kPacketWidth;
     const size_t padded = packets * kPacketWidth;
-    gen_sx_.resize(padded), gen_sy_.resize(padded), lens_.resize(padded);
-    for (uint32_t i = 0; i < id; ++i) {
-      const float sx = float(gen_px_[i]) + jitter_[i].x, sy = float(gen_py_[i]) + jitter_[i].y;
-      gen_sx_[i] = sx, gen_sy_[i] = sy;
-    }
     for (size_t i = id; i < padded; ++i) gen_sx_[i] = gen_sy_[i] = 0.5f, lens_[i] = {0.5f, 0.5f};
+    rays_.Clear();
     rays_.packets.resize(packets);
     rays_.owner.resize(id);
     for (uint32_t i = 0; i < id; ++i) rays_.owner[i] = i;
@@ -251,7 +253,6 @@ class alignas(kColumnAlignment) Wavefront {
       const size_t i = k * kPacketWidth;
       camera.GenerateRay8(&gen_sx_[i], &gen_sy_[i], &lens_[i], &rays_.packets[k]);
     }
-    sampler_.resize(id);
     stats_->seconds.sampling += Seconds(t0, Clock::now());
   }
 
@@ -281,8 +282,10 @@ class alignas(kColumnAlignment) Wavefront {
       const Mask8 active = rays_.Active(k);
       hit_mask_[k] =
           kernels_->intersect8(kernels_->accel, rays_.packets[k], active, &hits_[k]) & active;
-      stats_->rays += uint64_t(std::popcount(active));
     }
+    // Every queued ray is in an active lane (the queue is compact): no popcount per packet,
+    // which the baseline target makes a library call.
+    stats_->rays += rays_.size();
     stats_->packets += packets;
   }
 
@@ -664,8 +667,8 @@ class alignas(kColumnAlignment) Wavefront {
       for (Mask8 m = occ; m != 0; m &= m - 1) {
         occluded_[shadows_.owner[k * kLanes + size_t(std::countr_zero(m))]] = 1;
       }
-      stats_->rays += uint64_t(std::popcount(active));
     }
+    stats_->rays += shadows_.size();  // as in Traverse: every queued ray is an active lane
     stats_->packets += shadows_.packets.size();
   }
 
