@@ -817,20 +817,17 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
-  /// The interaction stage's SoA columns: the shading point of each queue entry that hit.
+  /// The interaction stage's SoA columns: the shading point of each queue entry that hit. No
+  /// surface coordinates: no stage of the wavefront reads them.
   struct PointColumns {
-    AlignedVector<float> p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z, u, v;
+    AlignedVector<float> p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z;
     void Resize(size_t n) {
-      for (auto* c : {&p_x, &p_y, &p_z, &ng_x, &ng_y, &ng_z, &n_x, &n_y, &n_z, &u, &v}) {
-        c->resize(n);
-      }
+      for (auto* c : {&p_x, &p_y, &p_z, &ng_x, &ng_y, &ng_z, &n_x, &n_y, &n_z}) c->resize(n);
     }
-    size_t Bytes() const {
-      return VectorsBytes(p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z, u, v);
-    }
+    size_t Bytes() const { return VectorsBytes(p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z); }
     InteractionColumns View() {
-      return {p_x.data(),  p_y.data(), p_z.data(), ng_x.data(), ng_y.data(), ng_z.data(),
-              n_x.data(),  n_y.data(), n_z.data(), u.data(),    v.data()};
+      return {p_x.data(), p_y.data(), p_z.data(), ng_x.data(), ng_y.data(), ng_z.data(),
+              n_x.data(), n_y.data(), n_z.data(), nullptr,     nullptr};
     }
   };
 
