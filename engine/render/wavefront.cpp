@@ -179,7 +179,6 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += escaped_.Bytes();
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
     for (const InfiniteLightColumns& e : distant_disk_) bytes += e.Bytes();
-    bytes += ShadeScratchBytes(shade_scratch_);
     return bytes;
   }
 
@@ -294,6 +293,7 @@ class alignas(kColumnAlignment) Wavefront {
   void Shade(int depth) {
     const size_t n = rays_.size();
     its_.resize(n), wo_.resize(n), goes_on_.assign(n, 0);
+    std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
     const bool batch_escaped = EscapedRaysBatch();
     escaped_.Clear();
     points_.Resize(rays_.packets.size() * kPacketWidth);
@@ -344,6 +344,7 @@ class alignas(kColumnAlignment) Wavefront {
       if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
       wo_[q] = wo_local;
       goes_on_[q] = 1;
+      ++goes_on_tags_[BsdfColumns::Group(its.material)];
     }
     if (batch_escaped) ShadeEscaped();
   }
@@ -402,7 +403,7 @@ class alignas(kColumnAlignment) Wavefront {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
     nee_paths_.clear();
-    bsdf_.Clear(rays_.size());
+    bsdf_.Clear(rays_.size(), goes_on_tags_);
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
     // Requests are SoA columns written in place (a row's flag, its ray and contribution only
     // when it traces): no request struct per row. The columns only grow.
@@ -566,28 +567,33 @@ class alignas(kColumnAlignment) Wavefront {
     }
   }
 
-  // The BSDF stage: the kernel table's bsdf slot over the columns, one contiguous batch per
-  // material tag (ShadeHitsWith: counting sort by tag, gather, kernel, scatter); then, in queue
-  // order, each sampled path's throughput, state and next ray, as the scalar integrators do.
+  // The BSDF stage: the kernel table's bsdf slot over the columns, one call per material tag
+  // on its group of slots (Sample pushed the rows there; the rows of ShadeHitsWith's batches,
+  // without its counting sort, gather and scatter); then, in queue order, each sampled path's
+  // throughput, state and next ray, as the scalar integrators do.
   void SampleBsdfs() {
     BsdfColumns& b = bsdf_;
     const size_t n = b.size();
     if (n == 0) return;
-    ShadeInputs in;
-    in.wo = {b.wo_x.data(), b.wo_y.data(), b.wo_z.data()};
-    in.u_lobe = b.u_lobe.data(), in.u_x = b.u_x.data(), in.u_y = b.u_y.data();
-    ShadeOutputs out;
-    out.wi = {b.wi_x.data(), b.wi_y.data(), b.wi_z.data()};
-    out.weight = {b.weight_r.data(), b.weight_g.data(), b.weight_b.data()};
-    out.pdf = b.pdf.data(), out.eta = b.eta.data();
-    const auto bsdf = kernels_->bsdf;
-    ShadeHitsWith(
-        [bsdf](const MaterialTables& mt, MaterialTag tag, const uint32_t* index, size_t count,
-               const ShadeInputs& bin, const ShadeOutputs& bout) {
-          bsdf(mt, tag, index, count, bin, bout);
-        },
-        scene_->materials, b.material.data(), n, in, out, &shade_scratch_);
-    for (size_t c = 0; c < n; ++c) {
+    for (int t = 0; t < kMaterialTagCount; ++t) {
+      const size_t begin = b.begin[t], count = b.next[t] - begin;
+      if (count == 0) continue;
+      ShadeInputs in;
+      in.wo = {b.wo_x.data() + begin, b.wo_y.data() + begin, b.wo_z.data() + begin};
+      in.u_lobe = b.u_lobe.data() + begin, in.u_x = b.u_x.data() + begin;
+      in.u_y = b.u_y.data() + begin;
+      ShadeOutputs out;
+      out.wi = {b.wi_x.data() + begin, b.wi_y.data() + begin, b.wi_z.data() + begin};
+      out.weight = {b.weight_r.data() + begin, b.weight_g.data() + begin,
+                    b.weight_b.data() + begin};
+      out.pdf = b.pdf.data() + begin, out.eta = b.eta.data() + begin;
+      kernels_->bsdf(scene_->materials, static_cast<MaterialTag>(t),
+                     b.material_index.data() + begin, count, in, out);
+    }
+    // Rows of no material (no group of ShadeHitsWith): no sample.
+    for (uint32_t c = b.begin[kMaterialTagCount]; c < b.next[kMaterialTagCount]; ++c) b.pdf[c] = 0;
+    for (size_t row = 0; row < n; ++row) {
+      const uint32_t c = b.slot[row];
       if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
       const uint32_t i = b.path[c];
       const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
@@ -720,36 +726,51 @@ class alignas(kColumnAlignment) Wavefront {
     stats_->seconds.film += Seconds(t0, Clock::now());
   }
 
-  /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex (in
-  /// queue order): the path, its queue entry (for the shading point), material, wo in the
-  /// local frame and the numbers (inputs); wi (local), weight f·|cos θi|/pdf, pdf (0: no
-  /// sample) and eta (outputs, written by the bsdf slot).
+  /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex,
+  /// grouped by material tag: a tag's rows are contiguous slots [begin[t], next[t]), one batch
+  /// for the bsdf slot as it is (ShadeHitsWith's partition, gather and scatter are not needed),
+  /// and slot[row] is the slot of the row-th one in queue order. The groups are sized by a count
+  /// of the entries that go on (an upper bound: roulette and whitted end some first). Per slot:
+  /// the path, its queue entry (for the shading point), material, wo in the local frame and
+  /// the numbers (inputs); wi (local), weight f·|cos θi|/pdf, pdf (0: no sample) and eta
+  /// (outputs, written by the bsdf slot).
   struct BsdfColumns {
-    std::vector<uint32_t> path, entry;
+    std::vector<uint32_t> path, entry, material_index, slot;
     std::vector<MaterialRef> material;
     std::vector<float> roulette_scale;
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
-
+    // Groups 0..kMaterialTagCount - 1 by tag, group kMaterialTagCount: no material.
+    static constexpr int kGroups = kMaterialTagCount + 1;
+    uint32_t begin[kGroups] = {}, next[kGroups] = {};
     size_t rows = 0;
 
+    static uint32_t Group(MaterialRef ref) {
+      return std::min(uint32_t(ref.tag()), uint32_t(kMaterialTagCount));
+    }
     size_t size() const { return rows; }
     size_t Bytes() const {
-      return VectorsBytes(path, entry, material, roulette_scale, wo_x, wo_y, wo_z, u_lobe, u_x, u_y,
-                          wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
+      return VectorsBytes(path, entry, material_index, slot, material, roulette_scale, wo_x, wo_y,
+                          wo_z, u_lobe, u_x, u_y, wi_x, wi_y, wi_z, weight_r, weight_g, weight_b,
+                          pdf, eta);
     }
     /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
-    /// place; only grows.
-    void Clear(size_t capacity) {
+    /// place; only grows. group_rows: the most rows each group can get (they sum to at most
+    /// capacity).
+    void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
       rows = 0;
-      GrowColumns(capacity, &path, &entry, &material, &roulette_scale, &wo_x, &wo_y, &wo_z,
-                  &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
-                  &eta);
+      GrowColumns(capacity, &path, &entry, &material_index, &slot, &material, &roulette_scale,
+                  &wo_x, &wo_y, &wo_z, &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r,
+                  &weight_g, &weight_b, &pdf, &eta);
+      uint32_t at = 0;
+      for (int g = 0; g < kGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
-      const size_t c = rows++;
+      const uint32_t c = next[Group(ref)]++;
+      slot[rows++] = c;
       path[c] = path_id, entry[c] = queue_entry, material[c] = ref, roulette_scale[c] = scale;
+      material_index[c] = ref.index();
       wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
       u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
     }
@@ -883,6 +904,7 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
   std::vector<uint8_t> goes_on_;
+  uint32_t goes_on_tags_[BsdfColumns::kGroups] = {};  // entries that go on, by material group
   // The emitter samples' requests (EmitterSampleRequest as columns), rows [0, n_requests_).
   std::vector<uint8_t> request_traced_;
   std::vector<Color3f> request_contribution_;
@@ -908,7 +930,6 @@ class alignas(kColumnAlignment) Wavefront {
   EmitterColumns area_;
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
   std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
-  ShadeScratch shade_scratch_;
   SplatColumns splat_;
 };
 
