@@ -91,9 +91,9 @@ inline Color3f EmitterSampleBsdf(const Scene& scene, MaterialRef material, const
 /// f·Le·|cos θi| / pdf_light of one emitter sample (solid-angle pdf_light, emitter choice
 /// included; for a delta light, the probability of choosing it), weighted with MIS against
 /// BSDF sampling of wi_local (density pdf_bsdf, EmitterSampleBsdf) when mis is set.
-inline Color3f LightSampleContribution(const Scene& scene, const Vec3f& wi_local,
-                                       const Color3f& f, float pdf_bsdf, const Color3f& radiance,
-                                       float pdf_light, bool mis) {
+inline Color3f LightSampleContribution(const Scene& scene, const Vec3f& wi_local, const Color3f& f,
+                                       float pdf_bsdf, const Color3f& radiance, float pdf_light,
+                                       bool mis) {
   float weight = 1.0f;
   if (mis) weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
   return f * radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
@@ -134,8 +134,8 @@ inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
   req.shadow.d = target - req.shadow.o;
   req.shadow.t_min = 0.0f;
   req.shadow.t_max = 1.0f;
-  req.contribution = LightSampleContribution(scene, wi_local, f, pdf_bsdf, ls.radiance,
-                                             ls.pdf * pick_pmf, mis);
+  req.contribution =
+      LightSampleContribution(scene, wi_local, f, pdf_bsdf, ls.radiance, ls.pdf * pick_pmf, mis);
   req.traced = true;
   return req;
 }
@@ -155,8 +155,8 @@ inline EmitterSampleRequest InfiniteEmitterSampleRequest(const Scene& scene,
   const Color3f f = EmitterSampleBsdf(scene, its.material, wo, wi_local, mis, &pdf_bsdf);
   if (IsBlack(f)) return req;
   req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
-  req.contribution = LightSampleContribution(scene, wi_local, f, pdf_bsdf, es.radiance,
-                                             es.pdf * pick_pmf, mis);
+  req.contribution =
+      LightSampleContribution(scene, wi_local, f, pdf_bsdf, es.radiance, es.pdf * pick_pmf, mis);
   req.traced = true;
   return req;
 }
@@ -185,8 +185,8 @@ inline EmitterSampleRequest PrepareEmitterSampleFrom(const Scene& scene,
     req.shadow.d = ls.infinite ? ls.wi : ls.position - req.shadow.o;
     req.shadow.t_min = 0.0f;
     req.shadow.t_max = ls.infinite ? kInfinity : 1.0f;
-    req.contribution = LightSampleContribution(scene, wi_local, f, /*pdf_bsdf=*/0.0f,
-                                               ls.radiance, pick_pmf, /*mis=*/false);
+    req.contribution = LightSampleContribution(scene, wi_local, f, /*pdf_bsdf=*/0.0f, ls.radiance,
+                                               pick_pmf, /*mis=*/false);
     req.traced = true;
     return req;
   }

@@ -195,8 +195,8 @@ class alignas(kColumnAlignment) Wavefront {
     // Room for every slot's path, padded to whole packets; rows [0, id) are written below, one
     // pass per path (state, numbers, film position), instead of zero-filling every column.
     const size_t room = (n + kPacketWidth - 1) / kPacketWidth * kPacketWidth;
-    GrowColumns(room, &sampler_, &L_, &throughput_, &nee_throughput_, &eta_, &prev_pdf_,
-                &prev_p_, &specular_, &gen_sx_, &gen_sy_, &lens_);
+    GrowColumns(room, &sampler_, &L_, &throughput_, &nee_throughput_, &eta_, &prev_pdf_, &prev_p_,
+                &specular_, &gen_sx_, &gen_sy_, &lens_);
     path_of_slot_.assign(n, kNoPath);
     if (sobol_) GrowColumns(room, &gen_px_, &gen_py_);
     uint32_t id = 0;
@@ -236,7 +236,8 @@ class alignas(kColumnAlignment) Wavefront {
       DrawSobol2D(kDimensionPixel, jitter_.data());
       DrawSobol2D(kDimensionLens, lens_.data());
       for (uint32_t i = 0; i < id; ++i) {
-        gen_sx_[i] = float(gen_px_[i]) + jitter_[i].x, gen_sy_[i] = float(gen_py_[i]) + jitter_[i].y;
+        gen_sx_[i] = float(gen_px_[i]) + jitter_[i].x;
+        gen_sy_[i] = float(gen_py_[i]) + jitter_[i].y;
       }
     }
     // The camera rays eight at a time, path i in lane i % 8 of packet i / 8 (the order Push

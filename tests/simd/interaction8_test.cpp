@@ -34,9 +34,11 @@ struct Columns {
   std::vector<std::vector<float>> col;
   // with_uv false: no u, v columns (the kernels must leave those rows as they are).
   InteractionColumns Out(bool with_uv = true) {
-    return {col[0].data(), col[1].data(), col[2].data(), col[3].data(),
-            col[4].data(), col[5].data(), col[6].data(), col[7].data(),
-            col[8].data(), with_uv ? col[9].data() : nullptr, with_uv ? col[10].data() : nullptr};
+    InteractionColumns out{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
+                           col[4].data(), col[5].data(), col[6].data(), col[7].data(),
+                           col[8].data(), col[9].data(), col[10].data()};
+    if (!with_uv) out.u = out.v = nullptr;
+    return out;
   }
 };
 

@@ -96,10 +96,9 @@ TEST(Interaction, BatchWithoutUvColumns) {
   const Scene scene = QuadScene();
   std::vector<float> col[9];
   for (auto& c : col) c.assign(kPacketWidth, -1.0f);
-  const InteractionColumns cols{col[0].data(), col[1].data(), col[2].data(),
-                                col[3].data(), col[4].data(), col[5].data(),
-                                col[6].data(), col[7].data(), col[8].data(),
-                                nullptr,       nullptr};
+  const InteractionColumns cols{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
+                                col[4].data(), col[5].data(), col[6].data(), col[7].data(),
+                                col[8].data(), nullptr,       nullptr};
   RayPacket8 rays{};
   HitPacket8 hits{};
   SetLaneRay(&rays, 0, kDown);
