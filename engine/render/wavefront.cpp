@@ -289,11 +289,11 @@ class alignas(kColumnAlignment) Wavefront {
     stats_->packets += packets;
   }
 
-  // Emission at hits, environment light for escaped rays; marks the entries that go on to the
-  // sampling stage (its_ / wo_ hold their shading points).
+  // Emission at hits, environment light for escaped rays; lists the entries that go on to the
+  // sampling stage (goes_on_; its_ / wo_ hold their shading points).
   void Shade(int depth) {
     const size_t n = rays_.size();
-    its_.resize(n), wo_.resize(n), goes_on_.assign(n, 0);
+    its_.resize(n), wo_.resize(n), goes_on_.clear();
     std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
     const bool batch_escaped = EscapedRaysBatch();
     escaped_.Clear();
@@ -344,7 +344,7 @@ class alignas(kColumnAlignment) Wavefront {
       }
       if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
       wo_[q] = wo_local;
-      goes_on_[q] = 1;
+      goes_on_.push_back(uint32_t(q));
       ++goes_on_tags_[BsdfColumns::Group(its.material)];
     }
     if (batch_escaped) ShadeEscaped();
@@ -416,10 +416,8 @@ class alignas(kColumnAlignment) Wavefront {
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_->emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
-    size_t c = 0;
-    for (size_t q = 0; q < rays_.size(); ++q) {
-      if (!goes_on_[q]) continue;
-      const size_t k = c++;
+    for (size_t k = 0; k < goes_on_.size(); ++k) {
+      const uint32_t q = goes_on_[k];
       const uint32_t i = rays_.owner[q];
       const SurfaceInteraction& its = its_[q];
       const Vec3f& wo = wo_[q];
@@ -618,8 +616,7 @@ class alignas(kColumnAlignment) Wavefront {
   // in queue order), one batch draw per dimension (and emitter sub-sample).
   void DrawVertexNumbers(int depth) {
     continuing_.clear();
-    for (size_t q = 0; q < rays_.size(); ++q)
-      if (goes_on_[q]) continuing_.push_back(rays_.owner[q]);
+    for (const uint32_t q : goes_on_) continuing_.push_back(rays_.owner[q]);
     const size_t m = continuing_.size();
     const uint32_t n_light = uint32_t(rules_.light_samples);
     if (rules_.nee && !scene_->emitters.empty()) {
@@ -904,7 +901,9 @@ class alignas(kColumnAlignment) Wavefront {
   PointColumns points_;
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
-  std::vector<uint8_t> goes_on_;
+  // The entries that go on to the sampling stage, in queue order: a list rather than a flag
+  // per entry, so that Sample has no branch per entry on whether its path ended here.
+  std::vector<uint32_t> goes_on_;
   uint32_t goes_on_tags_[BsdfColumns::kGroups] = {};  // entries that go on, by material group
   // The emitter samples' requests (EmitterSampleRequest as columns), rows [0, n_requests_).
   std::vector<uint8_t> request_traced_;
