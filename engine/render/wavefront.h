@@ -56,7 +56,7 @@ struct WavefrontKernels {
                   float* x) = nullptr;
 
   // BSDF stage: one material's kernel over a contiguous batch of rows that all have tag `tag`
-  // (the wavefront partitions its continuing entries by tag with PartitionByMaterial and calls
+  // (the wavefront writes each continuing entry's row into its tag's group of rows and calls
   // this once per tag present; engine/bsdf/shade_batch.h). Oracle: ptlab::ShadeBatch
   // (BsdfSampleDirection per row, so the oracle table keeps the scalar path's bits); SIMD:
   // simd::ShadeBatch, within the contract of simd/shade8.h. The wavefront samples only
