@@ -33,7 +33,8 @@ inline void MakeInteractionBatchKernel(const Scene& scene, const RayPacket8* ray
   const size_t lanes = hn::Lanes(d);
   const TriangleShadingTable& sh = scene.shading;
   const bool vertex_normals = !scene.vertices.n_x.empty();
-  const bool vertex_uvs = !scene.vertices.u.empty();
+  const bool with_uv = out.u != nullptr;  // the caller may want no surface coordinates
+  const bool vertex_uvs = with_uv && !scene.vertices.u.empty();
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const auto zero_i = hn::Zero(di);
   for (size_t k = 0; k < packets; ++k) {
@@ -110,8 +111,10 @@ inline void MakeInteractionBatchKernel(const Scene& scene, const RayPacket8* ray
       hn::BlendedStore(nx, m, d, out.n_x + row);
       hn::BlendedStore(ny, m, d, out.n_y + row);
       hn::BlendedStore(nz, m, d, out.n_z + row);
-      hn::BlendedStore(u, m, d, out.u + row);
-      hn::BlendedStore(v, m, d, out.v + row);
+      if (with_uv) {
+        hn::BlendedStore(u, m, d, out.u + row);
+        hn::BlendedStore(v, m, d, out.v + row);
+      }
     }
   }
 }

@@ -14,7 +14,8 @@ namespace ptlab::simd {
 /// has them) and the interpolation and normalizations of MakeInteraction / ShadingNormalAt /
 /// SurfaceUvAt run as vectors over
 /// gathered triangle data; sphere hits take the scalar MakeInteraction lane by lane. Rows of
-/// lanes that did not hit are not written.
+/// lanes that did not hit are not written; without out.u / out.v no texture coordinate is
+/// gathered.
 /// Oracle: ptlab::MakeInteractionBatch. Contract: every output bit-identical to the oracle's on
 /// every target (its float operations in its order; FMA contraction is off, and Highway's Sqrt
 /// and Div are correctly rounded); tests/simd/interaction8_test.cpp.

@@ -116,6 +116,15 @@ inline void BeckmannEvalPdf(float alpha, const Vec3f& wo, const Vec3f& wi, float
   *pdf = p;
 }
 
+/// BeckmannEvalPdf's pdf given its D(H) = dv, H = wo + wi (wo and wi above the surface), for a
+/// caller that has D already (RoughPlasticEvalPdf).
+inline float BeckmannReflectionPdfOfD(float dv, const Vec3f& wo, const Vec3f& h) {
+  const float wo_h = Dot(wo, h);
+  if (!(dv > 0) || !(wo_h > 0)) return 0.0f;
+  const float p = dv * h.z / (4.0f * wo_h);
+  return std::isfinite(dv) && std::isfinite(p) ? p : 0.0f;
+}
+
 /// Solid-angle pdf of wi for Beckmann reflection sampling (see BeckmannEvalPdf).
 inline float BeckmannReflectionPdf(float alpha, const Vec3f& wo, const Vec3f& wi) {
   float d, pdf;

@@ -51,6 +51,27 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
   return 0.0f;  // an invalid ref
 }
 
+Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
+                    float* pdf) {
+  switch (ref.tag()) {
+    case MaterialTag::kDiffuse:
+      *pdf = DiffusePdf(wo, wi);
+      return DiffuseEval(m.diffuse.Albedo(ref.index()), wo, wi);
+    case MaterialTag::kConductor: {
+      const ConductorParams p = ConductorRow(m.conductor, ref.index());
+      *pdf = ConductorPdf(p, wo, wi);
+      return ConductorEval(p, wo, wi);
+    }
+    case MaterialTag::kRoughPlastic:
+      return RoughPlasticEvalPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi, pdf);
+    case MaterialTag::kMirror:
+    case MaterialTag::kDielectric:
+      break;  // delta models
+  }
+  *pdf = 0.0f;  // a delta model or an invalid ref
+  return {};
+}
+
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
                          const Vec2f& u2, BsdfSample* sample) {
   switch (ref.tag()) {

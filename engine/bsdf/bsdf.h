@@ -21,6 +21,10 @@ constexpr bool IsDeltaMaterial(MaterialTag tag) {
 Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi);
 /// Solid-angle pdf with which BsdfSampleDirection would pick wi (0 for delta models).
 float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi);
+/// BsdfEval and (*pdf) BsdfPdf at once, bit for bit: one dispatch, and the rough plastic's
+/// Beckmann D, which both evaluate, once (an MIS-weighted emitter sample needs the two).
+Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
+                    float* pdf);
 /// Samples wi given wo; u1 picks a lobe, u2 the direction. False when no sample is possible.
 /// For non-delta models sample->weight = Eval·|cos θi|/Pdf and sample->pdf = Pdf(wo, wi).
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,

@@ -54,6 +54,26 @@ inline float RoughPlasticPdf(const RoughPlasticParams& p, const Vec3f& wo, const
   return p.ks * BeckmannReflectionPdf(p.alpha, wo, wi) + (1.0f - p.ks) * (wi.z * kInvPi);
 }
 
+/// RoughPlasticEval and (*pdf) RoughPlasticPdf, bit for bit, with the Beckmann D of H = wo + wi
+/// that both evaluate computed once.
+inline Color3f RoughPlasticEvalPdf(const RoughPlasticParams& p, const Vec3f& wo, const Vec3f& wi,
+                                   float* pdf) {
+  *pdf = 0.0f;
+  if (!(wo.z > 0) || !(wi.z > 0)) return {};
+  Color3f f = p.kd * kInvPi;
+  const Vec3f h = wo + wi;
+  const float d = BeckmannD(p.alpha, h);
+  if (d > 0 && p.ks > 0) {
+    float cos_t;
+    const float fr = FresnelDielectric(0.5f * std::sqrt(Dot(h, h)), p.eta, &cos_t);
+    const float g = BeckmannG1OverCos(p.alpha, wo) * BeckmannG1OverCos(p.alpha, wi);
+    const float spec = p.ks * fr * (0.25f * d * g);
+    if (std::isfinite(spec)) f += Color3f{spec, spec, spec};
+  }
+  *pdf = p.ks * BeckmannReflectionPdfOfD(d, wo, h) + (1.0f - p.ks) * (wi.z * kInvPi);
+  return f;
+}
+
 /// u_lobe < ks picks the specular lobe (h ~ BeckmannPdfH from u, wi = reflect(wo, h)), else
 /// wi is cosine-distributed from u. The weight is Eval cos θi / Pdf of the whole mixture.
 inline bool RoughPlasticSample(const RoughPlasticParams& p, const Vec3f& wo, float u_lobe,

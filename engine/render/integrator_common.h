@@ -77,17 +77,25 @@ inline Color3f Escaped(const Scene& scene, const Vec3f& w, bool mis, float bsdf_
   return L;
 }
 
+/// f(wo, wi_local) of an emitter sample's shading point and, for MIS, *pdf_bsdf = BsdfPdf of
+/// the same directions (one BsdfEvalPdf; without mis only BsdfEval, *pdf_bsdf = 0).
+inline Color3f EmitterSampleBsdf(const Scene& scene, MaterialRef material, const Vec3f& wo,
+                                 const Vec3f& wi_local, bool mis, float* pdf_bsdf) {
+  if (!mis) {
+    *pdf_bsdf = 0.0f;
+    return BsdfEval(scene.materials, material, wo, wi_local);
+  }
+  return BsdfEvalPdf(scene.materials, material, wo, wi_local, pdf_bsdf);
+}
+
 /// f·Le·|cos θi| / pdf_light of one emitter sample (solid-angle pdf_light, emitter choice
 /// included; for a delta light, the probability of choosing it), weighted with MIS against
-/// BSDF sampling of wi_local when mis is set.
-inline Color3f LightSampleContribution(const Scene& scene, MaterialRef material, const Vec3f& wo,
-                                       const Vec3f& wi_local, const Color3f& f,
-                                       const Color3f& radiance, float pdf_light, bool mis) {
+/// BSDF sampling of wi_local (density pdf_bsdf, EmitterSampleBsdf) when mis is set.
+inline Color3f LightSampleContribution(const Scene& scene, const Vec3f& wi_local, const Color3f& f,
+                                       float pdf_bsdf, const Color3f& radiance, float pdf_light,
+                                       bool mis) {
   float weight = 1.0f;
-  if (mis) {
-    const float pdf_bsdf = BsdfPdf(scene.materials, material, wo, wi_local);
-    weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
-  }
+  if (mis) weight = MisWeight(pdf_light, pdf_bsdf, scene.integrator.power_heuristic);
   return f * radiance * (AbsCosTheta(wi_local) * weight / pdf_light);
 }
 
@@ -117,7 +125,8 @@ inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
   const Vec3f wi = d / std::sqrt(dist2);
   if (!(Dot(ls.n, wi) < 0)) return req;
   const Vec3f wi_local = its.frame.ToLocal(wi);
-  const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+  float pdf_bsdf;
+  const Color3f f = EmitterSampleBsdf(scene, its.material, wo, wi_local, mis, &pdf_bsdf);
   if (IsBlack(f)) return req;
   // Shadow ray between the two offset points; d is not normalised, so t runs over [0, 1).
   req.shadow.o = SpawnOrigin(its, wi);
@@ -125,8 +134,8 @@ inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
   req.shadow.d = target - req.shadow.o;
   req.shadow.t_min = 0.0f;
   req.shadow.t_max = 1.0f;
-  req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f,
-                                             ls.radiance, ls.pdf * pick_pmf, mis);
+  req.contribution =
+      LightSampleContribution(scene, wi_local, f, pdf_bsdf, ls.radiance, ls.pdf * pick_pmf, mis);
   req.traced = true;
   return req;
 }
@@ -142,11 +151,12 @@ inline EmitterSampleRequest InfiniteEmitterSampleRequest(const Scene& scene,
                                                          float pick_pmf) {
   EmitterSampleRequest req;
   const Vec3f wi_local = its.frame.ToLocal(es.wi);
-  const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+  float pdf_bsdf;
+  const Color3f f = EmitterSampleBsdf(scene, its.material, wo, wi_local, mis, &pdf_bsdf);
   if (IsBlack(f)) return req;
   req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
-  req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f, es.radiance,
-                                             es.pdf * pick_pmf, mis);
+  req.contribution =
+      LightSampleContribution(scene, wi_local, f, pdf_bsdf, es.radiance, es.pdf * pick_pmf, mis);
   req.traced = true;
   return req;
 }
@@ -175,7 +185,7 @@ inline EmitterSampleRequest PrepareEmitterSampleFrom(const Scene& scene,
     req.shadow.d = ls.infinite ? ls.wi : ls.position - req.shadow.o;
     req.shadow.t_min = 0.0f;
     req.shadow.t_max = ls.infinite ? kInfinity : 1.0f;
-    req.contribution = LightSampleContribution(scene, its.material, wo, wi_local, f, ls.radiance,
+    req.contribution = LightSampleContribution(scene, wi_local, f, /*pdf_bsdf=*/0.0f, ls.radiance,
                                                pick_pmf, /*mis=*/false);
     req.traced = true;
     return req;

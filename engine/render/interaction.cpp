@@ -14,7 +14,8 @@ namespace {
 
 // A sphere hit: o + t d carries the error of t; re-projected onto the sphere (pbrt-v4,
 // Physically Based Rendering 4th ed., §6.8.5) it is as exact as the surface allows.
-SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit,
+                                     bool with_uv) {
   const uint32_t i = SphereHitRow(hit.prim);
   const SphereTable& s = scene.spheres;
   SurfaceInteraction its;
@@ -23,7 +24,7 @@ SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const H
   its.prim = hit.prim;
   its.ng = n;
   its.frame = Frame(n);
-  its.uv = SphereUv(n);
+  if (with_uv) its.uv = SphereUv(n);
   its.material = s.material[i];
   return its;
 }
@@ -47,8 +48,12 @@ Vec2f SphereUv(const Vec3f& n) {
   return {u, std::acos(std::clamp(n.z, -1.0f, 1.0f)) * kInvPi};
 }
 
-SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
-  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit);
+namespace {
+
+// MakeInteraction, the surface coordinates only `with_uv` (otherwise left (0, 0)).
+SurfaceInteraction MakeInteractionWith(const Scene& scene, const Ray& ray, const Hit& hit,
+                                       bool with_uv) {
+  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv);
   const uint32_t tri = hit.prim;
   const TriangleTable& t = scene.triangles;
   SurfaceInteraction its;
@@ -59,21 +64,28 @@ SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit
   const float len = Length(ng);
   its.ng = len > 0 ? ng / len : Vec3f{0, 0, 1};
   its.frame = Frame(ShadingNormalAt(scene, tri, hit.b1, hit.b2));
-  its.uv = SurfaceUvAt(scene, tri, hit.b1, hit.b2);
+  if (with_uv) its.uv = SurfaceUvAt(scene, tri, hit.b1, hit.b2);
   its.material = scene.shading.material[tri];
   its.emitter = scene.meshes.emitter[scene.shading.mesh[tri]];
   return its;
 }
 
+}  // namespace
+
+SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+  return MakeInteractionWith(scene, ray, hit, /*with_uv=*/true);
+}
+
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionColumns& out) {
+  const bool with_uv = out.u != nullptr;
   for (size_t k = 0; k < packets; ++k) {
     for (Mask8 todo = hit_mask[k] & kAllLanes; todo != 0; todo &= todo - 1) {
       const int j = std::countr_zero(todo);
       const HitPacket8& h = hits[k];
       const Hit hit{h.t[j], h.b1[j], h.b2[j], h.prim[j]};
       SetInteractionRow(out, k * kPacketWidth + size_t(j),
-                        MakeInteraction(scene, GetLaneRay(rays[k], j), hit));
+                        MakeInteractionWith(scene, GetLaneRay(rays[k], j), hit, with_uv));
     }
   }
 }

@@ -179,7 +179,6 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += escaped_.Bytes();
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
     for (const InfiniteLightColumns& e : distant_disk_) bytes += e.Bytes();
-    bytes += ShadeScratchBytes(shade_scratch_);
     return bytes;
   }
 
@@ -193,13 +192,13 @@ class alignas(kColumnAlignment) Wavefront {
     const uint64_t width = uint64_t(camera.width());
     const size_t samples = s_end - s_begin, tile_w = size_t(x1 - x0);
     const size_t n = size_t(y1 - y0) * tile_w * samples;
-    sampler_.resize(n);
-    L_.assign(n, Color3f{}), throughput_.assign(n, Color3f{1, 1, 1}), nee_throughput_.resize(n);
-    eta_.assign(n, 1.0f), prev_pdf_.assign(n, 0.0f), prev_p_.resize(n);
-    specular_.assign(n, 1);  // the camera ray counts as specular: emission is always seen
+    // Room for every slot's path, padded to whole packets; rows [0, id) are written below, one
+    // pass per path (state, numbers, film position), instead of zero-filling every column.
+    const size_t room = (n + kPacketWidth - 1) / kPacketWidth * kPacketWidth;
+    GrowColumns(room, &sampler_, &L_, &throughput_, &nee_throughput_, &eta_, &prev_pdf_, &prev_p_,
+                &specular_, &gen_sx_, &gen_sy_, &lens_);
     path_of_slot_.assign(n, kNoPath);
-    rays_.Clear();
-    gen_px_.clear(), gen_py_.clear();
+    if (sobol_) GrowColumns(room, &gen_px_, &gen_py_);
     uint32_t id = 0;
     for (int y = y0; y < y1; y += 2) {
       for (int bx = x0; bx < x1; bx += 4) {
@@ -209,41 +208,44 @@ class alignas(kColumnAlignment) Wavefront {
             if (px >= x1 || py >= y1) continue;
             const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
             if (pixels && pixels->active && !pixels->active[pixel]) continue;
-            sampler_[id] = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
+            PathSampler& sampler = sampler_[id];
+            sampler = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
             const size_t pixel_slot = (size_t(py - y0) * tile_w + size_t(px - x0)) * samples;
             path_of_slot_[pixel_slot + (s - s_begin)] = id;
-            gen_px_.push_back(px), gen_py_.push_back(py);
+            L_[id] = Color3f{}, throughput_[id] = Color3f{1, 1, 1};
+            eta_[id] = 1.0f, prev_pdf_[id] = 0.0f;
+            specular_[id] = 1;  // the camera ray counts as specular: emission is always seen
+            if (sobol_) {
+              gen_px_[id] = px, gen_py_[id] = py;
+            } else {
+              // Film, then lens position: the path's stream in the scalar order.
+              const Vec2f jitter = sampler.Get2D(kDimensionPixel);
+              gen_sx_[id] = float(px) + jitter.x, gen_sy_[id] = float(py) + jitter.y;
+              lens_[id] = sampler.Get2D(kDimensionLens);
+            }
             ++id;
           }
         }
       }
     }
-    // Film and lens positions: with `sobol`, one batch draw per dimension for all the paths;
-    // otherwise each path's stream in the scalar order (pixel, then lens).
-    jitter_.resize(id), lens_.resize(id);
+    // With `sobol`, film and lens positions as one batch draw per dimension for all the paths.
     if (sobol_) {
-      all_paths_.resize(id);
+      all_paths_.resize(id), jitter_.resize(id);
       for (uint32_t i = 0; i < id; ++i) all_paths_[i] = i;
       FillSobolRows(all_paths_, 0, 1);
       DrawSobol2D(kDimensionPixel, jitter_.data());
       DrawSobol2D(kDimensionLens, lens_.data());
-    } else {
       for (uint32_t i = 0; i < id; ++i) {
-        jitter_[i] = sampler_[i].Get2D(kDimensionPixel);
-        lens_[i] = sampler_[i].Get2D(kDimensionLens);
+        gen_sx_[i] = float(gen_px_[i]) + jitter_[i].x;
+        gen_sy_[i] = float(gen_py_[i]) + jitter_[i].y;
       }
     }
-    // Film positions as columns, padded to whole packets (the padding lanes' rays are made
-    // and never read: Active masks them), then the camera rays eight at a time, path i in
-    // lane i % 8 of packet i / 8 (the order Push would give).
+    // The camera rays eight at a time, path i in lane i % 8 of packet i / 8 (the order Push
+    // would give); the padding lanes' rays are made and never read (Active masks them).
     const size_t packets = (size_t(id) + kPacketWidth - 1) / kPacketWidth;
     const size_t padded = packets * kPacketWidth;
-    gen_sx_.resize(padded), gen_sy_.resize(padded), lens_.resize(padded);
-    for (uint32_t i = 0; i < id; ++i) {
-      const float sx = float(gen_px_[i]) + jitter_[i].x, sy = float(gen_py_[i]) + jitter_[i].y;
-      gen_sx_[i] = sx, gen_sy_[i] = sy;
-    }
     for (size_t i = id; i < padded; ++i) gen_sx_[i] = gen_sy_[i] = 0.5f, lens_[i] = {0.5f, 0.5f};
+    rays_.Clear();
     rays_.packets.resize(packets);
     rays_.owner.resize(id);
     for (uint32_t i = 0; i < id; ++i) rays_.owner[i] = i;
@@ -251,7 +253,6 @@ class alignas(kColumnAlignment) Wavefront {
       const size_t i = k * kPacketWidth;
       camera.GenerateRay8(&gen_sx_[i], &gen_sy_[i], &lens_[i], &rays_.packets[k]);
     }
-    sampler_.resize(id);
     stats_->seconds.sampling += Seconds(t0, Clock::now());
   }
 
@@ -281,16 +282,19 @@ class alignas(kColumnAlignment) Wavefront {
       const Mask8 active = rays_.Active(k);
       hit_mask_[k] =
           kernels_->intersect8(kernels_->accel, rays_.packets[k], active, &hits_[k]) & active;
-      stats_->rays += uint64_t(std::popcount(active));
     }
+    // Every queued ray is in an active lane (the queue is compact): no popcount per packet,
+    // which the baseline target makes a library call.
+    stats_->rays += rays_.size();
     stats_->packets += packets;
   }
 
-  // Emission at hits, environment light for escaped rays; marks the entries that go on to the
-  // sampling stage (its_ / wo_ hold their shading points).
+  // Emission at hits, environment light for escaped rays; lists the entries that go on to the
+  // sampling stage (goes_on_; its_ / wo_ hold their shading points).
   void Shade(int depth) {
     const size_t n = rays_.size();
-    its_.resize(n), wo_.resize(n), goes_on_.assign(n, 0);
+    its_.resize(n), wo_.resize(n), goes_on_.clear();
+    std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
     const bool batch_escaped = EscapedRaysBatch();
     escaped_.Clear();
     points_.Resize(rays_.packets.size() * kPacketWidth);
@@ -340,7 +344,8 @@ class alignas(kColumnAlignment) Wavefront {
       }
       if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
       wo_[q] = wo_local;
-      goes_on_[q] = 1;
+      goes_on_.push_back(uint32_t(q));
+      ++goes_on_tags_[BsdfColumns::Group(its.material)];
     }
     if (batch_escaped) ShadeEscaped();
   }
@@ -399,7 +404,7 @@ class alignas(kColumnAlignment) Wavefront {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
     nee_paths_.clear();
-    bsdf_.Clear(rays_.size());
+    bsdf_.Clear(rays_.size(), goes_on_tags_);
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
     // Requests are SoA columns written in place (a row's flag, its ray and contribution only
     // when it traces): no request struct per row. The columns only grow.
@@ -411,10 +416,8 @@ class alignas(kColumnAlignment) Wavefront {
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_->emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
-    size_t c = 0;
-    for (size_t q = 0; q < rays_.size(); ++q) {
-      if (!goes_on_[q]) continue;
-      const size_t k = c++;
+    for (size_t k = 0; k < goes_on_.size(); ++k) {
+      const uint32_t q = goes_on_[k];
       const uint32_t i = rays_.owner[q];
       const SurfaceInteraction& its = its_[q];
       const Vec3f& wo = wo_[q];
@@ -563,28 +566,33 @@ class alignas(kColumnAlignment) Wavefront {
     }
   }
 
-  // The BSDF stage: the kernel table's bsdf slot over the columns, one contiguous batch per
-  // material tag (ShadeHitsWith: counting sort by tag, gather, kernel, scatter); then, in queue
-  // order, each sampled path's throughput, state and next ray, as the scalar integrators do.
+  // The BSDF stage: the kernel table's bsdf slot over the columns, one call per material tag
+  // on its group of slots (Sample pushed the rows there; the rows of ShadeHitsWith's batches,
+  // without its counting sort, gather and scatter); then, in queue order, each sampled path's
+  // throughput, state and next ray, as the scalar integrators do.
   void SampleBsdfs() {
     BsdfColumns& b = bsdf_;
     const size_t n = b.size();
     if (n == 0) return;
-    ShadeInputs in;
-    in.wo = {b.wo_x.data(), b.wo_y.data(), b.wo_z.data()};
-    in.u_lobe = b.u_lobe.data(), in.u_x = b.u_x.data(), in.u_y = b.u_y.data();
-    ShadeOutputs out;
-    out.wi = {b.wi_x.data(), b.wi_y.data(), b.wi_z.data()};
-    out.weight = {b.weight_r.data(), b.weight_g.data(), b.weight_b.data()};
-    out.pdf = b.pdf.data(), out.eta = b.eta.data();
-    const auto bsdf = kernels_->bsdf;
-    ShadeHitsWith(
-        [bsdf](const MaterialTables& mt, MaterialTag tag, const uint32_t* index, size_t count,
-               const ShadeInputs& bin, const ShadeOutputs& bout) {
-          bsdf(mt, tag, index, count, bin, bout);
-        },
-        scene_->materials, b.material.data(), n, in, out, &shade_scratch_);
-    for (size_t c = 0; c < n; ++c) {
+    for (int t = 0; t < kMaterialTagCount; ++t) {
+      const size_t begin = b.begin[t], count = b.next[t] - begin;
+      if (count == 0) continue;
+      ShadeInputs in;
+      in.wo = {b.wo_x.data() + begin, b.wo_y.data() + begin, b.wo_z.data() + begin};
+      in.u_lobe = b.u_lobe.data() + begin, in.u_x = b.u_x.data() + begin;
+      in.u_y = b.u_y.data() + begin;
+      ShadeOutputs out;
+      out.wi = {b.wi_x.data() + begin, b.wi_y.data() + begin, b.wi_z.data() + begin};
+      out.weight = {b.weight_r.data() + begin, b.weight_g.data() + begin,
+                    b.weight_b.data() + begin};
+      out.pdf = b.pdf.data() + begin, out.eta = b.eta.data() + begin;
+      kernels_->bsdf(scene_->materials, static_cast<MaterialTag>(t),
+                     b.material_index.data() + begin, count, in, out);
+    }
+    // Rows of no material (no group of ShadeHitsWith): no sample.
+    for (uint32_t c = b.begin[kMaterialTagCount]; c < b.next[kMaterialTagCount]; ++c) b.pdf[c] = 0;
+    for (size_t row = 0; row < n; ++row) {
+      const uint32_t c = b.slot[row];
       if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
       const uint32_t i = b.path[c];
       const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
@@ -608,8 +616,7 @@ class alignas(kColumnAlignment) Wavefront {
   // in queue order), one batch draw per dimension (and emitter sub-sample).
   void DrawVertexNumbers(int depth) {
     continuing_.clear();
-    for (size_t q = 0; q < rays_.size(); ++q)
-      if (goes_on_[q]) continuing_.push_back(rays_.owner[q]);
+    for (const uint32_t q : goes_on_) continuing_.push_back(rays_.owner[q]);
     const size_t m = continuing_.size();
     const uint32_t n_light = uint32_t(rules_.light_samples);
     if (rules_.nee && !scene_->emitters.empty()) {
@@ -664,8 +671,8 @@ class alignas(kColumnAlignment) Wavefront {
       for (Mask8 m = occ; m != 0; m &= m - 1) {
         occluded_[shadows_.owner[k * kLanes + size_t(std::countr_zero(m))]] = 1;
       }
-      stats_->rays += uint64_t(std::popcount(active));
     }
+    stats_->rays += shadows_.size();  // as in Traverse: every queued ray is an active lane
     stats_->packets += shadows_.packets.size();
   }
 
@@ -717,36 +724,51 @@ class alignas(kColumnAlignment) Wavefront {
     stats_->seconds.film += Seconds(t0, Clock::now());
   }
 
-  /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex (in
-  /// queue order): the path, its queue entry (for the shading point), material, wo in the
-  /// local frame and the numbers (inputs); wi (local), weight f·|cos θi|/pdf, pdf (0: no
-  /// sample) and eta (outputs, written by the bsdf slot).
+  /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex,
+  /// grouped by material tag: a tag's rows are contiguous slots [begin[t], next[t]), one batch
+  /// for the bsdf slot as it is (ShadeHitsWith's partition, gather and scatter are not needed),
+  /// and slot[row] is the slot of the row-th one in queue order. The groups are sized by a count
+  /// of the entries that go on (an upper bound: roulette and whitted end some first). Per slot:
+  /// the path, its queue entry (for the shading point), material, wo in the local frame and
+  /// the numbers (inputs); wi (local), weight f·|cos θi|/pdf, pdf (0: no sample) and eta
+  /// (outputs, written by the bsdf slot).
   struct BsdfColumns {
-    std::vector<uint32_t> path, entry;
+    std::vector<uint32_t> path, entry, material_index, slot;
     std::vector<MaterialRef> material;
     std::vector<float> roulette_scale;
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
-
+    // Groups 0..kMaterialTagCount - 1 by tag, group kMaterialTagCount: no material.
+    static constexpr int kGroups = kMaterialTagCount + 1;
+    uint32_t begin[kGroups] = {}, next[kGroups] = {};
     size_t rows = 0;
 
+    static uint32_t Group(MaterialRef ref) {
+      return std::min(uint32_t(ref.tag()), uint32_t(kMaterialTagCount));
+    }
     size_t size() const { return rows; }
     size_t Bytes() const {
-      return VectorsBytes(path, entry, material, roulette_scale, wo_x, wo_y, wo_z, u_lobe, u_x, u_y,
-                          wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
+      return VectorsBytes(path, entry, material_index, slot, material, roulette_scale, wo_x, wo_y,
+                          wo_z, u_lobe, u_x, u_y, wi_x, wi_y, wi_z, weight_r, weight_g, weight_b,
+                          pdf, eta);
     }
     /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
-    /// place; only grows.
-    void Clear(size_t capacity) {
+    /// place; only grows. group_rows: the most rows each group can get (they sum to at most
+    /// capacity).
+    void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
       rows = 0;
-      GrowColumns(capacity, &path, &entry, &material, &roulette_scale, &wo_x, &wo_y, &wo_z,
-                  &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
-                  &eta);
+      GrowColumns(capacity, &path, &entry, &material_index, &slot, &material, &roulette_scale,
+                  &wo_x, &wo_y, &wo_z, &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r,
+                  &weight_g, &weight_b, &pdf, &eta);
+      uint32_t at = 0;
+      for (int g = 0; g < kGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
-      const size_t c = rows++;
+      const uint32_t c = next[Group(ref)]++;
+      slot[rows++] = c;
       path[c] = path_id, entry[c] = queue_entry, material[c] = ref, roulette_scale[c] = scale;
+      material_index[c] = ref.index();
       wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
       u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
     }
@@ -814,20 +836,17 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
-  /// The interaction stage's SoA columns: the shading point of each queue entry that hit.
+  /// The interaction stage's SoA columns: the shading point of each queue entry that hit. No
+  /// surface coordinates: no stage of the wavefront reads them.
   struct PointColumns {
-    AlignedVector<float> p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z, u, v;
+    AlignedVector<float> p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z;
     void Resize(size_t n) {
-      for (auto* c : {&p_x, &p_y, &p_z, &ng_x, &ng_y, &ng_z, &n_x, &n_y, &n_z, &u, &v}) {
-        c->resize(n);
-      }
+      for (auto* c : {&p_x, &p_y, &p_z, &ng_x, &ng_y, &ng_z, &n_x, &n_y, &n_z}) c->resize(n);
     }
-    size_t Bytes() const {
-      return VectorsBytes(p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z, u, v);
-    }
+    size_t Bytes() const { return VectorsBytes(p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z); }
     InteractionColumns View() {
-      return {p_x.data(),  p_y.data(), p_z.data(), ng_x.data(), ng_y.data(), ng_z.data(),
-              n_x.data(),  n_y.data(), n_z.data(), u.data(),    v.data()};
+      return {p_x.data(), p_y.data(), p_z.data(), ng_x.data(), ng_y.data(), ng_z.data(),
+              n_x.data(), n_y.data(), n_z.data(), nullptr,     nullptr};
     }
   };
 
@@ -882,7 +901,10 @@ class alignas(kColumnAlignment) Wavefront {
   PointColumns points_;
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
-  std::vector<uint8_t> goes_on_;
+  // The entries that go on to the sampling stage, in queue order: a list rather than a flag
+  // per entry, so that Sample has no branch per entry on whether its path ended here.
+  std::vector<uint32_t> goes_on_;
+  uint32_t goes_on_tags_[BsdfColumns::kGroups] = {};  // entries that go on, by material group
   // The emitter samples' requests (EmitterSampleRequest as columns), rows [0, n_requests_).
   std::vector<uint8_t> request_traced_;
   std::vector<Color3f> request_contribution_;
@@ -908,7 +930,6 @@ class alignas(kColumnAlignment) Wavefront {
   EmitterColumns area_;
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
   std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
-  ShadeScratch shade_scratch_;
   SplatColumns splat_;
 };
 

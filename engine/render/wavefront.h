@@ -56,7 +56,7 @@ struct WavefrontKernels {
                   float* x) = nullptr;
 
   // BSDF stage: one material's kernel over a contiguous batch of rows that all have tag `tag`
-  // (the wavefront partitions its continuing entries by tag with PartitionByMaterial and calls
+  // (the wavefront writes each continuing entry's row into its tag's group of rows and calls
   // this once per tag present; engine/bsdf/shade_batch.h). Oracle: ptlab::ShadeBatch
   // (BsdfSampleDirection per row, so the oracle table keeps the scalar path's bits); SIMD:
   // simd::ShadeBatch, within the contract of simd/shade8.h. The wavefront samples only
@@ -107,10 +107,10 @@ struct WavefrontKernels {
                        const EnvironmentBatchInputs& in,
                        const EnvironmentBatchOutputs& out) = nullptr;
 
-  // Interaction stage: a wave's hit records -> shading points (p, ng, shading normal, uv) as
-  // SoA columns, row = queue entry, written for the hit lanes of each packet only; the
-  // wavefront builds each SurfaceInteraction from its row with InteractionAt (frame, material,
-  // emitter).
+  // Interaction stage: a wave's hit records -> shading points (p, ng, shading normal; uv when
+  // out has the columns, which the wavefront's do not: no stage reads them) as SoA columns,
+  // row = queue entry, written for the hit lanes of each packet only; the wavefront builds
+  // each SurfaceInteraction from its row with InteractionAt (frame, material, emitter).
   // Oracle: ptlab::MakeInteractionBatch (MakeInteraction per row, so the oracle table keeps the
   // scalar path's bits); SIMD: simd::MakeInteractionBatch (simd/interaction8.h).
   void (*interaction)(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,

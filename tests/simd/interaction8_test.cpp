@@ -32,10 +32,13 @@ constexpr size_t kColumns = 11;           // p, ng, n (3 each), u, v
 struct Columns {
   explicit Columns(size_t n) : col(kColumns, std::vector<float>(n, kUntouched)) {}
   std::vector<std::vector<float>> col;
-  InteractionColumns Out() {
-    return {col[0].data(), col[1].data(), col[2].data(), col[3].data(),
-            col[4].data(), col[5].data(), col[6].data(), col[7].data(),
-            col[8].data(), col[9].data(), col[10].data()};
+  // with_uv false: no u, v columns (the kernels must leave those rows as they are).
+  InteractionColumns Out(bool with_uv = true) {
+    InteractionColumns out{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
+                           col[4].data(), col[5].data(), col[6].data(), col[7].data(),
+                           col[8].data(), col[9].data(), col[10].data()};
+    if (!with_uv) out.u = out.v = nullptr;
+    return out;
   }
 };
 
@@ -138,7 +141,7 @@ Packets MakePackets(const Scene& scene, const std::vector<uint32_t>& hard, size_
   return p;
 }
 
-void ExpectBatchMatchesOracle(const std::string& path) {
+void ExpectBatchMatchesOracle(const std::string& path, bool with_uv = true) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
@@ -149,16 +152,21 @@ void ExpectBatchMatchesOracle(const std::string& path) {
   const Packets p = MakePackets(scene, hard, 1000003, rng);
   const size_t packets = p.rays.size(), rows = packets * kPacketWidth;
   Columns want(rows);
-  MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets, want.Out());
+  MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
+                       want.Out(with_uv));
   test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
     Columns got(rows);
     simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
-                               got.Out());
-    size_t differ = 0, nonfinite = 0, untouched = 0, first = rows;
+                               got.Out(with_uv));
+    size_t differ = 0, nonfinite = 0, untouched = 0, untouched_uv = 0, first = rows;
     for (size_t c = 0; c < kColumns; ++c) {
       for (size_t q = 0; q < rows; ++q) {
         const float g = got.col[c][q];
         const bool hit = LaneActive(p.mask[q / kPacketWidth], int(q % kPacketWidth));
+        if (!with_uv && c >= 9) {  // no uv columns: oracle and kernel leave them untouched
+          untouched_uv += g == kUntouched && want.col[c][q] == kUntouched;
+          continue;
+        }
         if (!hit) {
           untouched += g == kUntouched;
           continue;
@@ -174,7 +182,9 @@ void ExpectBatchMatchesOracle(const std::string& path) {
     EXPECT_EQ(nonfinite, 0u);
     size_t misses = 0;
     for (const Mask8 m : p.mask) misses += 8 - std::popcount(m);
-    EXPECT_EQ(untouched, kColumns * misses);
+    const size_t written = with_uv ? kColumns : kColumns - 2;
+    EXPECT_EQ(untouched, written * misses);
+    EXPECT_EQ(untouched_uv, with_uv ? 0u : 2 * rows);
   });
 }
 
@@ -186,6 +196,15 @@ TEST(Interaction8, BatchMatchesOracleOnCbox) {  // no vertex normals
 
 TEST(Interaction8, BatchMatchesOracleOnTable) {  // vertex normals
   ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml");
+}
+
+// The wavefront's columns: no u, v (the hard cases include quads with uvs and spheres).
+TEST(Interaction8, BatchMatchesOracleWithoutUvOnCbox) {
+  ExpectBatchMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml", false);
+}
+
+TEST(Interaction8, BatchMatchesOracleWithoutUvOnTable) {  // texture coordinates in the meshes
+  ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml", false);
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
 // Hard cases for every scalar BSDF: grazing/denormal/huge inputs never give NaN, Inf or < 0.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "engine/bsdf/bsdf.h"
 #include "engine/bsdf/conductor_presets.h"
+#include "engine/core/rng.h"
 #include "tests/engine/bsdf/bsdf_test_inputs.h"
 
 namespace ptlab {
@@ -89,6 +92,36 @@ TEST(BsdfHardCases, NoNanInfOrNegativeValuesAnywhere) {
   }
   EXPECT_GT(valid, samples / 5);
   EXPECT_GT(evals, 100000u);
+}
+
+// BsdfEvalPdf is BsdfEval and BsdfPdf bit for bit (the emitter samples' MIS reads it instead of
+// the two): every hard material, on the hard directions and on random unit ones.
+TEST(BsdfHardCases, EvalPdfIsEvalAndPdf) {
+  MaterialTables m;
+  const std::vector<MaterialRef> refs = HardMaterials(&m);
+  std::vector<Vec3f> dirs = bsdf_test::HardDirections();
+  Pcg32 rng(11, 3);
+  for (int k = 0; k < 64; ++k) {
+    const Vec3f v{rng.NextFloat() * 2 - 1, rng.NextFloat() * 2 - 1, rng.NextFloat() * 2 - 1};
+    if (Length(v) > 1e-3f) dirs.push_back(Normalize(v));
+  }
+  const auto bits = [](float x) { return std::bit_cast<uint32_t>(x); };
+  size_t positive = 0;
+  for (MaterialRef ref : refs) {
+    for (const Vec3f& wo : dirs) {
+      for (const Vec3f& wi : dirs) {
+        float pdf = -1.0f;
+        const Color3f f = BsdfEvalPdf(m, ref, wo, wi, &pdf);
+        const Color3f want_f = BsdfEval(m, ref, wo, wi);
+        ASSERT_EQ(bits(pdf), bits(BsdfPdf(m, ref, wo, wi))) << "tag " << int(ref.tag());
+        ASSERT_TRUE(bits(f.r) == bits(want_f.r) && bits(f.g) == bits(want_f.g) &&
+                    bits(f.b) == bits(want_f.b))
+            << "tag " << int(ref.tag()) << " row " << ref.index();
+        positive += pdf > 0;
+      }
+    }
+  }
+  EXPECT_GT(positive, 10000u);
 }
 
 TEST(BsdfHardCases, WoBelowTheSurface) {

@@ -91,5 +91,30 @@ TEST(Interaction, InteractionAtReadsUvBack) {
   EXPECT_EQ(back.uv.y, its.uv.y);
 }
 
+// Columns without u, v (the wavefront's): the batch writes the rest as MakeInteraction does.
+TEST(Interaction, BatchWithoutUvColumns) {
+  const Scene scene = QuadScene();
+  std::vector<float> col[9];
+  for (auto& c : col) c.assign(kPacketWidth, -1.0f);
+  const InteractionColumns cols{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
+                                col[4].data(), col[5].data(), col[6].data(), col[7].data(),
+                                col[8].data(), nullptr,       nullptr};
+  RayPacket8 rays{};
+  HitPacket8 hits{};
+  SetLaneRay(&rays, 0, kDown);
+  SetLaneHit(&hits, 0, 2, 0.2f, 0.3f, 1);
+  const Mask8 hit = LaneBit(0);
+  MakeInteractionBatch(scene, &rays, &hits, &hit, 1, cols);
+  const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.2f, 0.3f, 1});
+  SurfaceInteraction back;
+  InteractionAt(scene, cols, 0, 1, &back);
+  EXPECT_EQ(back.p, its.p);
+  EXPECT_EQ(back.ng, its.ng);
+  EXPECT_EQ(back.frame.n, its.frame.n);
+  EXPECT_EQ(back.uv.x, 0.0f);
+  EXPECT_EQ(back.uv.y, 0.0f);
+  EXPECT_EQ(col[0][1], -1.0f);  // a lane without a hit: its row is left as it was
+}
+
 }  // namespace
 }  // namespace ptlab
