@@ -1039,11 +1039,11 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
         float key[8];
         PacketChildren<kAnyHit>(d, *s, node, m, candidates, cbits, t_near, key);
         // Packets from one origin (camera rays) test their leaf children at once under any
-        // hit, as TraverseSingle does: Occluded8 camera rays table 0.73-0.78 -> 1.04-1.12 of
-        // Embree, veach 0.94-0.97 -> 1.22-1.25 (same-run A/B), but the 1 M-triangle terrain
-        // 0.88 -> 0.83-0.85 (-4 to -10 %). Other packets were slower that way (veach bounce
-        // rays 42 -> 30 M rays/s, table shadow rays -6 %).
-        if (kAnyHit && s->shared_origin) {
+        // hit, as TraverseSingle does, in trees below options.leaves_first_max_triangles.
+        // Other packets were slower that way (veach bounce rays 42 -> 30 M rays/s, table
+        // shadow rays -6 %).
+        if (kAnyHit && s->shared_origin &&
+            bvh.num_triangles < options.leaves_first_max_triangles) {
           done |= PacketLeafChildren(d, bvh, node, s, candidates, done, single_ray_lanes, options,
                                      cbits);
           if (done == live) return done;

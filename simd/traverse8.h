@@ -48,6 +48,12 @@ struct Traverse8Options {
   /// (22.7 k triangles) +10 %, veach +34 %, terrain (1.05 M) -9 %; shadow rays +29 %, +5 %,
   /// +3 %. The threshold lies between those sizes and is not tuned further.
   uint32_t octant_fallback_min_triangles = 1u << 17;
+  /// Any hit: packets from one origin test a node's leaf children at once, before its inner
+  /// children, in BVH8s of fewer than this many triangles. Measured (Occluded8 camera rays,
+  /// same run): table 0.73-0.78 -> 1.04-1.12 of Embree, veach 0.94-0.97 -> 1.22-1.25, but the
+  /// 1 M-triangle terrain 0.88 -> 0.83-0.85, where a camera packet's leaf children are rarely
+  /// all needed; the threshold is the octant fallback's, not tuned further.
+  uint32_t leaves_first_max_triangles = 1u << 17;
 };
 
 /// Closest hits of the lanes in `active` (bit i = lane i) with t in (t_min, t_max). Returns
