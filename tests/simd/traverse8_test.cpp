@@ -464,6 +464,10 @@ TEST(Traverse8, OcclusionOfSharedOriginPacketsMatchesOracle) {
   ForEachTarget([&] {
     Mismatches mm;
     CompareAll(bvh8, rays, expected, {"occlusion defaults", kOccluded8Options}, false, &mm);
+    // The defaults test leaf children first here (a small tree); large trees do not.
+    Traverse8Options no_leaves_first = kOccluded8Options;
+    no_leaves_first.leaves_first_max_triangles = 0;
+    CompareAll(bvh8, rays, expected, {"no leaves first", no_leaves_first}, false, &mm);
     CompareAll(bvh8, rays, expected, {"hybrid", {}}, /*single_ray=*/true, &mm);
     CompareAll(bvh8, rays, expected, {"packet, broadcast leaves", {0, true, false}}, false, &mm);
     EXPECT_EQ(mm.count, 0);
