@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 
 #include "engine/core/vec.h"
 #include "engine/light/area_light.h"
@@ -214,8 +215,10 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
   size_t i = 0;
   if (mode == TriangleSampling::kArea) {
     const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    const bool few_lights = scene.area_lights.size() <= std::min(kRegisterLights, 2 * lanes);
-    const AreaLightRegisterTable table(scene);
+    // The register table only for a scene of few lights (else the per-light values are gathered).
+    std::optional<AreaLightRegisterTable> table;
+    if (scene.area_lights.size() <= std::min(kRegisterLights, 2 * lanes)) table.emplace(scene);
+    const AreaLightRegisterTable* registers = table ? &*table : nullptr;
     // Picks for a chunk of vectors, then their vertex rows, then their points: short loops
     // whose iterations the core overlaps better than one long one with a chain of dependent
     // gathers.
@@ -226,7 +229,7 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
       const size_t m = std::min(kChunk, (n - i) / lanes);
       for (size_t j = 0; j < m; ++j)
         picked[j] =
-            PickLanes(d, scene, few_lights ? &table : nullptr, in, i + j * lanes, &chunk[j]);
+            PickLanes(d, scene, registers, in, i + j * lanes, &chunk[j]);
       for (size_t j = 0; j < m; ++j)
         if (picked[j]) VertexRowLanes(d, scene, &chunk[j]);
       for (size_t j = 0; j < m; ++j, i += lanes) {

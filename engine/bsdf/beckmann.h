@@ -95,6 +95,19 @@ inline Vec3f ReflectAbout(const Vec3f& wo, const Vec3f& h) {
   return {dot2 * h.x - wo.x, dot2 * h.y - wo.y, dot2 * h.z - wo.z};
 }
 
+/// BeckmannEvalPdf's pdf D(H) H.z / (4 wo·H) given its D(H) = dv, H = wo + wi (wo and wi above
+/// the surface): false (*pdf untouched) where dv or wo·H is not positive or a value is not
+/// finite (non-unit or non-finite inputs). For callers that have D already
+/// (RoughPlasticEvalPdf).
+inline bool BeckmannReflectionPdfOfD(float dv, const Vec3f& wo, const Vec3f& h, float* pdf) {
+  const float wo_h = Dot(wo, h);
+  if (!(dv > 0) || !(wo_h > 0)) return false;
+  const float p = dv * h.z / (4.0f * wo_h);
+  if (!std::isfinite(dv) || !std::isfinite(p)) return false;
+  *pdf = p;
+  return true;
+}
+
 /// D(h) and the solid-angle density of wi when h ~ BeckmannPdfH and wi = reflect(wo, h):
 /// pdf = D(h) cos θh / (4 wo·h) with h = H/|H|, H = wo + wi, i.e. pdf = D(H) H.z / (4 wo·H).
 /// wo·H is a dot product rather than |H|/2 (equal for exactly unit vectors) because at
@@ -108,21 +121,10 @@ inline void BeckmannEvalPdf(float alpha, const Vec3f& wo, const Vec3f& wi, float
   if (!(wo.z > 0) || !(wi.z > 0)) return;
   const Vec3f h = wo + wi;
   const float dv = BeckmannD(alpha, h);
-  const float wo_h = Dot(wo, h);
-  if (!(dv > 0) || !(wo_h > 0)) return;
-  const float p = dv * h.z / (4.0f * wo_h);
-  if (!std::isfinite(dv) || !std::isfinite(p)) return;  // non-unit or non-finite inputs
+  float p;
+  if (!BeckmannReflectionPdfOfD(dv, wo, h, &p)) return;
   *d = dv;
   *pdf = p;
-}
-
-/// BeckmannEvalPdf's pdf given its D(H) = dv, H = wo + wi (wo and wi above the surface), for a
-/// caller that has D already (RoughPlasticEvalPdf).
-inline float BeckmannReflectionPdfOfD(float dv, const Vec3f& wo, const Vec3f& h) {
-  const float wo_h = Dot(wo, h);
-  if (!(dv > 0) || !(wo_h > 0)) return 0.0f;
-  const float p = dv * h.z / (4.0f * wo_h);
-  return std::isfinite(dv) && std::isfinite(p) ? p : 0.0f;
 }
 
 /// Solid-angle pdf of wi for Beckmann reflection sampling (see BeckmannEvalPdf).

@@ -29,15 +29,10 @@ inline RoughPlasticParams MakeRoughPlasticParams(float alpha, float int_ior, flo
   return p;
 }
 
-/// Nori's BRDF (SOURCES.md): kd/π + ks D_Nori F(wh·wi) G / (4 cos θi cos θo cos θh) with
-/// D_Nori = BeckmannPdfH, i.e. ks BeckmannD F G / (4 cos θi cos θo); F is the exact dielectric
-/// Fresnel term for η = intIOR/extIOR and G = G1(wi) G1(wo). One-sided (0 unless both
-/// directions are above the surface) and symmetric in (wo, wi).
-inline Color3f RoughPlasticEval(const RoughPlasticParams& p, const Vec3f& wo, const Vec3f& wi) {
-  if (!(wo.z > 0) || !(wi.z > 0)) return {};
+/// RoughPlasticEval's value given the Beckmann D of H = wo + wi (both above the surface).
+inline Color3f RoughPlasticEvalOfD(const RoughPlasticParams& p, const Vec3f& wo, const Vec3f& wi,
+                                   const Vec3f& h, float d) {
   Color3f f = p.kd * kInvPi;
-  const Vec3f h = wo + wi;
-  const float d = BeckmannD(p.alpha, h);
   if (d > 0 && p.ks > 0) {
     float cos_t;
     const float fr = FresnelDielectric(0.5f * std::sqrt(Dot(h, h)), p.eta, &cos_t);
@@ -46,6 +41,16 @@ inline Color3f RoughPlasticEval(const RoughPlasticParams& p, const Vec3f& wo, co
     if (std::isfinite(spec)) f += Color3f{spec, spec, spec};
   }
   return f;
+}
+
+/// Nori's BRDF (SOURCES.md): kd/π + ks D_Nori F(wh·wi) G / (4 cos θi cos θo cos θh) with
+/// D_Nori = BeckmannPdfH, i.e. ks BeckmannD F G / (4 cos θi cos θo); F is the exact dielectric
+/// Fresnel term for η = intIOR/extIOR and G = G1(wi) G1(wo). One-sided (0 unless both
+/// directions are above the surface) and symmetric in (wo, wi).
+inline Color3f RoughPlasticEval(const RoughPlasticParams& p, const Vec3f& wo, const Vec3f& wi) {
+  if (!(wo.z > 0) || !(wi.z > 0)) return {};
+  const Vec3f h = wo + wi;
+  return RoughPlasticEvalOfD(p, wo, wi, h, BeckmannD(p.alpha, h));
 }
 
 /// Mixture density of RoughPlasticSample: ks BeckmannReflectionPdf + (1 − ks) cos θi / π.
@@ -60,18 +65,12 @@ inline Color3f RoughPlasticEvalPdf(const RoughPlasticParams& p, const Vec3f& wo,
                                    float* pdf) {
   *pdf = 0.0f;
   if (!(wo.z > 0) || !(wi.z > 0)) return {};
-  Color3f f = p.kd * kInvPi;
   const Vec3f h = wo + wi;
   const float d = BeckmannD(p.alpha, h);
-  if (d > 0 && p.ks > 0) {
-    float cos_t;
-    const float fr = FresnelDielectric(0.5f * std::sqrt(Dot(h, h)), p.eta, &cos_t);
-    const float g = BeckmannG1OverCos(p.alpha, wo) * BeckmannG1OverCos(p.alpha, wi);
-    const float spec = p.ks * fr * (0.25f * d * g);
-    if (std::isfinite(spec)) f += Color3f{spec, spec, spec};
-  }
-  *pdf = p.ks * BeckmannReflectionPdfOfD(d, wo, h) + (1.0f - p.ks) * (wi.z * kInvPi);
-  return f;
+  float specular_pdf = 0.0f;
+  BeckmannReflectionPdfOfD(d, wo, h, &specular_pdf);
+  *pdf = p.ks * specular_pdf + (1.0f - p.ks) * (wi.z * kInvPi);
+  return RoughPlasticEvalOfD(p, wo, wi, h, d);
 }
 
 /// u_lobe < ks picks the specular lobe (h ~ BeckmannPdfH from u, wi = reflect(wo, h)), else
