@@ -381,13 +381,14 @@ HWY_INLINE V8 CosinePdf(D8 d, V8 oz, V8 iz) {
 }
 
 /// DiffuseEval / DiffusePdf / DiffuseSample (engine/bsdf/diffuse.h).
-inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, bool eval) {
-  ForEachBlock(io, n, [&t, eval](const ShadeIo& b, size_t i) HWY_ATTR {
+inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, bool eval,
+                         bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), inv_pi = hn::Set(d, kInvPi);
     const V8 ar = Gather(d, t.albedo_r, b.index, i), ag = Gather(d, t.albedo_g, b.index, i),
              ab = Gather(d, t.albedo_b, b.index, i);
-    const V8 oz = In(d, b, kWoZ, i), ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
+    const V8 oz = In(d, b, kWoZ, i);
     if (eval) {
       const V8 lz = In(d, b, kWlZ, i);
       const M8 both = hn::And(hn::Gt(oz, zero), hn::Gt(lz, zero));
@@ -395,6 +396,8 @@ inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, boo
                 hn::IfThenElseZero(both, hn::Mul(ag, inv_pi)),
                 hn::IfThenElseZero(both, hn::Mul(ab, inv_pi)), CosinePdf(d, oz, lz));
     }
+    if (!sample) return;
+    const V8 ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
     V8 ix, iy, iz;
     SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
     const V8 pdf = CosinePdf(d, oz, iz);
@@ -403,29 +406,32 @@ inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, boo
 }
 
 /// MirrorSample (engine/bsdf/mirror.h); Eval and Pdf are 0.
-inline void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool eval) {
-  ForEachBlock(io, n, [&t, eval](const ShadeIo& b, size_t i) HWY_ATTR {
+inline void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool eval, bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
+    if (!sample) return;
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
     const V8 rr = Gather(d, t.reflectance_r, b.index, i),
              rg = Gather(d, t.reflectance_g, b.index, i),
              rb = Gather(d, t.reflectance_b, b.index, i);
-    if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
     StoreSample(d, b, i, hn::Gt(oz, zero), hn::Neg(ox), hn::Neg(oy), oz, rr, rg, rb, one, one);
   });
 }
 
 /// DielectricSample (engine/bsdf/dielectric.h); Eval and Pdf are 0.
-inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t n, bool eval) {
+inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t n, bool eval,
+                            bool sample) {
   const bool has_flags = !t.flags.empty();
-  ForEachBlock(io, n, [&t, eval, has_flags](const ShadeIo& b, size_t i) HWY_ATTR {
+  ForEachBlock(io, n, [&t, eval, sample, has_flags](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const hn::RebindToSigned<D8> di;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
+    if (!sample) return;
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i),
              u_lobe = In(d, b, kULobe, i);
-    if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
     const V8 eta =
         ClampRelIor(d, hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i)));
     V8 cos_t;
@@ -497,8 +503,9 @@ HWY_INLINE void ConductorEval(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 oz
 }
 
 /// ConductorEval / ConductorPdf / ConductorSample (engine/bsdf/conductor.h).
-inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n, bool eval) {
-  ForEachBlock(io, n, [&t, eval](const ShadeIo& b, size_t i) HWY_ATTR {
+inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n, bool eval,
+                           bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     ConductorLanes c;
@@ -510,8 +517,7 @@ inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n,
     hn::Store(Gather(d, t.k_g, b.index, i), d, c.k_g);
     hn::Store(Gather(d, t.k_b, b.index, i), d, c.k_b);
     const V8 alpha = hn::Load(d, c.alpha);
-    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i),
-             ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
     if (eval) {
       const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
       V8 fr, fg, fb, pdf_l;
@@ -519,6 +525,8 @@ inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n,
       BeckmannEvalPdf(d, alpha, ox, oy, oz, lx, ly, lz, &pdf_l);
       StoreEval(d, b, i, fr, fg, fb, pdf_l);
     }
+    if (!sample) return;
+    const V8 ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
     V8 hx, hy, hz, ix, iy, iz, pdf;
     SampleBeckmannNormal(d, alpha, ux, uy, &hx, &hy, &hz);
     Reflect(d, ox, oy, oz, hx, hy, hz, &ix, &iy, &iz);
@@ -584,8 +592,9 @@ HWY_INLINE V8 RoughPlasticPdf(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy, V8
 }
 
 /// RoughPlasticEval / RoughPlasticPdf / RoughPlasticSample (engine/bsdf/rough_plastic.h).
-inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, size_t n, bool eval) {
-  ForEachBlock(io, n, [&t, eval](const ShadeIo& b, size_t i) HWY_ATTR {
+inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, size_t n, bool eval,
+                              bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     const V8 kd_r = Gather(d, t.kd_r, b.index, i), kd_g = Gather(d, t.kd_g, b.index, i),
@@ -598,14 +607,15 @@ inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, siz
     hn::Store(hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i)), d,
               p.eta);
     hn::Store(kd_r, d, p.kd_r), hn::Store(kd_g, d, p.kd_g), hn::Store(kd_b, d, p.kd_b);
-    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i),
-             u_lobe = In(d, b, kULobe, i), ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
     if (eval) {
       const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
       V8 fr, fg, fb;
       RoughPlasticEval(d, p, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
       StoreEval(d, b, i, fr, fg, fb, RoughPlasticPdf(d, p, ox, oy, oz, lx, ly, lz));
     }
+    if (!sample) return;
+    const V8 u_lobe = In(d, b, kULobe, i), ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
     // Both candidate directions, unless every lane picked the same lobe.
     const M8 spec = hn::Lt(u_lobe, ks);
     V8 ix = zero, iy = zero, iz = zero;
@@ -637,7 +647,7 @@ inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, siz
 inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
                              const uint32_t* material_index, size_t n, const ShadeInputs& in,
                              const ShadeOutputs& out) {
-  const bool eval = in.wl.x != nullptr;
+  const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
   ShadeIo io;
   io.index = material_index;
   io.in[kWoX] = in.wo.x, io.in[kWoY] = in.wo.y, io.in[kWoZ] = in.wo.z;
@@ -647,20 +657,22 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
     io.out[kFR] = out.f.r, io.out[kFG] = out.f.g, io.out[kFB] = out.f.b;
     io.out[kPdfL] = out.pdf_l;
   }
-  io.out[kWiX] = out.wi.x, io.out[kWiY] = out.wi.y, io.out[kWiZ] = out.wi.z;
-  io.out[kWR] = out.weight.r, io.out[kWG] = out.weight.g, io.out[kWB] = out.weight.b;
-  io.out[kPdf] = out.pdf, io.out[kEta] = out.eta;
+  if (sample) {
+    io.out[kWiX] = out.wi.x, io.out[kWiY] = out.wi.y, io.out[kWiZ] = out.wi.z;
+    io.out[kWR] = out.weight.r, io.out[kWG] = out.weight.g, io.out[kWB] = out.weight.b;
+    io.out[kPdf] = out.pdf, io.out[kEta] = out.eta;
+  }
   switch (tag) {
     case MaterialTag::kDiffuse:
-      return ShadeDiffuse(m.diffuse, io, n, eval);
+      return ShadeDiffuse(m.diffuse, io, n, eval, sample);
     case MaterialTag::kMirror:
-      return ShadeMirror(m.mirror, io, n, eval);
+      return ShadeMirror(m.mirror, io, n, eval, sample);
     case MaterialTag::kDielectric:
-      return ShadeDielectric(m.dielectric, io, n, eval);
+      return ShadeDielectric(m.dielectric, io, n, eval, sample);
     case MaterialTag::kConductor:
-      return ShadeConductor(m.conductor, io, n, eval);
+      return ShadeConductor(m.conductor, io, n, eval, sample);
     case MaterialTag::kRoughPlastic:
-      return ShadeRoughPlastic(m.rough_plastic, io, n, eval);
+      return ShadeRoughPlastic(m.rough_plastic, io, n, eval, sample);
   }
 }
 

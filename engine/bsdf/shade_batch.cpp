@@ -19,6 +19,7 @@ void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* materi
       out.f.r[i] = f.r, out.f.g[i] = f.g, out.f.b[i] = f.b;
       out.pdf_l[i] = BsdfPdf(m, ref, wo, wl);
     }
+    if (in.u_lobe == nullptr) continue;  // evaluation only
     BsdfSample s;
     if (BsdfSampleDirection(m, ref, wo, in.u_lobe[i], {in.u_x[i], in.u_y[i]}, &s)) {
       out.wi.x[i] = s.wi.x, out.wi.y[i] = s.wi.y, out.wi.z[i] = s.wi.z;

@@ -37,7 +37,9 @@ struct ShadeInputs {
   DirectionArrays wo;  // towards the viewer
   DirectionArrays wl;  // towards a light sample: f and pdf are evaluated for (wo, wl);
                        // wl.x == nullptr skips the evaluation (f and pdf_l are not written)
-  const float* u_lobe = nullptr;  // BsdfSampleDirection's u1 (lobe / reflect-or-refract choice)
+  const float* u_lobe = nullptr;  // BsdfSampleDirection's u1 (lobe / reflect-or-refract choice);
+                                  // u_lobe == nullptr skips the sample (u_x, u_y are not read,
+                                  // wi, weight, pdf and eta not written): evaluation only
   const float* u_x = nullptr;     // BsdfSampleDirection's u2.x
   const float* u_y = nullptr;     // BsdfSampleDirection's u2.y
 };
@@ -122,7 +124,7 @@ void DielectricFresnelBatch(const float* cos_i, const float* eta, size_t n, floa
 template <class BatchFn>
 void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* refs, size_t n,
                    const ShadeInputs& in, const ShadeOutputs& out, ShadeScratch* scratch) {
-  const bool eval = in.wl.x != nullptr;
+  const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
   MaterialPartition& part = scratch->partition;
   PartitionByMaterial(refs, n, &part);
   // Rows that belong to no group.
@@ -130,6 +132,7 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
     for (size_t i = 0; i < n; ++i) {
       if (static_cast<int>(refs[i].tag()) < kMaterialTagCount) continue;
       if (eval) out.f.r[i] = out.f.g[i] = out.f.b[i] = out.pdf_l[i] = 0.0f;
+      if (!sample) continue;
       out.wi.x[i] = out.wi.y[i] = out.wi.z[i] = 0.0f;
       out.weight.r[i] = out.weight.g[i] = out.weight.b[i] = out.pdf[i] = 0.0f;
       out.eta[i] = 1.0f;
@@ -174,7 +177,7 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
     bout.pdf = tout[10];
     bout.eta = tout[11];
     batch(m, static_cast<MaterialTag>(t), part.index.data() + begin, count, bin, bout);
-    for (int c = eval ? 0 : 4; c < 12; ++c)
+    for (int c = eval ? 0 : 4; c < (sample ? 12 : 4); ++c)
       for (size_t j = 0; j < count; ++j) dst_out[c][slot[j]] = tout[c][j];
   }
 }

@@ -571,6 +571,42 @@ TEST(Shade8, PartialBlocksAndEvallessCallsMatchFullRuns) {
   });
 }
 
+// Evaluation only (u_lobe null): f and pdf_l bit-identical to a full run's on every target and
+// for the oracle, the sample outputs neither written (poison kept) nor needed (null pointers).
+TEST(Shade8, SamplelessCallsEvaluateOnly) {
+  MaterialTables m;
+  Pcg32 rng(9, 3);
+  AddMaterialRows(&m, rng);
+  const auto check = [&](auto&& batch) {
+    for (int t = 0; t < kMaterialTagCount; ++t) {
+      const MaterialTag tag = static_cast<MaterialTag>(t);
+      const ShadeData s = MakeShadeData(m, tag, 40);
+      ShadeResult full(40);
+      batch(m, tag, s.index.data(), 40, s.View(), full.Out());
+      for (size_t n : {0, 1, 3, 7, 8, 9, 15, 17, 33, 40}) {
+        ShadeInputs in = s.View();
+        in.u_lobe = nullptr, in.u_x = nullptr, in.u_y = nullptr;
+        ShadeResult part(n + 1);
+        batch(m, tag, s.index.data(), n, in, part.Out());
+        for (size_t i = 0; i < n; ++i) {
+          for (int c = 0; c < 3; ++c) ASSERT_EQ(part.f[c][i], full.f[c][i]) << t << " " << i;
+          ASSERT_EQ(part.pdf_l[i], full.pdf_l[i]) << t << " " << n << " " << i;
+          ASSERT_EQ(part.pdf[i], -7.0f) << t << " " << n << " " << i;
+          ASSERT_EQ(part.weight[0][i], -7.0f) << t << " " << n << " " << i;
+          ASSERT_EQ(part.eta[i], -7.0f) << t << " " << n << " " << i;
+        }
+        ASSERT_EQ(part.pdf_l[n], -7.0f) << "wrote past n";
+        ShadeOutputs eval_only;
+        eval_only.f = {part.f[0].data(), part.f[1].data(), part.f[2].data()};
+        eval_only.pdf_l = part.pdf_l.data();
+        batch(m, tag, s.index.data(), n, in, eval_only);  // no sample columns at all
+      }
+    }
+  };
+  check([](auto&&... a) { ptlab::ShadeBatch(a...); });
+  ForEachTarget([&](const char*) { check([](auto&&... a) { simd::ShadeBatch(a...); }); });
+}
+
 TEST(Shade8, ShadeHitsPartitionsByMaterial) {
   MaterialTables m;
   Pcg32 rng(4, 2);
