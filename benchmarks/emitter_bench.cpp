@@ -1,5 +1,6 @@
 // Scalar oracle vs Highway SIMD throughput of the area-light sampling kernel
-// (simd::SampleAreaLightBatch) on the shared Nori scenes' lights, same fixed inputs for both.
+// (simd::SampleAreaLightBatch) and of the area-light requests' finish
+// (simd::AreaEmitterRequestBatch) on the shared Nori scenes' lights, same fixed inputs for both.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -9,7 +10,9 @@
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
 #include "engine/light/area_light.h"
+#include "simd/area_request8.h"
 #include "simd/emitter8.h"
+#include "tests/simd/area_request_rows.h"
 
 namespace ptlab {
 namespace {
@@ -80,6 +83,51 @@ BENCHMARK_CAPTURE(BM_Emitter_AreaLight, oracle_veach, "veach", false);
 BENCHMARK_CAPTURE(BM_Emitter_AreaLight, simd_veach, "veach", true);
 BENCHMARK_CAPTURE(BM_Emitter_AreaLight, oracle_table, "table", false);
 BENCHMARK_CAPTURE(BM_Emitter_AreaLight, simd_table, "table", true);
+
+// One wave's area-light requests of one material (shading points on the scene's triangles,
+// light samples drawn from them), MIS with the power heuristic as the *_mis scenes have it.
+struct RequestBatch {
+  Scene scene;
+  test::AreaRequestRows rows;
+  test::AreaRequestColumns out{kBatch};
+};
+
+RequestBatch* LoadRequestBatch(const std::string& relative, MaterialTag tag) {
+  const std::string path = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/" + relative;
+  if (!std::filesystem::exists(path)) return nullptr;
+  StatusOr<Scene> loaded = LoadSceneFile(path);
+  if (!loaded.ok() || loaded->area_lights.size() == 0) return nullptr;
+  auto* b = new RequestBatch{std::move(*loaded)};
+  test::AddRequestMaterials(&b->scene);
+  Pcg32 rng(3, 5);
+  b->rows = test::MakeAreaRequestRows(b->scene, tag, kBatch, false, rng);
+  return b;
+}
+
+void BM_Emitter_AreaRequest(benchmark::State& state, const char* relative, MaterialTag tag,
+                            bool simd) {
+  RequestBatch* b = LoadRequestBatch(std::string("nori/epfl/scenes/pa5/") + relative, tag);
+  if (b == nullptr) return state.SkipWithError("shared data not found");
+  const AreaRequestOutputs o = b->out.Out();
+  for (auto _ : state) {
+    if (simd) {
+      simd::AreaEmitterRequestBatch(b->scene, tag, true, kBatch, b->rows.In(), o);
+    } else {
+      AreaEmitterRequestBatch(b->scene, tag, true, kBatch, b->rows.In(), o);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(int64_t(state.iterations() * kBatch));
+  delete b;
+}
+BENCHMARK_CAPTURE(BM_Emitter_AreaRequest, oracle_veach_rough_plastic, "veach_mi/veach_mis.xml",
+                  MaterialTag::kRoughPlastic, false);
+BENCHMARK_CAPTURE(BM_Emitter_AreaRequest, simd_veach_rough_plastic, "veach_mi/veach_mis.xml",
+                  MaterialTag::kRoughPlastic, true);
+BENCHMARK_CAPTURE(BM_Emitter_AreaRequest, oracle_table_diffuse, "table/table_mis.xml",
+                  MaterialTag::kDiffuse, false);
+BENCHMARK_CAPTURE(BM_Emitter_AreaRequest, simd_table_diffuse, "table/table_mis.xml",
+                  MaterialTag::kDiffuse, true);
 
 }  // namespace
 }  // namespace ptlab

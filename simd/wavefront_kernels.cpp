@@ -1,8 +1,9 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
-// simd/splat8, simd/emitter8, simd/environment8, simd/distant_disk8,
+// simd/splat8, simd/emitter8, simd/area_request8, simd/environment8, simd/distant_disk8,
 // simd/interaction8.
 #include "simd/wavefront_kernels.h"
 
+#include "simd/area_request8.h"
 #include "simd/distant_disk8.h"
 #include "simd/emitter8.h"
 #include "simd/environment8.h"
@@ -35,6 +36,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
+          .area_request = AreaEmitterRequestBatch,
           .environment = SampleEnvironmentBatch,
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,

@@ -9,7 +9,8 @@ namespace ptlab::simd {
 /// The SIMD table: intersect8 / occluded8 run simd::Intersect8 / simd::Occluded8 on `bvh8`
 /// (each with its default options), sobol2d / sobol1d the 8-wide Sobol' batches (simd/sampler8.h),
 /// bsdf simd::ShadeBatch (simd/shade8.h), splat simd::SplatSamples (simd/splat8.h),
-/// area_light simd::SampleAreaLightBatch (simd/emitter8.h), interaction
+/// area_light simd::SampleAreaLightBatch (simd/emitter8.h), area_request
+/// simd::AreaEmitterRequestBatch (simd/area_request8.h), interaction
 /// simd::MakeInteractionBatch (simd/interaction8.h).
 /// `bvh8` must outlive the table; `name` is the Highway target (Traverse8TargetName).
 /// Its oracle: OracleWavefrontKernels on the binary Bvh that `bvh8` was collapsed from.

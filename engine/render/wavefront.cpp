@@ -21,7 +21,6 @@
 namespace ptlab {
 namespace {
 
-using integrator::AreaEmitterSampleRequest;
 using integrator::DrawBsdfNumbers;
 using integrator::Emitted;
 using integrator::EmitterPdf;
@@ -410,7 +409,11 @@ class alignas(kColumnAlignment) Wavefront {
     // when it traces): no request struct per row. The columns only grow.
     n_requests_ = 0;
     GrowColumns(emitter_rows, &request_traced_, &request_contribution_);
-    area_.Clear(emitter_rows);
+    uint32_t area_rows[EmitterColumns::kGroups] = {};
+    if (rules_.nee)
+      for (int t = 0; t < EmitterColumns::kGroups; ++t)
+        area_rows[t] = goes_on_tags_[t] * uint32_t(n_light);
+    area_.Clear(emitter_rows, area_rows);
     for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
     for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
     if (sobol_) DrawVertexNumbers(depth);
@@ -447,7 +450,7 @@ class alignas(kColumnAlignment) Wavefront {
           if (!(pick_pmf > 0)) continue;
           switch (emitter.tag()) {
             case EmitterTag::kArea:
-              area_.Push(request, uint32_t(q), emitter.index(), pick_pmf, its.p, u);
+              area_.Push(request, uint32_t(q), its.material, emitter.index(), pick_pmf, its.p, u);
               break;
             case EmitterTag::kEnvironment:
               environment_[emitter.index()].Push(request, uint32_t(q), pick_pmf, u);
@@ -512,28 +515,47 @@ class alignas(kColumnAlignment) Wavefront {
     contribution.b = req.contribution.b;
   }
 
-  // The emitter stage: the kernel table's area_light slot over the wave's area-light picks,
-  // then each pick's request (shadow ray, contribution) as PrepareEmitterSample finishes it.
+  // The emitter stage: per material tag, the kernel table's area_light slot over the tag's
+  // area-light picks, then its area_request slot (shadow ray, contribution: PrepareEmitterSample's
+  // finish); then, in request order, each traced request's row and shadow ray (StoreRequest's).
   void SampleAreaLights() {
     EmitterColumns& a = area_;
     const size_t n = a.size();
     if (n == 0) return;
-    const AreaLightBatchInputs in{a.light.data(), a.ref_x.data(), a.ref_y.data(),
-                                  a.ref_z.data(), a.u_x.data(),   a.u_y.data()};
-    const AreaLightBatchOutputs out{a.p_x.data(),  a.p_y.data(),  a.p_z.data(),  a.n_x.data(),
-                                    a.n_y.data(),  a.n_z.data(),  a.ng_x.data(), a.ng_y.data(),
-                                    a.ng_z.data(), a.pdf.data()};
-    kernels_->area_light(*scene_, scene_->integrator.triangle_sampling, n, in, out);
-    for (size_t c = 0; c < n; ++c) {
-      AreaLightSample ls;
-      ls.p = {a.p_x[c], a.p_y[c], a.p_z[c]};
-      ls.n = {a.n_x[c], a.n_y[c], a.n_z[c]};
-      ls.ng = {a.ng_x[c], a.ng_y[c], a.ng_z[c]};
-      ls.pdf = a.pdf[c];
-      ls.radiance = scene_->area_lights.radiance[a.light[c]];
-      const size_t q = a.entry[c];
-      StoreRequest(a.request[c], AreaEmitterSampleRequest(*scene_, its_[q], wo_[q], rules_.mis,
-                                                          ls, a.pick_pmf[c]));
+    for (int t = 0; t < kMaterialTagCount; ++t) {
+      const size_t b = a.begin[t], count = a.next[t] - b;
+      if (count == 0) continue;
+      const AreaLightBatchInputs in{a.light.data() + b, a.ref_x.data() + b, a.ref_y.data() + b,
+                                    a.ref_z.data() + b, a.u_x.data() + b,   a.u_y.data() + b};
+      const AreaLightBatchOutputs out{a.p_x.data() + b,  a.p_y.data() + b,  a.p_z.data() + b,
+                                      a.n_x.data() + b,  a.n_y.data() + b,  a.n_z.data() + b,
+                                      a.ng_x.data() + b, a.ng_y.data() + b, a.ng_z.data() + b,
+                                      a.pdf.data() + b};
+      kernels_->area_light(*scene_, scene_->integrator.triangle_sampling, count, in, out);
+      const AreaRequestInputs request_in{
+          its_.data(),           wo_.data(),        a.entry.data() + b, a.light.data() + b,
+          a.pick_pmf.data() + b, a.p_x.data() + b,  a.p_y.data() + b,   a.p_z.data() + b,
+          a.n_x.data() + b,      a.n_y.data() + b,  a.n_z.data() + b,   a.ng_x.data() + b,
+          a.ng_y.data() + b,     a.ng_z.data() + b, a.pdf.data() + b};
+      const AreaRequestOutputs request_out{a.traced.data() + b, a.o_x.data() + b, a.o_y.data() + b,
+                                           a.o_z.data() + b,    a.d_x.data() + b, a.d_y.data() + b,
+                                           a.d_z.data() + b,    a.r.data() + b,   a.g.data() + b,
+                                           a.b.data() + b};
+      kernels_->area_request(*scene_, static_cast<MaterialTag>(t), rules_.mis, count, request_in,
+                             request_out);
+    }
+    // Rows of no material: BsdfEval is 0, nothing traces.
+    for (uint32_t c = a.begin[kMaterialTagCount]; c < a.next[kMaterialTagCount]; ++c)
+      a.traced[c] = 0;
+    for (size_t row = 0; row < n; ++row) {
+      const uint32_t c = a.slot[row];
+      if (!a.traced[c]) continue;
+      const uint32_t r = a.request[c];
+      request_traced_[r] = 1;
+      shadows_.Push(Ray{{a.o_x[c], a.o_y[c], a.o_z[c]}, {a.d_x[c], a.d_y[c], a.d_z[c]}, 0.0f, 1.0f},
+                    r);
+      Color3f& contribution = request_contribution_[r];
+      contribution.r = a.r[c], contribution.g = a.g[c], contribution.b = a.b[c];
     }
   }
 
@@ -774,34 +796,48 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
-  /// The emitter stage's SoA columns, one row per emitter sample that picked an area light (in
-  /// request order): its request, queue entry (for the shading point), light, pick
-  /// probability, reference point and numbers (inputs); the light sample (outputs, written by
-  /// the area_light slot).
+  /// The emitter stage's SoA columns, one row per emitter sample that picked an area light,
+  /// grouped by the material tag of its shading point as BsdfColumns is (a tag's rows are
+  /// contiguous slots [begin[t], next[t]), one batch for the area_light and area_request slots;
+  /// slot[row] is the slot of the row-th one in request order; the groups are sized by the
+  /// entries that go on times the emitter samples per vertex). Per slot: its request, queue
+  /// entry (for the shading point), light, pick probability, reference point and numbers
+  /// (inputs); the light sample (written by the area_light slot); the request: traced flag,
+  /// shadow ray and contribution (written by the area_request slot).
   struct EmitterColumns {
-    std::vector<uint32_t> request, entry, light;
+    std::vector<uint32_t> request, entry, light, slot;
     std::vector<float> pick_pmf;
     AlignedVector<float> ref_x, ref_y, ref_z, u_x, u_y;
     AlignedVector<float> p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
+    std::vector<uint8_t> traced;
+    AlignedVector<float> o_x, o_y, o_z, d_x, d_y, d_z, r, g, b;
+    static constexpr int kGroups = BsdfColumns::kGroups;
+    uint32_t begin[kGroups] = {}, next[kGroups] = {};
     size_t rows = 0;
 
     size_t size() const { return rows; }
     size_t Bytes() const {
-      return VectorsBytes(request, entry, light, pick_pmf, ref_x, ref_y, ref_z, u_x, u_y, p_x, p_y,
-                          p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf);
+      return VectorsBytes(request, entry, light, slot, pick_pmf, ref_x, ref_y, ref_z, u_x, u_y, p_x,
+                          p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf, traced, o_x, o_y, o_z,
+                          d_x, d_y, d_z, r, g, b);
     }
     /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the
     /// rows are written in place, which keeps the per-sample loop free of push_back calls).
-    /// The columns only grow, so a wave sizes them once.
-    void Clear(size_t capacity) {
+    /// The columns only grow, so a wave sizes them once. group_rows: the most rows each
+    /// group can get (they sum to at most capacity).
+    void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
       rows = 0;
-      GrowColumns(capacity, &request, &entry, &light, &pick_pmf, &ref_x, &ref_y, &ref_z, &u_x, &u_y,
-                  &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z, &pdf);
+      GrowColumns(capacity, &request, &entry, &light, &slot, &pick_pmf, &ref_x, &ref_y, &ref_z,
+                  &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z, &pdf);
+      GrowColumns(capacity, &traced, &o_x, &o_y, &o_z, &d_x, &d_y, &d_z, &r, &g, &b);
+      uint32_t at = 0;
+      for (int t = 0; t < kGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
     }
-    void Push(uint32_t r, uint32_t queue_entry, uint32_t light_row, float pmf, const Vec3f& ref,
-              const Vec2f& u) {
-      const size_t c = rows++;
-      request[c] = r, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
+    void Push(uint32_t req, uint32_t queue_entry, MaterialRef material, uint32_t light_row,
+              float pmf, const Vec3f& ref, const Vec2f& u) {
+      const uint32_t c = next[BsdfColumns::Group(material)]++;
+      slot[rows++] = c;
+      request[c] = req, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
       ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
     }
   };
@@ -969,6 +1005,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
+          .area_request = AreaEmitterRequestBatch,
           .environment = SampleEnvironmentBatch,
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,

@@ -12,6 +12,7 @@
 #include "engine/light/area_light.h"
 #include "engine/light/distant_disk_batch.h"
 #include "engine/light/environment_batch.h"
+#include "engine/render/area_request_batch.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
@@ -70,12 +71,24 @@ struct WavefrontKernels {
   void (*splat)(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) = nullptr;
 
   // Emitter stage: the wave's area-light samples (every emitter sample whose pick is an area
-  // light) as one batch over SoA columns (engine/light/area_light.h); the wavefront finishes
-  // each row with integrator::AreaEmitterSampleRequest (shadow ray, BSDF, MIS weight). Oracle:
-  // ptlab::SampleAreaLightBatch (SampleAreaLight per row); SIMD: simd::SampleAreaLightBatch,
-  // bit-identical (simd/emitter8.h).
+  // light) as batches over SoA columns (engine/light/area_light.h), one call per group of rows
+  // of area_request below (the kernel does not care which rows it gets); the area_request slot
+  // finishes them. Oracle: ptlab::SampleAreaLightBatch (SampleAreaLight per row); SIMD:
+  // simd::SampleAreaLightBatch, bit-identical (simd/emitter8.h).
   void (*area_light)(const Scene& scene, TriangleSampling mode, size_t n,
                      const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) = nullptr;
+
+  // Emitter stage, the area-light samples' finish: shadow ray, BSDF evaluation, MIS weight
+  // (when `mis`) and contribution of each sample (engine/render/area_request_batch.h), one
+  // call per material tag on the rows whose shading point has that tag (the wavefront writes
+  // each area-light row into its tag's group of rows, as for the bsdf slot; the shading points
+  // are read where the wavefront keeps them, by queue entry); the wavefront then queues each
+  // traced row's shadow ray. Oracle: ptlab::AreaEmitterRequestBatch
+  // (integrator::AreaEmitterSampleRequest per row, so the oracle table keeps the scalar path's
+  // bits); SIMD: simd::AreaEmitterRequestBatch, shadow rays bit-identical and contributions
+  // within simd::ShadeBatch's evaluation contract (simd/area_request8.h).
+  void (*area_request)(const Scene& scene, MaterialTag tag, bool mis, size_t n,
+                       const AreaRequestInputs& in, const AreaRequestOutputs& out) = nullptr;
 
   // Emitter stage, environment maps: the wave's samples of one map (every emitter sample whose
   // pick is environment map `map`) as one batch over SoA columns (engine/light/
@@ -121,8 +134,9 @@ struct WavefrontKernels {
   // (point, and the CS184 directional and spot lights, engine/light/delta_light.h). Their
   // "sample" draws no numbers: the light's one position or direction and a falloff, a handful
   // of operations per row, less than a batch's gather into columns and scatter back would cost.
-  // Also scalar in every table: the emitter requests' finish (BSDF evaluation, MIS weight,
-  // shadow-ray setup; integrator::AreaEmitterSampleRequest / InfiniteEmitterSampleRequest).
+  // Also scalar in every table: the finish of the infinite and delta lights' emitter samples
+  // (BSDF evaluation, MIS weight, shadow-ray setup; integrator::InfiniteEmitterSampleRequest,
+  // PrepareEmitterSampleFrom); the area lights' is the area_request slot.
 
   /// For logs: "scalar-oracle" or the Highway target the SIMD kernels dispatch to.
   const char* name = "";

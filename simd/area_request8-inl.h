@@ -1,0 +1,233 @@
+// Per-target kernel of simd/area_request8.h (re-included once per Highway target):
+// integrator::AreaEmitterSampleRequest's operations in its order, eight rows per vector, with
+// the BSDF evaluated by simd/shade8-inl.h's kernel of the batch's material.
+
+#if defined(PTLAB_SIMD_AREA_REQUEST8_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef PTLAB_SIMD_AREA_REQUEST8_INL_H_
+#undef PTLAB_SIMD_AREA_REQUEST8_INL_H_
+#else
+#define PTLAB_SIMD_AREA_REQUEST8_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/bsdf/bsdf.h"
+#include "engine/render/area_request_batch.h"
+#include "engine/render/interaction.h"
+#include "engine/scene/scene.h"
+#include "hwy/highway.h"
+#include "simd/shade8-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace ptlab::simd {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// Rows of one pass of the kernel: geometry for all of them, then the BSDF kernel over them as
+/// one batch, then the contributions. Its columns live on the stack (a few KiB).
+inline constexpr size_t kAreaRequestChunk = 64;
+
+/// A chunk's columns between the passes, row j = row (chunk start + j) of the batch.
+struct AreaRequestChunk {
+  HWY_ALIGN uint32_t index[kAreaRequestChunk];  // material row
+  HWY_ALIGN float wo_x[kAreaRequestChunk], wo_y[kAreaRequestChunk], wo_z[kAreaRequestChunk];
+  HWY_ALIGN float wl_x[kAreaRequestChunk], wl_y[kAreaRequestChunk], wl_z[kAreaRequestChunk];
+  HWY_ALIGN float f_r[kAreaRequestChunk], f_g[kAreaRequestChunk], f_b[kAreaRequestChunk];
+  HWY_ALIGN float pdf_bsdf[kAreaRequestChunk];
+  HWY_ALIGN float pdf_light[kAreaRequestChunk];  // ls.pdf · pick_pmf
+  HWY_ALIGN float valid[kAreaRequestChunk];      // 1: the geometry allows a sample
+  HWY_ALIGN float o_x[kAreaRequestChunk], o_y[kAreaRequestChunk], o_z[kAreaRequestChunk];
+  HWY_ALIGN float d_x[kAreaRequestChunk], d_y[kAreaRequestChunk], d_z[kAreaRequestChunk];
+};
+
+// Float offsets of the SurfaceInteraction fields the kernel gathers (the AoS array is read as
+// floats; the material ref as int32).
+inline constexpr int32_t kItsFloats = int32_t(sizeof(SurfaceInteraction) / sizeof(float));
+static_assert(sizeof(SurfaceInteraction) % sizeof(float) == 0);
+static_assert(sizeof(Vec3f) == 3 * sizeof(float) && sizeof(Color3f) == 3 * sizeof(float));
+inline constexpr int32_t kItsP = int32_t(offsetof(SurfaceInteraction, p) / sizeof(float));
+inline constexpr int32_t kItsNg = int32_t(offsetof(SurfaceInteraction, ng) / sizeof(float));
+inline constexpr int32_t kItsFrame = int32_t(offsetof(SurfaceInteraction, frame) / sizeof(float));
+inline constexpr int32_t kItsMaterial =
+    int32_t(offsetof(SurfaceInteraction, material) / sizeof(float));
+static_assert(sizeof(Frame) == 9 * sizeof(float) && sizeof(MaterialRef) == sizeof(uint32_t));
+
+/// OffsetRayOrigin (engine/bvh/ray_offset.h) for one coordinate: the integer step of the bit
+/// pattern (away from zero for negative p), or the fixed step within 1/32 of zero.
+HWY_INLINE V8 OffsetCoordinate(D8 d, V8 p, V8 ng) {
+  const hn::RebindToSigned<D8> di;
+  const auto of = hn::ConvertTo(di, hn::Mul(hn::Set(d, 256.0f), ng));
+  const auto step = hn::IfThenElse(hn::RebindMask(di, hn::Lt(p, hn::Zero(d))), hn::Neg(of), of);
+  const V8 p_i = hn::BitCast(d, hn::Add(hn::BitCast(di, p), step));
+  const V8 near_zero = hn::Add(p, hn::Mul(hn::Set(d, 1.0f / 65536.0f), ng));
+  return hn::IfThenElse(hn::Lt(hn::Abs(p), hn::Set(d, 1.0f / 32.0f)), near_zero, p_i);
+}
+
+/// Pass 1 for rows [i, i + Lanes(d)) of the batch into rows [j, j + Lanes(d)) of the chunk: the
+/// shading point and wo gathered by queue entry, wi and its validity, wi in the local frame
+/// (a valid unit direction, +z, where there is no sample: the BSDF kernel then reads only
+/// finite values), the shadow ray's endpoints and the light pdf.
+HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_t j,
+                                    AreaRequestChunk* c) {
+  const D8 d;
+  const hn::RebindToSigned<D8> di;
+  const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const float* its = reinterpret_cast<const float*>(in.its);
+  const auto entry = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + i));
+  const auto row = hn::Mul(entry, hn::Set(di, kItsFloats));
+  const auto field = [&](int32_t offset) HWY_ATTR {
+    return hn::GatherIndex(d, its, hn::Add(row, hn::Set(di, offset)));
+  };
+  const V8 px = field(kItsP), py = field(kItsP + 1), pz = field(kItsP + 2);
+  const V8 ngx = field(kItsNg), ngy = field(kItsNg + 1), ngz = field(kItsNg + 2);
+  const auto material = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(in.its),
+                                        hn::Add(row, hn::Set(di, kItsMaterial)));
+  // MaterialRef::index(): the ref's low 28 bits.
+  hn::Store(hn::And(material, hn::Set(di, 0x0fffffff)), di,
+            reinterpret_cast<int32_t*>(c->index + j));
+  const float* wo = reinterpret_cast<const float*>(in.wo);
+  const auto wo_row = hn::Mul(entry, hn::Set(di, 3));
+  hn::Store(hn::GatherIndex(d, wo, wo_row), d, c->wo_x + j);
+  hn::Store(hn::GatherIndex(d, wo, hn::Add(wo_row, hn::Set(di, 1))), d, c->wo_y + j);
+  hn::Store(hn::GatherIndex(d, wo, hn::Add(wo_row, hn::Set(di, 2))), d, c->wo_z + j);
+  // wi = (ls.p - its.p) / |ls.p - its.p| (Vec3f's operator/: times the reciprocal).
+  const V8 lx = hn::LoadU(d, in.p_x + i), ly = hn::LoadU(d, in.p_y + i),
+           lz = hn::LoadU(d, in.p_z + i);
+  const V8 dx = hn::Sub(lx, px), dy = hn::Sub(ly, py), dz = hn::Sub(lz, pz);
+  const V8 dist2 = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
+  const V8 inv = hn::Div(one, hn::Sqrt(dist2));
+  const V8 wx = hn::Mul(dx, inv), wy = hn::Mul(dy, inv), wz = hn::Mul(dz, inv);
+  const V8 cos_light =
+      hn::Add(hn::Add(hn::Mul(hn::LoadU(d, in.n_x + i), wx), hn::Mul(hn::LoadU(d, in.n_y + i), wy)),
+              hn::Mul(hn::LoadU(d, in.n_z + i), wz));
+  const V8 ls_pdf = hn::LoadU(d, in.pdf + i);
+  const M8 valid =
+      hn::And(hn::And(hn::Gt(ls_pdf, zero), hn::Gt(dist2, zero)), hn::Lt(cos_light, zero));
+  hn::Store(hn::IfThenElseZero(valid, one), d, c->valid + j);
+  hn::Store(hn::Mul(ls_pdf, hn::LoadU(d, in.pick_pmf + i)), d, c->pdf_light + j);
+  // wi_local = frame.ToLocal(wi): Dot(wi, s), Dot(wi, t), Dot(wi, n).
+  V8 local[3];
+  for (int32_t k = 0; k < 3; ++k) {
+    const int32_t axis = kItsFrame + 3 * k;
+    local[k] = hn::Add(hn::Add(hn::Mul(wx, field(axis)), hn::Mul(wy, field(axis + 1))),
+                       hn::Mul(wz, field(axis + 2)));
+  }
+  hn::Store(hn::IfThenElseZero(valid, local[0]), d, c->wl_x + j);
+  hn::Store(hn::IfThenElseZero(valid, local[1]), d, c->wl_y + j);
+  hn::Store(hn::IfThenElse(valid, local[2], one), d, c->wl_z + j);
+  // The shadow ray: SpawnOrigin(its, wi) to OffsetRayOrigin(ls.p, ±ls.ng), each offset to the
+  // side wi leaves or arrives on.
+  const M8 leave_front =
+      hn::Ge(hn::Add(hn::Add(hn::Mul(ngx, wx), hn::Mul(ngy, wy)), hn::Mul(ngz, wz)), zero);
+  const V8 ox = OffsetCoordinate(d, px, hn::IfThenElse(leave_front, ngx, hn::Neg(ngx)));
+  const V8 oy = OffsetCoordinate(d, py, hn::IfThenElse(leave_front, ngy, hn::Neg(ngy)));
+  const V8 oz = OffsetCoordinate(d, pz, hn::IfThenElse(leave_front, ngz, hn::Neg(ngz)));
+  const V8 lgx = hn::LoadU(d, in.ng_x + i), lgy = hn::LoadU(d, in.ng_y + i),
+           lgz = hn::LoadU(d, in.ng_z + i);
+  const M8 arrive_front =
+      hn::Le(hn::Add(hn::Add(hn::Mul(lgx, wx), hn::Mul(lgy, wy)), hn::Mul(lgz, wz)), zero);
+  const V8 tx = OffsetCoordinate(d, lx, hn::IfThenElse(arrive_front, lgx, hn::Neg(lgx)));
+  const V8 ty = OffsetCoordinate(d, ly, hn::IfThenElse(arrive_front, lgy, hn::Neg(lgy)));
+  const V8 tz = OffsetCoordinate(d, lz, hn::IfThenElse(arrive_front, lgz, hn::Neg(lgz)));
+  hn::Store(ox, d, c->o_x + j), hn::Store(oy, d, c->o_y + j), hn::Store(oz, d, c->o_z + j);
+  hn::Store(hn::Sub(tx, ox), d, c->d_x + j), hn::Store(hn::Sub(ty, oy), d, c->d_y + j);
+  hn::Store(hn::Sub(tz, oz), d, c->d_z + j);
+}
+
+/// Pass 3 for rows [j, j + Lanes(d)) of the chunk into rows [i, ...) of the outputs: the MIS
+/// weight (LightSampleContribution's MisWeight), the contribution f·Le·(|cos θi|·w / pdf_light)
+/// and the traced flag (valid, f not black, contribution finite); rows not traced are 0.
+HWY_INLINE void AreaRequestFinish(const Scene& scene, bool mis, bool power,
+                                  const AreaRequestInputs& in, const AreaRequestOutputs& out,
+                                  size_t i, size_t j, const AreaRequestChunk& c) {
+  const D8 d;
+  const hn::RebindToSigned<D8> di;
+  const V8 zero = hn::Zero(d);
+  const V8 fr = hn::Load(d, c.f_r + j), fg = hn::Load(d, c.f_g + j), fb = hn::Load(d, c.f_b + j);
+  const V8 pdf_light = hn::Load(d, c.pdf_light + j);
+  V8 weight = hn::Set(d, 1.0f);
+  if (mis) {
+    V8 a = pdf_light, b = hn::Load(d, c.pdf_bsdf + j);
+    if (power) a = hn::Mul(a, a), b = hn::Mul(b, b);
+    const V8 sum = hn::Add(a, b);
+    weight = hn::IfThenElseZero(hn::Gt(sum, zero), hn::Div(a, sum));
+  }
+  const V8 z = hn::Load(d, c.wl_z + j);
+  const V8 abs_cos = hn::IfThenElse(hn::Lt(z, zero), hn::Neg(z), z);  // AbsCosTheta, -0 kept
+  const V8 scale = hn::Div(hn::Mul(abs_cos, weight), pdf_light);
+  const float* radiance = reinterpret_cast<const float*>(scene.area_lights.radiance.data());
+  const auto light = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.light + i));
+  const auto light_row = hn::Mul(light, hn::Set(di, 3));
+  const V8 cr = hn::Mul(hn::Mul(fr, hn::GatherIndex(d, radiance, light_row)), scale);
+  const V8 cg =
+      hn::Mul(hn::Mul(fg, hn::GatherIndex(d, radiance, hn::Add(light_row, hn::Set(di, 1)))), scale);
+  const V8 cb =
+      hn::Mul(hn::Mul(fb, hn::GatherIndex(d, radiance, hn::Add(light_row, hn::Set(di, 2)))), scale);
+  const M8 black = hn::And(hn::Eq(fr, zero), hn::And(hn::Eq(fg, zero), hn::Eq(fb, zero)));
+  const M8 traced =
+      hn::AndNot(black, hn::And(hn::Gt(hn::Load(d, c.valid + j), zero), AllFinite3(d, cr, cg, cb)));
+  hn::StoreU(hn::IfThenElseZero(traced, cr), d, out.r + i);
+  hn::StoreU(hn::IfThenElseZero(traced, cg), d, out.g + i);
+  hn::StoreU(hn::IfThenElseZero(traced, cb), d, out.b + i);
+  hn::StoreU(hn::IfThenElseZero(traced, hn::Load(d, c.o_x + j)), d, out.o_x + i);
+  hn::StoreU(hn::IfThenElseZero(traced, hn::Load(d, c.o_y + j)), d, out.o_y + i);
+  hn::StoreU(hn::IfThenElseZero(traced, hn::Load(d, c.o_z + j)), d, out.o_z + i);
+  hn::StoreU(hn::IfThenElseZero(traced, hn::Load(d, c.d_x + j)), d, out.d_x + i);
+  hn::StoreU(hn::IfThenElseZero(traced, hn::Load(d, c.d_y + j)), d, out.d_y + i);
+  hn::StoreU(hn::IfThenElseZero(traced, hn::Load(d, c.d_z + j)), d, out.d_z + i);
+  uint8_t bits[8] = {};
+  hn::StoreMaskBits(d, traced, bits);
+  for (size_t k = 0; k < hn::Lanes(d); ++k) out.traced[i + k] = uint8_t((bits[0] >> k) & 1u);
+}
+
+inline void AreaEmitterRequestBatchKernel(const Scene& scene, MaterialTag tag, bool mis, size_t n,
+                                          const AreaRequestInputs& in,
+                                          const AreaRequestOutputs& out) {
+  const D8 d;
+  const size_t lanes = hn::Lanes(d);
+  size_t i = 0;
+  // Delta materials: f = 0 for every direction, no row traces (the oracle's BsdfEval).
+  if (IsDeltaMaterial(tag)) {
+    const V8 zero = hn::Zero(d);
+    for (; i + lanes <= n; i += lanes) {
+      for (float* col : {out.o_x, out.o_y, out.o_z, out.d_x, out.d_y, out.d_z, out.r, out.g, out.b})
+        hn::StoreU(zero, d, col + i);
+      for (size_t k = 0; k < lanes; ++k) out.traced[i + k] = 0;
+    }
+  }
+  const bool power = scene.integrator.power_heuristic;
+  AreaRequestChunk c;
+  while (i + lanes <= n) {
+    const size_t rows = std::min(kAreaRequestChunk, (n - i) / lanes * lanes);
+    for (size_t j = 0; j < rows; j += lanes) AreaRequestGeometry(in, i + j, j, &c);
+    // The BSDF at (wo, wi_local), evaluation only: f, and its pdf for the MIS weight.
+    ShadeInputs bsdf_in;
+    bsdf_in.wo = {c.wo_x, c.wo_y, c.wo_z};
+    bsdf_in.wl = {c.wl_x, c.wl_y, c.wl_z};
+    ShadeOutputs bsdf_out;
+    bsdf_out.f = {c.f_r, c.f_g, c.f_b};
+    bsdf_out.pdf_l = c.pdf_bsdf;
+    ShadeBatchKernel(scene.materials, tag, c.index, rows, bsdf_in, bsdf_out);
+    for (size_t j = 0; j < rows; j += lanes)
+      AreaRequestFinish(scene, mis, power, in, out, i + j, j, c);
+    i += rows;
+  }
+  // The rows after the last full vector: the oracle row by row, then, as above, no row with a
+  // contribution that is not finite.
+  if (i == n) return;
+  ptlab::AreaEmitterRequestBatch(scene, tag, mis, n - i, in.From(i), out.From(i));
+  for (; i < n; ++i) {
+    if (std::isfinite(out.r[i]) && std::isfinite(out.g[i]) && std::isfinite(out.b[i])) continue;
+    SetAreaRequestRow(out, i, integrator::EmitterSampleRequest{});
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ptlab::simd
+HWY_AFTER_NAMESPACE();
+
+#endif  // PTLAB_SIMD_AREA_REQUEST8_INL_H_
