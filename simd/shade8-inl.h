@@ -148,17 +148,23 @@ HWY_INLINE V8 BeckmannD(D8 d, V8 alpha, V8 hx, V8 hy, V8 hz) {
   return hn::IfThenElseZero(hn::And(hn::Gt(hz, zero), hn::Gt(e, zero)), dv);
 }
 
-/// BeckmannEvalPdf (beckmann.h); alpha already clamped. Returns D, sets *pdf.
-HWY_INLINE V8 BeckmannEvalPdf(D8 d, V8 alpha, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy, V8 iz, V8* pdf) {
+/// BeckmannEvalPdf (beckmann.h) given dv = BeckmannD(alpha, h) of h = wo + wi (the sum as
+/// BeckmannEvalPdf forms it). Returns D, sets *pdf.
+HWY_INLINE V8 BeckmannEvalPdfOfD(D8 d, V8 dv, V8 ox, V8 oy, V8 oz, V8 iz, V8 hx, V8 hy, V8 hz,
+                                 V8* pdf) {
   const V8 zero = hn::Zero(d);
-  const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
-  const V8 dv = BeckmannD(d, alpha, hx, hy, hz);
   const V8 wo_h = RoundedDot(d, ox, oy, oz, hx, hy, hz);
   const V8 p = hn::Div(hn::Mul(dv, hz), hn::Mul(hn::Set(d, 4.0f), wo_h));
   const M8 ok = hn::And(hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)), hn::Gt(wo_h, zero)),
                         hn::And(hn::Gt(dv, zero), hn::And(hn::IsFinite(dv), hn::IsFinite(p))));
   *pdf = hn::IfThenElseZero(ok, p);
   return hn::IfThenElseZero(ok, dv);
+}
+
+/// BeckmannEvalPdf (beckmann.h); alpha already clamped. Returns D, sets *pdf.
+HWY_INLINE V8 BeckmannEvalPdf(D8 d, V8 alpha, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy, V8 iz, V8* pdf) {
+  const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
+  return BeckmannEvalPdfOfD(d, BeckmannD(d, alpha, hx, hy, hz), ox, oy, oz, iz, hx, hy, hz, pdf);
 }
 
 /// BeckmannG1 (beckmann.h); alpha already clamped, v.z > 0 assumed by the caller's mask.
@@ -480,13 +486,16 @@ struct ConductorLanes {
   HWY_ALIGN float alpha[8], eta_r[8], eta_g[8], eta_b[8], k_r[8], k_g[8], k_b[8];
 };
 
-/// ConductorEval (engine/bsdf/conductor.h) at (wo, wi); the Fresnel factor is evaluated
-/// per channel.
-HWY_INLINE void ConductorEval(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy,
-                              V8 iz, V8* fr, V8* fg, V8* fb) {
+/// ConductorEval (engine/bsdf/conductor.h) at (wo, wi) and (returned) ConductorPdf, the
+/// Beckmann D of h = wo + wi computed once for both; the Fresnel factor is evaluated per
+/// channel.
+HWY_INLINE V8 ConductorEvalPdf(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy,
+                               V8 iz, V8* fr, V8* fg, V8* fb) {
   const V8 zero = hn::Zero(d), alpha = hn::Load(d, c.alpha);
   const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
   const V8 dv = BeckmannD(d, alpha, hx, hy, hz);
+  V8 pdf;
+  BeckmannEvalPdfOfD(d, dv, ox, oy, oz, iz, hx, hy, hz, &pdf);
   const V8 n2 = hn::Add(hn::Add(hn::Mul(hx, hx), hn::Mul(hy, hy)), hn::Mul(hz, hz));
   const V8 wi_h = hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2));
   const V8 g =
@@ -500,6 +509,7 @@ HWY_INLINE void ConductorEval(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 oz
   *fr = hn::IfThenElseZero(ok, r);
   *fg = hn::IfThenElseZero(ok, gg);
   *fb = hn::IfThenElseZero(ok, bb);
+  return pdf;
 }
 
 /// ConductorEval / ConductorPdf / ConductorSample (engine/bsdf/conductor.h).
@@ -520,9 +530,8 @@ inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n,
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
     if (eval) {
       const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
-      V8 fr, fg, fb, pdf_l;
-      ConductorEval(d, c, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
-      BeckmannEvalPdf(d, alpha, ox, oy, oz, lx, ly, lz, &pdf_l);
+      V8 fr, fg, fb;
+      const V8 pdf_l = ConductorEvalPdf(d, c, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
       StoreEval(d, b, i, fr, fg, fb, pdf_l);
     }
     if (!sample) return;
@@ -557,14 +566,20 @@ struct RoughPlasticLanes {
   HWY_ALIGN float alpha[8], eta[8], kd_r[8], kd_g[8], kd_b[8], ks[8];
 };
 
-/// RoughPlasticEval (engine/bsdf/rough_plastic.h).
-HWY_INLINE void RoughPlasticEval(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy, V8 oz, V8 ix,
-                                 V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
+/// RoughPlasticEval and (returned) RoughPlasticPdf (engine/bsdf/rough_plastic.h:
+/// RoughPlasticEvalPdf), the Beckmann D of h = wo + wi computed once for both.
+HWY_INLINE V8 RoughPlasticEvalPdf(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy, V8 oz, V8 ix,
+                                  V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
   const V8 alpha = hn::Load(d, p.alpha), eta = hn::Load(d, p.eta), kd_r = hn::Load(d, p.kd_r),
            kd_g = hn::Load(d, p.kd_g), kd_b = hn::Load(d, p.kd_b), ks = hn::Load(d, p.ks);
   const V8 zero = hn::Zero(d), inv_pi = hn::Set(d, kInvPi);
   const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
   const V8 dv = BeckmannD(d, alpha, hx, hy, hz);
+  // RoughPlasticPdf: ks BeckmannReflectionPdf + (1 − ks) cos θi / π.
+  V8 spec_pdf;
+  BeckmannEvalPdfOfD(d, dv, ox, oy, oz, iz, hx, hy, hz, &spec_pdf);
+  const V8 pdf =
+      hn::Add(hn::Mul(ks, spec_pdf), hn::Mul(hn::Sub(hn::Set(d, 1.0f), ks), hn::Mul(iz, inv_pi)));
   const V8 n2 = hn::Add(hn::Add(hn::Mul(hx, hx), hn::Mul(hy, hy)), hn::Mul(hz, hz));
   V8 cos_t;
   const V8 fres = FresnelDielectric(d, hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2)), eta, &cos_t);
@@ -577,18 +592,7 @@ HWY_INLINE void RoughPlasticEval(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy,
   *fr = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_r, inv_pi), spec));
   *fg = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_g, inv_pi), spec));
   *fb = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_b, inv_pi), spec));
-}
-
-/// RoughPlasticPdf (engine/bsdf/rough_plastic.h).
-HWY_INLINE V8 RoughPlasticPdf(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy,
-                              V8 iz) {
-  const V8 alpha = hn::Load(d, p.alpha), ks = hn::Load(d, p.ks);
-  const V8 zero = hn::Zero(d);
-  V8 spec_pdf;
-  BeckmannEvalPdf(d, alpha, ox, oy, oz, ix, iy, iz, &spec_pdf);
-  const V8 pdf = hn::Add(hn::Mul(ks, spec_pdf),
-                         hn::Mul(hn::Sub(hn::Set(d, 1.0f), ks), hn::Mul(iz, hn::Set(d, kInvPi))));
-  return hn::IfThenElseZero(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)), pdf);
+  return hn::IfThenElseZero(both, pdf);
 }
 
 /// RoughPlasticEval / RoughPlasticPdf / RoughPlasticSample (engine/bsdf/rough_plastic.h).
@@ -611,8 +615,8 @@ inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, siz
     if (eval) {
       const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
       V8 fr, fg, fb;
-      RoughPlasticEval(d, p, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
-      StoreEval(d, b, i, fr, fg, fb, RoughPlasticPdf(d, p, ox, oy, oz, lx, ly, lz));
+      const V8 pdf_l = RoughPlasticEvalPdf(d, p, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      StoreEval(d, b, i, fr, fg, fb, pdf_l);
     }
     if (!sample) return;
     const V8 u_lobe = In(d, b, kULobe, i), ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
@@ -630,9 +634,8 @@ inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, siz
       ix = hn::IfThenElse(spec, ix, cx), iy = hn::IfThenElse(spec, iy, cy);
       iz = hn::IfThenElse(spec, iz, cz);
     }
-    const V8 pdf = RoughPlasticPdf(d, p, ox, oy, oz, ix, iy, iz);
     V8 fr, fg, fb;
-    RoughPlasticEval(d, p, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
+    const V8 pdf = RoughPlasticEvalPdf(d, p, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
     const V8 cos_over_pdf = hn::Div(iz, pdf);
     const V8 wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
              wb = hn::Mul(fb, cos_over_pdf);
