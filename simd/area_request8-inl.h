@@ -27,21 +27,32 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Rows of one pass of the kernel: geometry for all of them, then the BSDF kernel over them as
-/// one batch, then the contributions. Its columns live on the stack (a few KiB).
+/// Rows of one pass of the kernel: geometry for all of them, then the BSDF kernel as one batch
+/// over those whose geometry allows a sample, then the contributions. Its columns live on the
+/// stack (a few KiB).
 inline constexpr size_t kAreaRequestChunk = 64;
+/// Room for a full vector stored at the last compacted row.
+inline constexpr size_t kAreaRequestRoom = kAreaRequestChunk + 8;
 
-/// A chunk's columns between the passes, row j = row (chunk start + j) of the batch.
+/// A chunk's columns between the passes. Per row j = row (chunk start + j) of the batch: the
+/// BSDF's f and pdf (0 where the geometry allows no sample), |cos θi|'s wi_local.z, the light
+/// pdf, the validity and the shadow ray. Per compacted row k (the valid rows, in order): the
+/// row `row`, the BSDF kernel's inputs (material row, wo, wi_local) and outputs.
 struct AreaRequestChunk {
-  HWY_ALIGN uint32_t index[kAreaRequestChunk];  // material row
-  HWY_ALIGN float wo_x[kAreaRequestChunk], wo_y[kAreaRequestChunk], wo_z[kAreaRequestChunk];
-  HWY_ALIGN float wl_x[kAreaRequestChunk], wl_y[kAreaRequestChunk], wl_z[kAreaRequestChunk];
   HWY_ALIGN float f_r[kAreaRequestChunk], f_g[kAreaRequestChunk], f_b[kAreaRequestChunk];
   HWY_ALIGN float pdf_bsdf[kAreaRequestChunk];
+  HWY_ALIGN float cos_z[kAreaRequestChunk];      // wi_local.z
   HWY_ALIGN float pdf_light[kAreaRequestChunk];  // ls.pdf · pick_pmf
   HWY_ALIGN float valid[kAreaRequestChunk];      // 1: the geometry allows a sample
   HWY_ALIGN float o_x[kAreaRequestChunk], o_y[kAreaRequestChunk], o_z[kAreaRequestChunk];
   HWY_ALIGN float d_x[kAreaRequestChunk], d_y[kAreaRequestChunk], d_z[kAreaRequestChunk];
+  size_t rows = 0;  // compacted rows
+  HWY_ALIGN int32_t row[kAreaRequestRoom];
+  HWY_ALIGN uint32_t index[kAreaRequestRoom];
+  HWY_ALIGN float wo_x[kAreaRequestRoom], wo_y[kAreaRequestRoom], wo_z[kAreaRequestRoom];
+  HWY_ALIGN float wl_x[kAreaRequestRoom], wl_y[kAreaRequestRoom], wl_z[kAreaRequestRoom];
+  HWY_ALIGN float e_r[kAreaRequestRoom], e_g[kAreaRequestRoom], e_b[kAreaRequestRoom];
+  HWY_ALIGN float e_pdf[kAreaRequestRoom];
 };
 
 // Float offsets of the SurfaceInteraction fields the kernel gathers (the AoS array is read as
@@ -49,9 +60,9 @@ struct AreaRequestChunk {
 inline constexpr int32_t kItsFloats = int32_t(sizeof(SurfaceInteraction) / sizeof(float));
 static_assert(sizeof(SurfaceInteraction) % sizeof(float) == 0);
 static_assert(sizeof(Vec3f) == 3 * sizeof(float) && sizeof(Color3f) == 3 * sizeof(float));
-inline constexpr int32_t kItsP = int32_t(offsetof(SurfaceInteraction, p) / sizeof(float));
 inline constexpr int32_t kItsNg = int32_t(offsetof(SurfaceInteraction, ng) / sizeof(float));
-inline constexpr int32_t kItsFrame = int32_t(offsetof(SurfaceInteraction, frame) / sizeof(float));
+inline constexpr int32_t kItsFrameN =
+    int32_t((offsetof(SurfaceInteraction, frame) + offsetof(Frame, n)) / sizeof(float));
 inline constexpr int32_t kItsMaterial =
     int32_t(offsetof(SurfaceInteraction, material) / sizeof(float));
 static_assert(sizeof(Frame) == 9 * sizeof(float) && sizeof(MaterialRef) == sizeof(uint32_t));
@@ -68,9 +79,10 @@ HWY_INLINE V8 OffsetCoordinate(D8 d, V8 p, V8 ng) {
 }
 
 /// Pass 1 for rows [i, i + Lanes(d)) of the batch into rows [j, j + Lanes(d)) of the chunk: the
-/// shading point and wo gathered by queue entry, wi and its validity, wi in the local frame
-/// (a valid unit direction, +z, where there is no sample: the BSDF kernel then reads only
-/// finite values), the shadow ray's endpoints and the light pdf.
+/// shading point's ng, n and material gathered by queue entry, wi and its validity, wi in the local
+/// frame, the shadow ray's endpoints and the light pdf; f and pdf 0; the valid rows appended to the
+/// compacted rows (a BSDF evaluation for the others would be thrown away: on sphere lights,
+/// sampled uniformly by area, half the points face away).
 HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_t j,
                                     AreaRequestChunk* c) {
   const D8 d;
@@ -82,18 +94,9 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
   const auto field = [&](int32_t offset) HWY_ATTR {
     return hn::GatherIndex(d, its, hn::Add(row, hn::Set(di, offset)));
   };
-  const V8 px = field(kItsP), py = field(kItsP + 1), pz = field(kItsP + 2);
+  const V8 px = hn::LoadU(d, in.ref_x + i), py = hn::LoadU(d, in.ref_y + i),
+           pz = hn::LoadU(d, in.ref_z + i);
   const V8 ngx = field(kItsNg), ngy = field(kItsNg + 1), ngz = field(kItsNg + 2);
-  const auto material = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(in.its),
-                                        hn::Add(row, hn::Set(di, kItsMaterial)));
-  // MaterialRef::index(): the ref's low 28 bits.
-  hn::Store(hn::And(material, hn::Set(di, 0x0fffffff)), di,
-            reinterpret_cast<int32_t*>(c->index + j));
-  const float* wo = reinterpret_cast<const float*>(in.wo);
-  const auto wo_row = hn::Mul(entry, hn::Set(di, 3));
-  hn::Store(hn::GatherIndex(d, wo, wo_row), d, c->wo_x + j);
-  hn::Store(hn::GatherIndex(d, wo, hn::Add(wo_row, hn::Set(di, 1))), d, c->wo_y + j);
-  hn::Store(hn::GatherIndex(d, wo, hn::Add(wo_row, hn::Set(di, 2))), d, c->wo_z + j);
   // wi = (ls.p - its.p) / |ls.p - its.p| (Vec3f's operator/: times the reciprocal).
   const V8 lx = hn::LoadU(d, in.p_x + i), ly = hn::LoadU(d, in.p_y + i),
            lz = hn::LoadU(d, in.p_z + i);
@@ -109,16 +112,40 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
       hn::And(hn::And(hn::Gt(ls_pdf, zero), hn::Gt(dist2, zero)), hn::Lt(cos_light, zero));
   hn::Store(hn::IfThenElseZero(valid, one), d, c->valid + j);
   hn::Store(hn::Mul(ls_pdf, hn::LoadU(d, in.pick_pmf + i)), d, c->pdf_light + j);
-  // wi_local = frame.ToLocal(wi): Dot(wi, s), Dot(wi, t), Dot(wi, n).
-  V8 local[3];
-  for (int32_t k = 0; k < 3; ++k) {
-    const int32_t axis = kItsFrame + 3 * k;
-    local[k] = hn::Add(hn::Add(hn::Mul(wx, field(axis)), hn::Mul(wy, field(axis + 1))),
-                       hn::Mul(wz, field(axis + 2)));
+  for (float* col : {c->f_r, c->f_g, c->f_b, c->pdf_bsdf}) hn::Store(zero, d, col + j);
+  // wi_local = frame.ToLocal(wi): Dot(wi, s), Dot(wi, t), Dot(wi, n), the frame's s and t
+  // rebuilt from n as Frame(n) builds them (every SurfaceInteraction's frame is Frame(n)):
+  // fewer gathers than reading them.
+  const V8 nx = field(kItsFrameN), ny = field(kItsFrameN + 1), nz = field(kItsFrameN + 2);
+  const V8 sign = hn::CopySign(one, nz);
+  const V8 a = hn::Div(hn::Set(d, -1.0f), hn::Add(sign, nz));
+  const V8 b = hn::Mul(hn::Mul(nx, ny), a);
+  const V8 sx = hn::Add(one, hn::Mul(hn::Mul(hn::Mul(sign, nx), nx), a)), sy = hn::Mul(sign, b),
+           sz = hn::Mul(hn::Neg(sign), nx);
+  const V8 ty = hn::Add(sign, hn::Mul(hn::Mul(ny, ny), a)), tz = hn::Neg(ny);
+  const V8 local_x = hn::Add(hn::Add(hn::Mul(wx, sx), hn::Mul(wy, sy)), hn::Mul(wz, sz));
+  const V8 local_y = hn::Add(hn::Add(hn::Mul(wx, b), hn::Mul(wy, ty)), hn::Mul(wz, tz));
+  const V8 local_z = hn::Add(hn::Add(hn::Mul(wx, nx), hn::Mul(wy, ny)), hn::Mul(wz, nz));
+  hn::Store(hn::IfThenElseZero(valid, local_z), d, c->cos_z + j);
+  // The valid rows for the BSDF kernel: material row (MaterialRef::index(), the ref's low 28
+  // bits), wo, wi_local.
+  if (!hn::AllFalse(d, valid)) {
+    const auto valid_i = hn::RebindMask(di, valid);
+    const size_t k = c->rows;
+    const auto material = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(in.its),
+                                          hn::Add(row, hn::Set(di, kItsMaterial)));
+    hn::StoreU(hn::Compress(hn::And(material, hn::Set(di, 0x0fffffff)), valid_i), di,
+               reinterpret_cast<int32_t*>(c->index + k));
+    hn::StoreU(hn::Compress(hn::Add(hn::Iota(di, 0), hn::Set(di, int32_t(j))), valid_i), di,
+               c->row + k);
+    const auto compact = [&](V8 v, float* col)
+                             HWY_ATTR { hn::StoreU(hn::Compress(v, valid), d, col + k); };
+    compact(hn::LoadU(d, in.wo_x + i), c->wo_x);
+    compact(hn::LoadU(d, in.wo_y + i), c->wo_y);
+    compact(hn::LoadU(d, in.wo_z + i), c->wo_z);
+    compact(local_x, c->wl_x), compact(local_y, c->wl_y), compact(local_z, c->wl_z);
+    c->rows = k + hn::CountTrue(d, valid);
   }
-  hn::Store(hn::IfThenElseZero(valid, local[0]), d, c->wl_x + j);
-  hn::Store(hn::IfThenElseZero(valid, local[1]), d, c->wl_y + j);
-  hn::Store(hn::IfThenElse(valid, local[2], one), d, c->wl_z + j);
   // The shadow ray: SpawnOrigin(its, wi) to OffsetRayOrigin(ls.p, ±ls.ng), each offset to the
   // side wi leaves or arrives on.
   const M8 leave_front =
@@ -130,12 +157,12 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
            lgz = hn::LoadU(d, in.ng_z + i);
   const M8 arrive_front =
       hn::Le(hn::Add(hn::Add(hn::Mul(lgx, wx), hn::Mul(lgy, wy)), hn::Mul(lgz, wz)), zero);
-  const V8 tx = OffsetCoordinate(d, lx, hn::IfThenElse(arrive_front, lgx, hn::Neg(lgx)));
-  const V8 ty = OffsetCoordinate(d, ly, hn::IfThenElse(arrive_front, lgy, hn::Neg(lgy)));
-  const V8 tz = OffsetCoordinate(d, lz, hn::IfThenElse(arrive_front, lgz, hn::Neg(lgz)));
+  const V8 to_x = OffsetCoordinate(d, lx, hn::IfThenElse(arrive_front, lgx, hn::Neg(lgx)));
+  const V8 to_y = OffsetCoordinate(d, ly, hn::IfThenElse(arrive_front, lgy, hn::Neg(lgy)));
+  const V8 to_z = OffsetCoordinate(d, lz, hn::IfThenElse(arrive_front, lgz, hn::Neg(lgz)));
   hn::Store(ox, d, c->o_x + j), hn::Store(oy, d, c->o_y + j), hn::Store(oz, d, c->o_z + j);
-  hn::Store(hn::Sub(tx, ox), d, c->d_x + j), hn::Store(hn::Sub(ty, oy), d, c->d_y + j);
-  hn::Store(hn::Sub(tz, oz), d, c->d_z + j);
+  hn::Store(hn::Sub(to_x, ox), d, c->d_x + j), hn::Store(hn::Sub(to_y, oy), d, c->d_y + j);
+  hn::Store(hn::Sub(to_z, oz), d, c->d_z + j);
 }
 
 /// Pass 3 for rows [j, j + Lanes(d)) of the chunk into rows [i, ...) of the outputs: the MIS
@@ -156,7 +183,7 @@ HWY_INLINE void AreaRequestFinish(const Scene& scene, bool mis, bool power,
     const V8 sum = hn::Add(a, b);
     weight = hn::IfThenElseZero(hn::Gt(sum, zero), hn::Div(a, sum));
   }
-  const V8 z = hn::Load(d, c.wl_z + j);
+  const V8 z = hn::Load(d, c.cos_z + j);
   const V8 abs_cos = hn::IfThenElse(hn::Lt(z, zero), hn::Neg(z), z);  // AbsCosTheta, -0 kept
   const V8 scale = hn::Div(hn::Mul(abs_cos, weight), pdf_light);
   const float* radiance = reinterpret_cast<const float*>(scene.area_lights.radiance.data());
@@ -203,15 +230,24 @@ inline void AreaEmitterRequestBatchKernel(const Scene& scene, MaterialTag tag, b
   AreaRequestChunk c;
   while (i + lanes <= n) {
     const size_t rows = std::min(kAreaRequestChunk, (n - i) / lanes * lanes);
+    c.rows = 0;
     for (size_t j = 0; j < rows; j += lanes) AreaRequestGeometry(in, i + j, j, &c);
-    // The BSDF at (wo, wi_local), evaluation only: f, and its pdf for the MIS weight.
-    ShadeInputs bsdf_in;
-    bsdf_in.wo = {c.wo_x, c.wo_y, c.wo_z};
-    bsdf_in.wl = {c.wl_x, c.wl_y, c.wl_z};
-    ShadeOutputs bsdf_out;
-    bsdf_out.f = {c.f_r, c.f_g, c.f_b};
-    bsdf_out.pdf_l = c.pdf_bsdf;
-    ShadeBatchKernel(scene.materials, tag, c.index, rows, bsdf_in, bsdf_out);
+    // The BSDF at (wo, wi_local) of the valid rows, evaluation only: f, and its pdf for the MIS
+    // weight; then back to their rows.
+    if (c.rows > 0) {
+      ShadeInputs bsdf_in;
+      bsdf_in.wo = {c.wo_x, c.wo_y, c.wo_z};
+      bsdf_in.wl = {c.wl_x, c.wl_y, c.wl_z};
+      ShadeOutputs bsdf_out;
+      bsdf_out.f = {c.e_r, c.e_g, c.e_b};
+      bsdf_out.pdf_l = c.e_pdf;
+      ShadeBatchKernel(scene.materials, tag, c.index, c.rows, bsdf_in, bsdf_out);
+      for (size_t k = 0; k < c.rows; ++k) {
+        const int32_t j = c.row[k];
+        c.f_r[j] = c.e_r[k], c.f_g[j] = c.e_g[k], c.f_b[j] = c.e_b[k];
+        c.pdf_bsdf[j] = c.e_pdf[k];
+      }
+    }
     for (size_t j = 0; j < rows; j += lanes)
       AreaRequestFinish(scene, mis, power, in, out, i + j, j, c);
     i += rows;

@@ -12,10 +12,10 @@ void AreaEmitterRequestBatch(const Scene& scene, MaterialTag /*tag*/, bool mis, 
     ls.ng = {in.ng_x[c], in.ng_y[c], in.ng_z[c]};
     ls.pdf = in.pdf[c];
     ls.radiance = scene.area_lights.radiance[in.light[c]];
-    const uint32_t q = in.entry[c];
-    SetAreaRequestRow(
-        out, c,
-        integrator::AreaEmitterSampleRequest(scene, in.its[q], in.wo[q], mis, ls, in.pick_pmf[c]));
+    const Vec3f wo{in.wo_x[c], in.wo_y[c], in.wo_z[c]};
+    SetAreaRequestRow(out, c,
+                      integrator::AreaEmitterSampleRequest(scene, in.its[in.entry[c]], wo, mis, ls,
+                                                           in.pick_pmf[c]));
   }
 }
 

@@ -14,14 +14,18 @@ namespace ptlab {
 
 /// What the batch reads: n rows, each an area-light sample (the area_light stage's outputs) for
 /// a shading point. The shading points stay where the wavefront built them, AoS by queue entry
-/// (`its`, `wo`: no copy into columns for a stage that reads each once); row c's is
-/// its[entry[c]], wo[entry[c]] (wo: local direction to the viewer). The light sample: p, n, ng,
-/// pdf (solid angle; 0: no sample) as AreaLightBatchOutputs has them, its light (for the
-/// radiance, AreaLightTable::radiance) and the probability pick_pmf with which it was picked.
+/// (no copy into columns of what the stage reads once): row c's is its[entry[c]], of which
+/// the kernels read ng, the frame (the SIMD kernel its n: the frame is Frame(n)) and the
+/// material; its position and wo (local direction to the viewer) come as columns (ref: the
+/// area_light stage's reference points, its[entry[c]].p; the wavefront has both at hand when
+/// it writes the row). The light sample: p, n, ng, pdf (solid angle; 0: no sample) as
+/// AreaLightBatchOutputs has them, its light (for the radiance, AreaLightTable::radiance) and
+/// the probability pick_pmf with which it was picked.
 struct AreaRequestInputs {
   const SurfaceInteraction* its = nullptr;
-  const Vec3f* wo = nullptr;
   const uint32_t* entry = nullptr;
+  const float *ref_x = nullptr, *ref_y = nullptr, *ref_z = nullptr;
+  const float *wo_x = nullptr, *wo_y = nullptr, *wo_z = nullptr;
   const uint32_t* light = nullptr;
   const float* pick_pmf = nullptr;
   const float *p_x = nullptr, *p_y = nullptr, *p_z = nullptr;
@@ -31,8 +35,9 @@ struct AreaRequestInputs {
 
   /// The inputs of rows [i, n): the columns from row i on, the same shading points.
   AreaRequestInputs From(size_t i) const {
-    return {its,     wo,      entry + i, light + i, pick_pmf + i, p_x + i,  p_y + i, p_z + i,
-            n_x + i, n_y + i, n_z + i,   ng_x + i,  ng_y + i,     ng_z + i, pdf + i};
+    return {its,      entry + i, ref_x + i,    ref_y + i, ref_z + i, wo_x + i, wo_y + i,
+            wo_z + i, light + i, pick_pmf + i, p_x + i,   p_y + i,   p_z + i,  n_x + i,
+            n_y + i,  n_z + i,   ng_x + i,     ng_y + i,  ng_z + i,  pdf + i};
   }
 };
 

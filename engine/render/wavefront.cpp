@@ -450,7 +450,8 @@ class alignas(kColumnAlignment) Wavefront {
           if (!(pick_pmf > 0)) continue;
           switch (emitter.tag()) {
             case EmitterTag::kArea:
-              area_.Push(request, uint32_t(q), its.material, emitter.index(), pick_pmf, its.p, u);
+              area_.Push(request, uint32_t(q), its.material, emitter.index(), pick_pmf, its.p, wo,
+                         u);
               break;
             case EmitterTag::kEnvironment:
               environment_[emitter.index()].Push(request, uint32_t(q), pick_pmf, u);
@@ -533,10 +534,11 @@ class alignas(kColumnAlignment) Wavefront {
                                       a.pdf.data() + b};
       kernels_->area_light(*scene_, scene_->integrator.triangle_sampling, count, in, out);
       const AreaRequestInputs request_in{
-          its_.data(),           wo_.data(),        a.entry.data() + b, a.light.data() + b,
-          a.pick_pmf.data() + b, a.p_x.data() + b,  a.p_y.data() + b,   a.p_z.data() + b,
-          a.n_x.data() + b,      a.n_y.data() + b,  a.n_z.data() + b,   a.ng_x.data() + b,
-          a.ng_y.data() + b,     a.ng_z.data() + b, a.pdf.data() + b};
+          its_.data(),        a.entry.data() + b,    a.ref_x.data() + b, a.ref_y.data() + b,
+          a.ref_z.data() + b, a.wo_x.data() + b,     a.wo_y.data() + b,  a.wo_z.data() + b,
+          a.light.data() + b, a.pick_pmf.data() + b, a.p_x.data() + b,   a.p_y.data() + b,
+          a.p_z.data() + b,   a.n_x.data() + b,      a.n_y.data() + b,   a.n_z.data() + b,
+          a.ng_x.data() + b,  a.ng_y.data() + b,     a.ng_z.data() + b,  a.pdf.data() + b};
       const AreaRequestOutputs request_out{a.traced.data() + b, a.o_x.data() + b, a.o_y.data() + b,
                                            a.o_z.data() + b,    a.d_x.data() + b, a.d_y.data() + b,
                                            a.d_z.data() + b,    a.r.data() + b,   a.g.data() + b,
@@ -801,13 +803,13 @@ class alignas(kColumnAlignment) Wavefront {
   /// contiguous slots [begin[t], next[t]), one batch for the area_light and area_request slots;
   /// slot[row] is the slot of the row-th one in request order; the groups are sized by the
   /// entries that go on times the emitter samples per vertex). Per slot: its request, queue
-  /// entry (for the shading point), light, pick probability, reference point and numbers
-  /// (inputs); the light sample (written by the area_light slot); the request: traced flag,
-  /// shadow ray and contribution (written by the area_request slot).
+  /// entry (for the shading point), light, pick probability, reference point (the shading
+  /// point), wo (local) and numbers (inputs); the light sample (written by the area_light slot);
+  /// the request: traced flag, shadow ray and contribution (written by the area_request slot).
   struct EmitterColumns {
     std::vector<uint32_t> request, entry, light, slot;
     std::vector<float> pick_pmf;
-    AlignedVector<float> ref_x, ref_y, ref_z, u_x, u_y;
+    AlignedVector<float> ref_x, ref_y, ref_z, wo_x, wo_y, wo_z, u_x, u_y;
     AlignedVector<float> p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
     std::vector<uint8_t> traced;
     AlignedVector<float> o_x, o_y, o_z, d_x, d_y, d_z, r, g, b;
@@ -817,9 +819,9 @@ class alignas(kColumnAlignment) Wavefront {
 
     size_t size() const { return rows; }
     size_t Bytes() const {
-      return VectorsBytes(request, entry, light, slot, pick_pmf, ref_x, ref_y, ref_z, u_x, u_y, p_x,
-                          p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf, traced, o_x, o_y, o_z,
-                          d_x, d_y, d_z, r, g, b);
+      return VectorsBytes(request, entry, light, slot, pick_pmf, ref_x, ref_y, ref_z, wo_x, wo_y,
+                          wo_z, u_x, u_y, p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf,
+                          traced, o_x, o_y, o_z, d_x, d_y, d_z, r, g, b);
     }
     /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the
     /// rows are written in place, which keeps the per-sample loop free of push_back calls).
@@ -828,17 +830,19 @@ class alignas(kColumnAlignment) Wavefront {
     void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
       rows = 0;
       GrowColumns(capacity, &request, &entry, &light, &slot, &pick_pmf, &ref_x, &ref_y, &ref_z,
-                  &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z, &pdf);
+                  &wo_x, &wo_y, &wo_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y,
+                  &ng_z, &pdf);
       GrowColumns(capacity, &traced, &o_x, &o_y, &o_z, &d_x, &d_y, &d_z, &r, &g, &b);
       uint32_t at = 0;
       for (int t = 0; t < kGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
     }
     void Push(uint32_t req, uint32_t queue_entry, MaterialRef material, uint32_t light_row,
-              float pmf, const Vec3f& ref, const Vec2f& u) {
+              float pmf, const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
       const uint32_t c = next[BsdfColumns::Group(material)]++;
       slot[rows++] = c;
       request[c] = req, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
       ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
+      wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
     }
   };
 

@@ -18,22 +18,26 @@
 
 namespace ptlab::test {
 
-/// The inputs of an area_request batch as owned vectors: shading points and wo by queue entry,
-/// the rest by row.
+/// The inputs of an area_request batch as owned vectors: shading points and wo by queue entry
+/// (its, wo; the rows' ref and wo columns are copies), the rest by row.
 struct AreaRequestRows {
   std::vector<SurfaceInteraction> its;
   std::vector<Vec3f> wo;
   std::vector<uint32_t> entry, light;
+  std::vector<float> ref_x, ref_y, ref_z, wo_x, wo_y, wo_z;
   std::vector<float> pick_pmf, p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
 
   size_t size() const { return entry.size(); }
   AreaRequestInputs In() const {
-    return {its.data(), wo.data(),   entry.data(), light.data(), pick_pmf.data(),
-            p_x.data(), p_y.data(),  p_z.data(),   n_x.data(),   n_y.data(),
-            n_z.data(), ng_x.data(), ng_y.data(),  ng_z.data(),  pdf.data()};
+    return {its.data(),  entry.data(), ref_x.data(), ref_y.data(), ref_z.data(),
+            wo_x.data(), wo_y.data(),  wo_z.data(),  light.data(), pick_pmf.data(),
+            p_x.data(),  p_y.data(),   p_z.data(),   n_x.data(),   n_y.data(),
+            n_z.data(),  ng_x.data(),  ng_y.data(),  ng_z.data(),  pdf.data()};
   }
   void Push(uint32_t e, uint32_t l, float pmf, const AreaLightSample& s) {
     entry.push_back(e), light.push_back(l), pick_pmf.push_back(pmf);
+    ref_x.push_back(its[e].p.x), ref_y.push_back(its[e].p.y), ref_z.push_back(its[e].p.z);
+    wo_x.push_back(wo[e].x), wo_y.push_back(wo[e].y), wo_z.push_back(wo[e].z);
     p_x.push_back(s.p.x), p_y.push_back(s.p.y), p_z.push_back(s.p.z);
     n_x.push_back(s.n.x), n_y.push_back(s.n.y), n_z.push_back(s.n.z);
     ng_x.push_back(s.ng.x), ng_y.push_back(s.ng.y), ng_z.push_back(s.ng.z);
