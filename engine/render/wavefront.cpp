@@ -505,8 +505,8 @@ class alignas(kColumnAlignment) Wavefront {
   // stays so when the request traces nothing. Field by field, so the request stays in
   // registers instead of being assembled on the stack and copied. The shadow ray goes straight
   // into the shadow queue (owner r), in the order the requests finish (delta lights, then
-  // area, environment, disk batches): TraceShadows answers by owner, so the order changes no
-  // result, and with one kind of emitter it is request order.
+  // area lights by material tag, environment, disk batches): TraceShadows answers by owner, so
+  // the order changes no result, and with one kind of emitter and material it is request order.
   void StoreRequest(uint32_t r, const EmitterSampleRequest& req) {
     if (!req.traced) return;
     request_traced_[r] = 1;
@@ -518,7 +518,8 @@ class alignas(kColumnAlignment) Wavefront {
 
   // The emitter stage: per material tag, the kernel table's area_light slot over the tag's
   // area-light picks, then its area_request slot (shadow ray, contribution: PrepareEmitterSample's
-  // finish); then, in request order, each traced request's row and shadow ray (StoreRequest's).
+  // finish); then, tag by tag in request order, each traced request's row and shadow ray
+  // (StoreRequest's; reading the columns in their order, not through a slot per row).
   void SampleAreaLights() {
     EmitterColumns& a = area_;
     const size_t n = a.size();
@@ -546,18 +547,17 @@ class alignas(kColumnAlignment) Wavefront {
       kernels_->area_request(*scene_, static_cast<MaterialTag>(t), rules_.mis, count, request_in,
                              request_out);
     }
-    // Rows of no material: BsdfEval is 0, nothing traces.
-    for (uint32_t c = a.begin[kMaterialTagCount]; c < a.next[kMaterialTagCount]; ++c)
-      a.traced[c] = 0;
-    for (size_t row = 0; row < n; ++row) {
-      const uint32_t c = a.slot[row];
-      if (!a.traced[c]) continue;
-      const uint32_t r = a.request[c];
-      request_traced_[r] = 1;
-      shadows_.Push(Ray{{a.o_x[c], a.o_y[c], a.o_z[c]}, {a.d_x[c], a.d_y[c], a.d_z[c]}, 0.0f, 1.0f},
-                    r);
-      Color3f& contribution = request_contribution_[r];
-      contribution.r = a.r[c], contribution.g = a.g[c], contribution.b = a.b[c];
+    // Group by group (rows of no material trace nothing: BsdfEval is 0), each in request order.
+    for (int t = 0; t < kMaterialTagCount; ++t) {
+      for (uint32_t c = a.begin[t]; c < a.next[t]; ++c) {
+        if (!a.traced[c]) continue;
+        const uint32_t r = a.request[c];
+        request_traced_[r] = 1;
+        shadows_.Push(
+            Ray{{a.o_x[c], a.o_y[c], a.o_z[c]}, {a.d_x[c], a.d_y[c], a.d_z[c]}, 0.0f, 1.0f}, r);
+        Color3f& contribution = request_contribution_[r];
+        contribution.r = a.r[c], contribution.g = a.g[c], contribution.b = a.b[c];
+      }
     }
   }
 
@@ -800,14 +800,14 @@ class alignas(kColumnAlignment) Wavefront {
 
   /// The emitter stage's SoA columns, one row per emitter sample that picked an area light,
   /// grouped by the material tag of its shading point as BsdfColumns is (a tag's rows are
-  /// contiguous slots [begin[t], next[t]), one batch for the area_light and area_request slots;
-  /// slot[row] is the slot of the row-th one in request order; the groups are sized by the
-  /// entries that go on times the emitter samples per vertex). Per slot: its request, queue
+  /// contiguous slots [begin[t], next[t]) in request order, one batch for the area_light and
+  /// area_request slots; the groups are sized by the entries that go on times the emitter
+  /// samples per vertex). Per slot: its request, queue
   /// entry (for the shading point), light, pick probability, reference point (the shading
   /// point), wo (local) and numbers (inputs); the light sample (written by the area_light slot);
   /// the request: traced flag, shadow ray and contribution (written by the area_request slot).
   struct EmitterColumns {
-    std::vector<uint32_t> request, entry, light, slot;
+    std::vector<uint32_t> request, entry, light;
     std::vector<float> pick_pmf;
     AlignedVector<float> ref_x, ref_y, ref_z, wo_x, wo_y, wo_z, u_x, u_y;
     AlignedVector<float> p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
@@ -819,9 +819,9 @@ class alignas(kColumnAlignment) Wavefront {
 
     size_t size() const { return rows; }
     size_t Bytes() const {
-      return VectorsBytes(request, entry, light, slot, pick_pmf, ref_x, ref_y, ref_z, wo_x, wo_y,
-                          wo_z, u_x, u_y, p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf,
-                          traced, o_x, o_y, o_z, d_x, d_y, d_z, r, g, b);
+      return VectorsBytes(request, entry, light, pick_pmf, ref_x, ref_y, ref_z, wo_x, wo_y, wo_z,
+                          u_x, u_y, p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf, traced,
+                          o_x, o_y, o_z, d_x, d_y, d_z, r, g, b);
     }
     /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the
     /// rows are written in place, which keeps the per-sample loop free of push_back calls).
@@ -829,9 +829,9 @@ class alignas(kColumnAlignment) Wavefront {
     /// group can get (they sum to at most capacity).
     void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
       rows = 0;
-      GrowColumns(capacity, &request, &entry, &light, &slot, &pick_pmf, &ref_x, &ref_y, &ref_z,
-                  &wo_x, &wo_y, &wo_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y,
-                  &ng_z, &pdf);
+      GrowColumns(capacity, &request, &entry, &light, &pick_pmf, &ref_x, &ref_y, &ref_z, &wo_x,
+                  &wo_y, &wo_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z,
+                  &pdf);
       GrowColumns(capacity, &traced, &o_x, &o_y, &o_z, &d_x, &d_y, &d_z, &r, &g, &b);
       uint32_t at = 0;
       for (int t = 0; t < kGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
@@ -839,7 +839,7 @@ class alignas(kColumnAlignment) Wavefront {
     void Push(uint32_t req, uint32_t queue_entry, MaterialRef material, uint32_t light_row,
               float pmf, const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
       const uint32_t c = next[BsdfColumns::Group(material)]++;
-      slot[rows++] = c;
+      ++rows;
       request[c] = req, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
       ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
       wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
