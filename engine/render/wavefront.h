@@ -179,10 +179,11 @@ class WavefrontWorkspace {
 /// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
 /// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
 /// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
-/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF, environment and
-/// distant-disk kernels differ from their oracles by a few ulp (simd/shade8.h,
-/// simd/environment8.h, simd/distant_disk8.h), so the image agrees with the oracle's within the
-/// render contract of tests/simd/traverse8_test.cpp (relMSE, block means) but not bit for bit.
+/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF, area-light request (its
+/// BSDF evaluation), environment and distant-disk kernels differ from their oracles by a few
+/// ulp (simd/shade8.h, simd/area_request8.h, simd/environment8.h, simd/distant_disk8.h), so the
+/// image agrees with the oracle's within the render contract of tests/simd/traverse8_test.cpp
+/// (relMSE, block means) but not bit for bit.
 /// Every integrator type is supported. The paths run in `workspace` (one per thread, reused from
 /// tile to tile; null: a workspace for this tile alone).
 void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
