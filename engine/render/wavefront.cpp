@@ -173,7 +173,7 @@ class alignas(kColumnAlignment) Wavefront {
                           path_of_slot_);
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_,
-                          request_contribution_, occluded_, nee_paths_);
+                          request_contribution_, occluded_, nee_paths_, nonfinite_nee_);
     bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
     bytes += escaped_.Bytes();
@@ -403,7 +403,7 @@ class alignas(kColumnAlignment) Wavefront {
   void Sample(int depth) {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
-    nee_paths_.clear();
+    nee_paths_.clear(), nonfinite_nee_.clear();
     bsdf_.Clear(rays_.size(), goes_on_tags_);
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
     // Requests are SoA columns written in place (a row's flag, its ray and contribution only
@@ -464,6 +464,8 @@ class alignas(kColumnAlignment) Wavefront {
               break;
           }
         }
+        // With one sample per vertex, the request of nee path p is row p.
+        if (n_light == 1 && !IsFinite(throughput_[i])) nonfinite_nee_.push_back(n_requests_ - 1);
         nee_paths_.push_back(i);
         nee_throughput_[i] = throughput_[i];
         if (rules_.nee_ends_path && !delta) continue;
@@ -663,23 +665,57 @@ class alignas(kColumnAlignment) Wavefront {
     for (size_t k = 0; k < m; ++k) out[k] = {draw_x_[k], draw_y_[k]};
   }
 
+  // The shadow rays, one kernel call per packet. With one emitter sample per vertex, each
+  // unoccluded sample's light is added to its path here (AddEmitterSamples' sum for that path,
+  // its operations in its order), while the packet's owners are at hand: no per-request flag
+  // and no second pass over the paths.
   void TraceShadows() {
-    occluded_.assign(n_requests_, 0);
+    const bool add_here = rules_.light_samples == 1;
+    if (!add_here) occluded_.assign(n_requests_, 0);
     for (size_t k = 0; k < shadows_.packets.size(); ++k) {
       const Mask8 active = shadows_.Active(k);
       const Mask8 occ = kernels_->occluded8(kernels_->accel, shadows_.packets[k], active) & active;
-      for (Mask8 m = occ; m != 0; m &= m - 1) {
-        occluded_[shadows_.owner[k * kLanes + size_t(std::countr_zero(m))]] = 1;
+      const uint32_t* owner = shadows_.owner.data() + k * kLanes;
+      if (!add_here) {
+        for (Mask8 m = occ; m != 0; m &= m - 1) occluded_[owner[std::countr_zero(m)]] = 1;
+        continue;
       }
+      for (Mask8 m = active & ~occ; m != 0; m &= m - 1) {
+        const uint32_t r = owner[std::countr_zero(m)];
+        AddEmitterSample(nee_paths_[r], request_contribution_[r]);
+      }
+      // An occluded sample's zero goes through AddNonFiniteEmitterSamples like an untraced one.
+      for (Mask8 m = occ; m != 0; m &= m - 1) request_traced_[owner[std::countr_zero(m)]] = 0;
     }
+    if (add_here) AddNonFiniteEmitterSamples();
     stats_->rays += shadows_.size();  // as in Traverse: every queued ray is an active lane
     stats_->packets += shadows_.packets.size();
   }
 
+  // One emitter sample's light (sum `direct`, of n_light = 1 samples) weighted by the path's
+  // throughput at the vertex: AddEmitterSamples' last line.
+  void AddEmitterSample(uint32_t i, const Color3f& contribution) {
+    Color3f direct;
+    direct += contribution;
+    L_[i] += nee_throughput_[i] * direct * 1.0f;
+  }
+
+  // With one emitter sample per vertex: the zero light of the untraced or occluded samples of
+  // paths whose throughput is not finite. Their zero is skipped everywhere else, which changes
+  // no bit for a finite throughput (L starts at +0 and never becomes -0); here it makes the
+  // NaN that Inf or NaN times zero gives, as AddEmitterSamples does.
+  void AddNonFiniteEmitterSamples() {
+    for (const uint32_t r : nonfinite_nee_) {
+      if (!request_traced_[r]) AddEmitterSample(nee_paths_[r], Color3f{});
+    }
+  }
+
   // Each path's emitter samples, summed in sample order, weighted by its throughput at the
   // vertex (the scalar integrators add them before shading the next vertex; so does this).
+  // With one sample per vertex TraceShadows has added them already.
   void AddEmitterSamples() {
     const int n_light = rules_.light_samples;
+    if (n_light == 1) return;
     const float inv_n = 1.0f / float(n_light);
     for (size_t p = 0; p < nee_paths_.size(); ++p) {
       const uint32_t i = nee_paths_[p];
@@ -926,6 +962,7 @@ class alignas(kColumnAlignment) Wavefront {
   EscapedColumns escaped_;
   std::vector<uint8_t> occluded_;
   std::vector<uint32_t> nee_paths_;
+  std::vector<uint32_t> nonfinite_nee_;  // requests of nee paths whose throughput is not finite
   BsdfColumns bsdf_;
   EmitterColumns area_;
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
