@@ -16,6 +16,7 @@
 #include "engine/core/memory.h"
 #include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
+#include "engine/render/spawn_batch.h"
 #include "engine/sampling/sobol.h"
 
 namespace ptlab {
@@ -30,8 +31,6 @@ using integrator::Escaped;
 using integrator::InfiniteEmitterSampleRequest;
 using integrator::MisWeight;
 using integrator::PrepareEmitterSampleFrom;
-using integrator::SpawnOrigin;
-using integrator::kInfinity;
 using integrator::kWhittedContinuation;
 using integrator::kWhittedMaxDepth;
 using Type = IntegratorDesc::Type;
@@ -115,6 +114,12 @@ struct RayQueue {
     SetLaneRay(&packets.back(), int(q % kLanes), r);
     owner.push_back(who);
   }
+  /// Makes it a queue of n rays whose owners and packets ((n + 7) / 8) the caller writes, every
+  /// lane of them: an entry-by-entry Push in bulk.
+  void Resize(size_t n) {
+    packets.resize((n + kLanes - 1) / kLanes);
+    owner.resize(n);
+  }
   Vec3f Direction(size_t q) const {
     const RayPacket8& p = packets[q / kLanes];
     const size_t j = q % kLanes;
@@ -174,7 +179,7 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_,
                           request_contribution_, occluded_, nee_paths_, nonfinite_nee_);
-    bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
+    bytes += points_.Bytes() + bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
     bytes += escaped_.Bytes();
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
@@ -570,8 +575,9 @@ class alignas(kColumnAlignment) Wavefront {
 
   // The BSDF stage: the kernel table's bsdf slot over the columns, one call per material tag
   // on its group of slots (Sample pushed the rows there; the rows of ShadeHitsWith's batches,
-  // without its counting sort, gather and scatter); then, in queue order, each sampled path's
-  // throughput, state and next ray, as the scalar integrators do.
+  // without its counting sort, gather and scatter); then each sampled path's throughput and
+  // state, as the scalar integrators do, and the next rays of those that go on as one batch of
+  // the spawn slot.
   void SampleBsdfs() {
     BsdfColumns& b = bsdf_;
     const size_t n = b.size();
@@ -591,27 +597,43 @@ class alignas(kColumnAlignment) Wavefront {
       kernels_->bsdf(scene_->materials, static_cast<MaterialTag>(t),
                      b.material_index.data() + begin, count, in, out);
     }
-    // Rows of no material (no group of ShadeHitsWith): no sample.
-    for (uint32_t c = b.begin[kMaterialTagCount]; c < b.next[kMaterialTagCount]; ++c) b.pdf[c] = 0;
-    for (size_t row = 0; row < n; ++row) {
-      const uint32_t c = b.slot[row];
-      if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
-      const uint32_t i = b.path[c];
-      const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
-      if (rules_.roulette == VertexRules::Roulette::kWhitted) {
-        throughput_[i] *= weight * b.roulette_scale[c];
-      } else {
-        throughput_[i] *= weight;
+    // Group by group, each in queue order, each sampled path's throughput and state, as the
+    // scalar integrators do; a path that goes on gets the next row of the spawn stage and the
+    // next entry of the queue. So the next queue holds the paths of each material tag together
+    // (the order changes no result: each path's numbers and state are its own), and this loop
+    // reads the columns in their order instead of in queue order through an index. Rows of no
+    // material (no group of ShadeHitsWith) sample nothing.
+    SpawnColumns& sp = spawn_;
+    sp.Clear(n);
+    next_rays_.owner.resize(n);
+    uint32_t* owner = next_rays_.owner.data();
+    const InteractionColumns points = points_.View();
+    size_t m = 0;
+    for (int t = 0; t < kMaterialTagCount; ++t) {
+      const uint8_t specular = IsDeltaMaterial(static_cast<MaterialTag>(t));
+      for (uint32_t c = b.begin[t]; c < b.next[t]; ++c) {
+        if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
+        const uint32_t i = b.path[c];
+        const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
+        if (rules_.roulette == VertexRules::Roulette::kWhitted) {
+          throughput_[i] *= weight * b.roulette_scale[c];
+        } else {
+          throughput_[i] *= weight;
+        }
+        eta_[i] *= b.eta[c];
+        if (rules_.cut_black && IsBlack(throughput_[i])) continue;
+        specular_[i] = specular;
+        prev_pdf_[i] = b.pdf[c];
+        const uint32_t q = b.entry[c];
+        prev_p_[i] = {points.p_x[q], points.p_y[q], points.p_z[q]};  // its_[q].p
+        sp.entry[m] = q, sp.wi_x[m] = b.wi_x[c], sp.wi_y[m] = b.wi_y[c], sp.wi_z[m] = b.wi_z[c];
+        owner[m++] = i;
       }
-      eta_[i] *= b.eta[c];
-      if (rules_.cut_black && IsBlack(throughput_[i])) continue;
-      specular_[i] = IsDeltaMaterial(b.material[c].tag());
-      prev_pdf_[i] = b.pdf[c];
-      const SurfaceInteraction& its = its_[b.entry[c]];
-      prev_p_[i] = its.p;
-      const Vec3f wi = its.frame.ToWorld(Vec3f{b.wi_x[c], b.wi_y[c], b.wi_z[c]});
-      next_rays_.Push(Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity}, i);
     }
+    // Their rays (integrator::SpawnOrigin, the sample's world direction) through the kernel
+    // table's spawn slot, straight into the queue's packets.
+    next_rays_.Resize(m);
+    kernels_->spawn(points, m, sp.Inputs(), next_rays_.packets.data());
   }
 
   // Sobol' numbers of every decision of vertex `depth` for the paths that go on (continuing_,
@@ -763,14 +785,13 @@ class alignas(kColumnAlignment) Wavefront {
   /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex,
   /// grouped by material tag: a tag's rows are contiguous slots [begin[t], next[t]), one batch
   /// for the bsdf slot as it is (ShadeHitsWith's partition, gather and scatter are not needed),
-  /// and slot[row] is the slot of the row-th one in queue order. The groups are sized by a count
-  /// of the entries that go on (an upper bound: roulette and whitted end some first). Per slot:
-  /// the path, its queue entry (for the shading point), material, wo in the local frame and
-  /// the numbers (inputs); wi (local), weight f·|cos θi|/pdf, pdf (0: no sample) and eta
-  /// (outputs, written by the bsdf slot).
+  /// each group in queue order. The groups are sized by a count of the entries that go on (an
+  /// upper bound: roulette and whitted end some first). Per slot: the path, its queue entry
+  /// (for the shading point), material row, wo in the local frame and the numbers (inputs);
+  /// wi (local), weight f·|cos θi|/pdf, pdf (0: no sample) and eta (outputs, written by the
+  /// bsdf slot).
   struct BsdfColumns {
-    std::vector<uint32_t> path, entry, material_index, slot;
-    std::vector<MaterialRef> material;
+    std::vector<uint32_t> path, entry, material_index;
     std::vector<float> roulette_scale;
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
@@ -784,30 +805,40 @@ class alignas(kColumnAlignment) Wavefront {
     }
     size_t size() const { return rows; }
     size_t Bytes() const {
-      return VectorsBytes(path, entry, material_index, slot, material, roulette_scale, wo_x, wo_y,
-                          wo_z, u_lobe, u_x, u_y, wi_x, wi_y, wi_z, weight_r, weight_g, weight_b,
-                          pdf, eta);
+      return VectorsBytes(path, entry, material_index, roulette_scale, wo_x, wo_y, wo_z, u_lobe,
+                          u_x, u_y, wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
     }
     /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
     /// place; only grows. group_rows: the most rows each group can get (they sum to at most
     /// capacity).
     void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
       rows = 0;
-      GrowColumns(capacity, &path, &entry, &material_index, &slot, &material, &roulette_scale,
-                  &wo_x, &wo_y, &wo_z, &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r,
-                  &weight_g, &weight_b, &pdf, &eta);
+      GrowColumns(capacity, &path, &entry, &material_index, &roulette_scale, &wo_x, &wo_y, &wo_z,
+                  &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
+                  &eta);
       uint32_t at = 0;
       for (int g = 0; g < kGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
       const uint32_t c = next[Group(ref)]++;
-      slot[rows++] = c;
-      path[c] = path_id, entry[c] = queue_entry, material[c] = ref, roulette_scale[c] = scale;
+      ++rows;
+      path[c] = path_id, entry[c] = queue_entry, roulette_scale[c] = scale;
       material_index[c] = ref.index();
       wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
       u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
     }
+  };
+
+  /// The spawn stage's SoA columns, one row per path that goes on, in next-queue order: the
+  /// queue entry of its shading point and the sampled direction in that point's frame.
+  struct SpawnColumns {
+    std::vector<uint32_t> entry;
+    AlignedVector<float> wi_x, wi_y, wi_z;
+    size_t Bytes() const { return VectorsBytes(entry, wi_x, wi_y, wi_z); }
+    /// Room for `capacity` rows, written in place; only grows.
+    void Clear(size_t capacity) { GrowColumns(capacity, &entry, &wi_x, &wi_y, &wi_z); }
+    SpawnInputs Inputs() const { return {entry.data(), wi_x.data(), wi_y.data(), wi_z.data()}; }
   };
 
   /// The emitter stage's SoA columns, one row per emitter sample that picked an area light (in
@@ -964,6 +995,7 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<uint32_t> nee_paths_;
   std::vector<uint32_t> nonfinite_nee_;  // requests of nee paths whose throughput is not finite
   BsdfColumns bsdf_;
+  SpawnColumns spawn_;
   EmitterColumns area_;
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
   std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
@@ -1010,6 +1042,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
+          .spawn = SpawnRayBatch,
           .name = "scalar-oracle"};
 }
 
