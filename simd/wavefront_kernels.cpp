@@ -1,6 +1,6 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
 // simd/splat8, simd/emitter8, simd/area_request8, simd/environment8, simd/distant_disk8,
-// simd/interaction8.
+// simd/interaction8, simd/spawn8.
 #include "simd/wavefront_kernels.h"
 
 #include "simd/area_request8.h"
@@ -10,6 +10,7 @@
 #include "simd/interaction8.h"
 #include "simd/sampler8.h"
 #include "simd/shade8.h"
+#include "simd/spawn8.h"
 #include "simd/splat8.h"
 #include "simd/traverse8.h"
 
@@ -41,6 +42,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
+          .spawn = SpawnRayBatch,
           .name = Traverse8TargetName()};
 }
 

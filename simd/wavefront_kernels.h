@@ -11,7 +11,7 @@ namespace ptlab::simd {
 /// bsdf simd::ShadeBatch (simd/shade8.h), splat simd::SplatSamples (simd/splat8.h),
 /// area_light simd::SampleAreaLightBatch (simd/emitter8.h), area_request
 /// simd::AreaEmitterRequestBatch (simd/area_request8.h), interaction
-/// simd::MakeInteractionBatch (simd/interaction8.h).
+/// simd::MakeInteractionBatch (simd/interaction8.h), spawn simd::SpawnRayBatch (simd/spawn8.h).
 /// `bvh8` must outlive the table; `name` is the Highway target (Traverse8TargetName).
 /// Its oracle: OracleWavefrontKernels on the binary Bvh that `bvh8` was collapsed from.
 WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8);

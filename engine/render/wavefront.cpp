@@ -16,6 +16,7 @@
 #include "engine/core/memory.h"
 #include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
+#include "engine/render/spawn_batch.h"
 #include "engine/sampling/sobol.h"
 
 namespace ptlab {
@@ -29,8 +30,6 @@ using integrator::Escaped;
 using integrator::InfiniteEmitterSampleRequest;
 using integrator::MisWeight;
 using integrator::PrepareEmitterSampleFrom;
-using integrator::SpawnOrigin;
-using integrator::kInfinity;
 using integrator::kWhittedContinuation;
 using integrator::kWhittedMaxDepth;
 using Type = IntegratorDesc::Type;
@@ -114,6 +113,12 @@ struct RayQueue {
     SetLaneRay(&packets.back(), int(q % kLanes), r);
     owner.push_back(who);
   }
+  /// Makes it a queue of n rays whose owners and packets ((n + 7) / 8) the caller writes, every
+  /// lane of them: an entry-by-entry Push in bulk.
+  void Resize(size_t n) {
+    packets.resize((n + kLanes - 1) / kLanes);
+    owner.resize(n);
+  }
   Vec3f Direction(size_t q) const {
     const RayPacket8& p = packets[q / kLanes];
     const size_t j = q % kLanes;
@@ -172,8 +177,8 @@ class alignas(kColumnAlignment) Wavefront {
                           path_of_slot_);
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_,
-                          request_contribution_, occluded_, nee_paths_);
-    bytes += points_.Bytes() + bsdf_.Bytes() + area_.Bytes() + splat_.Bytes();
+                          request_contribution_, occluded_, nee_paths_, nonfinite_nee_);
+    bytes += points_.Bytes() + bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
     bytes += escaped_.Bytes();
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
@@ -402,7 +407,7 @@ class alignas(kColumnAlignment) Wavefront {
   void Sample(int depth) {
     const int n_light = rules_.light_samples;
     next_rays_.Clear(), shadows_.Clear();
-    nee_paths_.clear();
+    nee_paths_.clear(), nonfinite_nee_.clear();
     bsdf_.Clear(rays_.size(), goes_on_tags_);
     const size_t emitter_rows = rules_.nee ? rays_.size() * size_t(n_light) : 0;
     // Requests are SoA columns written in place (a row's flag, its ray and contribution only
@@ -468,6 +473,8 @@ class alignas(kColumnAlignment) Wavefront {
               break;
           }
         }
+        // With one sample per vertex, the request of nee path p is row p.
+        if (n_light == 1 && !IsFinite(throughput_[i])) nonfinite_nee_.push_back(n_requests_ - 1);
         nee_paths_.push_back(i);
         nee_throughput_[i] = throughput_[i];
         if (rules_.nee_ends_path && !delta) continue;
@@ -592,8 +599,9 @@ class alignas(kColumnAlignment) Wavefront {
 
   // The BSDF stage: the kernel table's bsdf slot over the columns, one call per material tag
   // on its group of slots (Sample pushed the rows there; the rows of ShadeHitsWith's batches,
-  // without its counting sort, gather and scatter); then, in queue order, each sampled path's
-  // throughput, state and next ray, as the scalar integrators do.
+  // without its counting sort, gather and scatter); then each sampled path's throughput and
+  // state, as the scalar integrators do, and the next rays of those that go on as one batch of
+  // the spawn slot.
   void SampleBsdfs() {
     BsdfColumns& b = bsdf_;
     const size_t n = b.size();
@@ -613,27 +621,43 @@ class alignas(kColumnAlignment) Wavefront {
       kernels_->bsdf(scene_->materials, static_cast<MaterialTag>(t),
                      b.material_index.data() + begin, count, in, out);
     }
-    // Rows of no material (no group of ShadeHitsWith): no sample.
-    for (uint32_t c = b.begin[kMaterialTagCount]; c < b.next[kMaterialTagCount]; ++c) b.pdf[c] = 0;
-    for (size_t row = 0; row < n; ++row) {
-      const uint32_t c = b.slot[row];
-      if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
-      const uint32_t i = b.path[c];
-      const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
-      if (rules_.roulette == VertexRules::Roulette::kWhitted) {
-        throughput_[i] *= weight * b.roulette_scale[c];
-      } else {
-        throughput_[i] *= weight;
+    // Group by group, each in queue order, each sampled path's throughput and state, as the
+    // scalar integrators do; a path that goes on gets the next row of the spawn stage and the
+    // next entry of the queue. So the next queue holds the paths of each material tag together
+    // (the order changes no result: each path's numbers and state are its own), and this loop
+    // reads the columns in their order instead of in queue order through an index. Rows of no
+    // material (no group of ShadeHitsWith) sample nothing.
+    SpawnColumns& sp = spawn_;
+    sp.Clear(n);
+    next_rays_.owner.resize(n);
+    uint32_t* owner = next_rays_.owner.data();
+    const InteractionColumns points = points_.View();
+    size_t m = 0;
+    for (int t = 0; t < kMaterialTagCount; ++t) {
+      const uint8_t specular = IsDeltaMaterial(static_cast<MaterialTag>(t));
+      for (uint32_t c = b.begin[t]; c < b.next[t]; ++c) {
+        if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
+        const uint32_t i = b.path[c];
+        const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
+        if (rules_.roulette == VertexRules::Roulette::kWhitted) {
+          throughput_[i] *= weight * b.roulette_scale[c];
+        } else {
+          throughput_[i] *= weight;
+        }
+        eta_[i] *= b.eta[c];
+        if (rules_.cut_black && IsBlack(throughput_[i])) continue;
+        specular_[i] = specular;
+        prev_pdf_[i] = b.pdf[c];
+        const uint32_t q = b.entry[c];
+        prev_p_[i] = {points.p_x[q], points.p_y[q], points.p_z[q]};  // its_[q].p
+        sp.entry[m] = q, sp.wi_x[m] = b.wi_x[c], sp.wi_y[m] = b.wi_y[c], sp.wi_z[m] = b.wi_z[c];
+        owner[m++] = i;
       }
-      eta_[i] *= b.eta[c];
-      if (rules_.cut_black && IsBlack(throughput_[i])) continue;
-      specular_[i] = IsDeltaMaterial(b.material[c].tag());
-      prev_pdf_[i] = b.pdf[c];
-      const SurfaceInteraction& its = its_[b.entry[c]];
-      prev_p_[i] = its.p;
-      const Vec3f wi = its.frame.ToWorld(Vec3f{b.wi_x[c], b.wi_y[c], b.wi_z[c]});
-      next_rays_.Push(Ray{SpawnOrigin(its, wi), wi, 0.0f, kInfinity}, i);
     }
+    // Their rays (integrator::SpawnOrigin, the sample's world direction) through the kernel
+    // table's spawn slot, straight into the queue's packets.
+    next_rays_.Resize(m);
+    kernels_->spawn(points, m, sp.Inputs(), next_rays_.packets.data());
   }
 
   // Sobol' numbers of every decision of vertex `depth` for the paths that go on (continuing_,
@@ -687,23 +711,57 @@ class alignas(kColumnAlignment) Wavefront {
     for (size_t k = 0; k < m; ++k) out[k] = {draw_x_[k], draw_y_[k]};
   }
 
+  // The shadow rays, one kernel call per packet. With one emitter sample per vertex, each
+  // unoccluded sample's light is added to its path here (AddEmitterSamples' sum for that path,
+  // its operations in its order), while the packet's owners are at hand: no per-request flag
+  // and no second pass over the paths.
   void TraceShadows() {
-    occluded_.assign(n_requests_, 0);
+    const bool add_here = rules_.light_samples == 1;
+    if (!add_here) occluded_.assign(n_requests_, 0);
     for (size_t k = 0; k < shadows_.packets.size(); ++k) {
       const Mask8 active = shadows_.Active(k);
       const Mask8 occ = kernels_->occluded8(kernels_->accel, shadows_.packets[k], active) & active;
-      for (Mask8 m = occ; m != 0; m &= m - 1) {
-        occluded_[shadows_.owner[k * kLanes + size_t(std::countr_zero(m))]] = 1;
+      const uint32_t* owner = shadows_.owner.data() + k * kLanes;
+      if (!add_here) {
+        for (Mask8 m = occ; m != 0; m &= m - 1) occluded_[owner[std::countr_zero(m)]] = 1;
+        continue;
       }
+      for (Mask8 m = active & ~occ; m != 0; m &= m - 1) {
+        const uint32_t r = owner[std::countr_zero(m)];
+        AddEmitterSample(nee_paths_[r], request_contribution_[r]);
+      }
+      // An occluded sample's zero goes through AddNonFiniteEmitterSamples like an untraced one.
+      for (Mask8 m = occ; m != 0; m &= m - 1) request_traced_[owner[std::countr_zero(m)]] = 0;
     }
+    if (add_here) AddNonFiniteEmitterSamples();
     stats_->rays += shadows_.size();  // as in Traverse: every queued ray is an active lane
     stats_->packets += shadows_.packets.size();
   }
 
+  // One emitter sample's light (sum `direct`, of n_light = 1 samples) weighted by the path's
+  // throughput at the vertex: AddEmitterSamples' last line.
+  void AddEmitterSample(uint32_t i, const Color3f& contribution) {
+    Color3f direct;
+    direct += contribution;
+    L_[i] += nee_throughput_[i] * direct * 1.0f;
+  }
+
+  // With one emitter sample per vertex: the zero light of the untraced or occluded samples of
+  // paths whose throughput is not finite. Their zero is skipped everywhere else, which changes
+  // no bit for a finite throughput (L starts at +0 and never becomes -0); here it makes the
+  // NaN that Inf or NaN times zero gives, as AddEmitterSamples does.
+  void AddNonFiniteEmitterSamples() {
+    for (const uint32_t r : nonfinite_nee_) {
+      if (!request_traced_[r]) AddEmitterSample(nee_paths_[r], Color3f{});
+    }
+  }
+
   // Each path's emitter samples, summed in sample order, weighted by its throughput at the
   // vertex (the scalar integrators add them before shading the next vertex; so does this).
+  // With one sample per vertex TraceShadows has added them already.
   void AddEmitterSamples() {
     const int n_light = rules_.light_samples;
+    if (n_light == 1) return;
     const float inv_n = 1.0f / float(n_light);
     for (size_t p = 0; p < nee_paths_.size(); ++p) {
       const uint32_t i = nee_paths_[p];
@@ -751,14 +809,13 @@ class alignas(kColumnAlignment) Wavefront {
   /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex,
   /// grouped by material tag: a tag's rows are contiguous slots [begin[t], next[t]), one batch
   /// for the bsdf slot as it is (ShadeHitsWith's partition, gather and scatter are not needed),
-  /// and slot[row] is the slot of the row-th one in queue order. The groups are sized by a count
-  /// of the entries that go on (an upper bound: roulette and whitted end some first). Per slot:
-  /// the path, its queue entry (for the shading point), material, wo in the local frame and
-  /// the numbers (inputs); wi (local), weight f·|cos θi|/pdf, pdf (0: no sample) and eta
-  /// (outputs, written by the bsdf slot).
+  /// each group in queue order. The groups are sized by a count of the entries that go on (an
+  /// upper bound: roulette and whitted end some first). Per slot: the path, its queue entry
+  /// (for the shading point), material row, wo in the local frame and the numbers (inputs);
+  /// wi (local), weight f·|cos θi|/pdf, pdf (0: no sample) and eta (outputs, written by the
+  /// bsdf slot).
   struct BsdfColumns {
-    std::vector<uint32_t> path, entry, material_index, slot;
-    std::vector<MaterialRef> material;
+    std::vector<uint32_t> path, entry, material_index;
     std::vector<float> roulette_scale;
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
@@ -772,30 +829,40 @@ class alignas(kColumnAlignment) Wavefront {
     }
     size_t size() const { return rows; }
     size_t Bytes() const {
-      return VectorsBytes(path, entry, material_index, slot, material, roulette_scale, wo_x, wo_y,
-                          wo_z, u_lobe, u_x, u_y, wi_x, wi_y, wi_z, weight_r, weight_g, weight_b,
-                          pdf, eta);
+      return VectorsBytes(path, entry, material_index, roulette_scale, wo_x, wo_y, wo_z, u_lobe,
+                          u_x, u_y, wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
     }
     /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
     /// place; only grows. group_rows: the most rows each group can get (they sum to at most
     /// capacity).
     void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
       rows = 0;
-      GrowColumns(capacity, &path, &entry, &material_index, &slot, &material, &roulette_scale,
-                  &wo_x, &wo_y, &wo_z, &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r,
-                  &weight_g, &weight_b, &pdf, &eta);
+      GrowColumns(capacity, &path, &entry, &material_index, &roulette_scale, &wo_x, &wo_y, &wo_z,
+                  &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
+                  &eta);
       uint32_t at = 0;
       for (int g = 0; g < kGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
       const uint32_t c = next[Group(ref)]++;
-      slot[rows++] = c;
-      path[c] = path_id, entry[c] = queue_entry, material[c] = ref, roulette_scale[c] = scale;
+      ++rows;
+      path[c] = path_id, entry[c] = queue_entry, roulette_scale[c] = scale;
       material_index[c] = ref.index();
       wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
       u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
     }
+  };
+
+  /// The spawn stage's SoA columns, one row per path that goes on, in next-queue order: the
+  /// queue entry of its shading point and the sampled direction in that point's frame.
+  struct SpawnColumns {
+    std::vector<uint32_t> entry;
+    AlignedVector<float> wi_x, wi_y, wi_z;
+    size_t Bytes() const { return VectorsBytes(entry, wi_x, wi_y, wi_z); }
+    /// Room for `capacity` rows, written in place; only grows.
+    void Clear(size_t capacity) { GrowColumns(capacity, &entry, &wi_x, &wi_y, &wi_z); }
+    SpawnInputs Inputs() const { return {entry.data(), wi_x.data(), wi_y.data(), wi_z.data()}; }
   };
 
   /// The emitter stage's SoA columns, one row per emitter sample that picked an area light,
@@ -966,7 +1033,9 @@ class alignas(kColumnAlignment) Wavefront {
   EscapedColumns escaped_;
   std::vector<uint8_t> occluded_;
   std::vector<uint32_t> nee_paths_;
+  std::vector<uint32_t> nonfinite_nee_;  // requests of nee paths whose throughput is not finite
   BsdfColumns bsdf_;
+  SpawnColumns spawn_;
   EmitterColumns area_;
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
   std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
@@ -1014,6 +1083,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
+          .spawn = SpawnRayBatch,
           .name = "scalar-oracle"};
 }
 

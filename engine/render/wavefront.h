@@ -19,6 +19,7 @@
 #include "engine/render/integrator.h"
 #include "engine/render/interaction.h"
 #include "engine/render/packet_render.h"
+#include "engine/render/spawn_batch.h"
 
 namespace ptlab {
 
@@ -130,6 +131,15 @@ struct WavefrontKernels {
                       const Mask8* hit_mask, size_t packets,
                       const InteractionColumns& out) = nullptr;
 
+  // Spawn stage: the next rays of the paths that go on after the BSDF stage, one row per path
+  // in next-queue order (the wavefront writes each row's shading-point entry and local wi as it
+  // updates the path's state), row k into lane k % 8 of out[k / 8], the last packet's other
+  // lanes zero. Oracle: ptlab::SpawnRayBatch (SpawnRayAt per row: Frame::ToWorld and
+  // integrator::SpawnOrigin, the scalar path's bits); SIMD: simd::SpawnRayBatch, bit-identical
+  // (simd/spawn8.h).
+  void (*spawn)(const InteractionColumns& points, size_t n, const SpawnInputs& in,
+                RayPacket8* out) = nullptr;
+
   // Not in the table, row by row in the wavefront (PrepareEmitterSampleFrom): the delta lights
   // (point, and the CS184 directional and spot lights, engine/light/delta_light.h). Their
   // "sample" draws no numbers: the light's one position or direction and a falloff, a handful
@@ -176,7 +186,8 @@ class WavefrontWorkspace {
 /// pixels at one sample index, then bounce by bounce go through
 ///   traversal (intersect8 per packet) -> shading (emission, environment) -> sampling (emitter
 ///   samples, roulette, BSDF) -> shadow traversal (occluded8 per packet) -> accumulation,
-/// the surviving paths' rays pushed in order into the next queue, so packets stay full. Each
+/// the surviving paths' rays written into the next queue (grouped by material tag, each group in
+/// queue order, a deterministic order that changes no result), so packets stay full. Each
 /// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
 /// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
 /// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF, area-light request (its

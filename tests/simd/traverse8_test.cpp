@@ -1012,5 +1012,35 @@ TEST(Traverse8Render, PacketPathMatchesOracleOnCs184Spheres) {
   ExpectPacketRenderMatchesOracle(kSharedData + "cs184/dae/sky/CBspheres.dae", 48);
 }
 
+// Throughput that overflows: with diffuse albedos of 1e19 a path's throughput passes FLT_MAX
+// after a few bounces, and the emitter samples of such a vertex that trace nothing or are
+// occluded add Inf·0 = NaN to its radiance, as the scalar integrator does (the wavefront adds
+// unoccluded samples in TraceShadows and these zeros apart). The oracle wavefront must still
+// match the scalar loop bit for bit, the dropped non-finite samples included.
+TEST(Traverse8Render, OracleWavefrontMatchesScalarWhenThroughputOverflows) {
+  const std::string path = std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml";
+  StatusOr<Scene> loaded = LoadSceneFile(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  Scene& scene = *loaded;
+  scene.camera.width = 24, scene.camera.height = 24;
+  DiffuseTable& diffuse = scene.materials.diffuse;
+  for (size_t i = 0; i < diffuse.size(); ++i) {
+    diffuse.albedo_r[i] = diffuse.albedo_g[i] = diffuse.albedo_b[i] = 1e19f;
+  }
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
+  const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
+  for (const IntegratorDesc::Type type :
+       {IntegratorDesc::Type::kPathMis, IntegratorDesc::Type::kPathEms}) {
+    scene.integrator.type = type;
+    scene.integrator.max_depth = 12;
+    SCOPED_TRACE(std::to_string(int(type)));
+    const RenderRun scalar = RenderWith(scene, bvh, nullptr, 2);
+    const RenderRun staged = RenderWith(scene, bvh, &oracle, 2);
+    EXPECT_GT(scalar.stats.nonfinite, 0u);  // the case is there
+    EXPECT_EQ(scalar.stats.nonfinite, staged.stats.nonfinite);
+    EXPECT_EQ(CountDifferentPixels(scalar.image, staged.image), 0);
+  }
+}
+
 }  // namespace
 }  // namespace ptlab::simd
