@@ -51,6 +51,28 @@ struct InteractionColumns {
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionColumns& out);
 
+/// The shading stage's rows, one per queue entry (row q = lane q % 8 of packet q / 8), each
+/// array with room for 8 rows per packet: the interaction as MakeInteraction builds it but
+/// without surface coordinates (uv (0, 0): no stage of the wavefront reads them), and wo, the
+/// unit direction back along the ray, -d / |d|, in the interaction's shading frame.
+struct InteractionRows {
+  SurfaceInteraction* its;
+  Vec3f* wo;
+};
+
+/// The direction back along a ray of direction d (|d|² a normal float), in `frame`: the
+/// operations of the wavefront's shading stage, in its order.
+inline Vec3f LocalDirectionBack(const Frame& frame, const Vec3f& d) {
+  return frame.ToLocal(-d / Length(d));
+}
+
+/// For every hit lane of `packets` ray/hit packets (bit j of hit_mask[k] set): row k * 8 + j of
+/// out.its = MakeInteraction without uv and of out.wo = LocalDirectionBack(its.frame, d); other
+/// rows are left as they are. The wavefront's interaction slot, so the oracle table keeps the
+/// scalar path's bits; SIMD twin: simd::MakeInteractionBatch (rows).
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionRows& out);
+
 /// Writes row q of `out` from `its` (uv only when out has the columns).
 inline void SetInteractionRow(const InteractionColumns& out, size_t q,
                               const SurfaceInteraction& its) {
