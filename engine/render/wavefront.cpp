@@ -295,8 +295,11 @@ class alignas(kColumnAlignment) Wavefront {
   // its emission and its material group).
   void Shade(int depth) {
     const size_t packets = rays_.packets.size();
-    // Eight rows per packet: the SIMD slot writes every row of a packet with a hit.
-    its_.resize(packets * kLanes), wo_.resize(packets * kLanes), goes_on_.clear();
+    // Eight rows per packet: the SIMD slot may write every row of a packet with a hit. Only
+    // grown: a resize up would construct each new row, and the queue shrinks and grows back
+    // every wave.
+    GrowColumns(packets * kLanes, &its_, &wo_);
+    goes_on_.clear();
     std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
     const bool batch_escaped = EscapedRaysBatch();
     escaped_.Clear();
