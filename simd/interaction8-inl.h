@@ -8,7 +8,6 @@
 #define PTLAB_SIMD_INTERACTION8_INL_H_
 #endif
 
-#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
