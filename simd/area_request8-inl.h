@@ -20,6 +20,7 @@
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
 #include "simd/shade8-inl.h"
+#include "simd/shading_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -55,29 +56,6 @@ struct AreaRequestChunk {
   HWY_ALIGN float e_pdf[kAreaRequestRoom];
 };
 
-// Float offsets of the SurfaceInteraction fields the kernel gathers (the AoS array is read as
-// floats; the material ref as int32).
-inline constexpr int32_t kItsFloats = int32_t(sizeof(SurfaceInteraction) / sizeof(float));
-static_assert(sizeof(SurfaceInteraction) % sizeof(float) == 0);
-static_assert(sizeof(Vec3f) == 3 * sizeof(float) && sizeof(Color3f) == 3 * sizeof(float));
-inline constexpr int32_t kItsNg = int32_t(offsetof(SurfaceInteraction, ng) / sizeof(float));
-inline constexpr int32_t kItsFrameN =
-    int32_t((offsetof(SurfaceInteraction, frame) + offsetof(Frame, n)) / sizeof(float));
-inline constexpr int32_t kItsMaterial =
-    int32_t(offsetof(SurfaceInteraction, material) / sizeof(float));
-static_assert(sizeof(Frame) == 9 * sizeof(float) && sizeof(MaterialRef) == sizeof(uint32_t));
-
-/// OffsetRayOrigin (engine/bvh/ray_offset.h) for one coordinate: the integer step of the bit
-/// pattern (away from zero for negative p), or the fixed step within 1/32 of zero.
-HWY_INLINE V8 OffsetCoordinate(D8 d, V8 p, V8 ng) {
-  const hn::RebindToSigned<D8> di;
-  const auto of = hn::ConvertTo(di, hn::Mul(hn::Set(d, 256.0f), ng));
-  const auto step = hn::IfThenElse(hn::RebindMask(di, hn::Lt(p, hn::Zero(d))), hn::Neg(of), of);
-  const V8 p_i = hn::BitCast(d, hn::Add(hn::BitCast(di, p), step));
-  const V8 near_zero = hn::Add(p, hn::Mul(hn::Set(d, 1.0f / 65536.0f), ng));
-  return hn::IfThenElse(hn::Lt(hn::Abs(p), hn::Set(d, 1.0f / 32.0f)), near_zero, p_i);
-}
-
 /// Pass 1 for rows [i, i + Lanes(d)) of the batch into rows [j, j + Lanes(d)) of the chunk: the
 /// shading point's ng, n and material gathered by queue entry, wi and its validity, wi in the local
 /// frame, the shadow ray's endpoints and the light pdf; f and pdf 0; the valid rows appended to the
@@ -88,15 +66,15 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
   const D8 d;
   const hn::RebindToSigned<D8> di;
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-  const float* its = reinterpret_cast<const float*>(in.its);
-  const auto entry = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + i));
-  const auto row = hn::Mul(entry, hn::Set(di, kItsFloats));
+  const auto row =
+      InteractionFirst(hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + i)));
   const auto field = [&](int32_t offset) HWY_ATTR {
-    return hn::GatherIndex(d, its, hn::Add(row, hn::Set(di, offset)));
+    return InteractionField(d, in.its, row, offset);
   };
+
   const V8 px = hn::LoadU(d, in.ref_x + i), py = hn::LoadU(d, in.ref_y + i),
            pz = hn::LoadU(d, in.ref_z + i);
-  const V8 ngx = field(kItsNg), ngy = field(kItsNg + 1), ngz = field(kItsNg + 2);
+  const V8 ngx = field(kInteractionNg), ngy = field(kInteractionNg + 1), ngz = field(kInteractionNg + 2);
   // wi = (ls.p - its.p) / |ls.p - its.p| (Vec3f's operator/: times the reciprocal).
   const V8 lx = hn::LoadU(d, in.p_x + i), ly = hn::LoadU(d, in.p_y + i),
            lz = hn::LoadU(d, in.p_z + i);
@@ -116,13 +94,9 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
   // wi_local = frame.ToLocal(wi): Dot(wi, s), Dot(wi, t), Dot(wi, n), the frame's s and t
   // rebuilt from n as Frame(n) builds them (every SurfaceInteraction's frame is Frame(n)):
   // fewer gathers than reading them.
-  const V8 nx = field(kItsFrameN), ny = field(kItsFrameN + 1), nz = field(kItsFrameN + 2);
-  const V8 sign = hn::CopySign(one, nz);
-  const V8 a = hn::Div(hn::Set(d, -1.0f), hn::Add(sign, nz));
-  const V8 b = hn::Mul(hn::Mul(nx, ny), a);
-  const V8 sx = hn::Add(one, hn::Mul(hn::Mul(hn::Mul(sign, nx), nx), a)), sy = hn::Mul(sign, b),
-           sz = hn::Mul(hn::Neg(sign), nx);
-  const V8 ty = hn::Add(sign, hn::Mul(hn::Mul(ny, ny), a)), tz = hn::Neg(ny);
+  const V8 nx = field(kInteractionN), ny = field(kInteractionN + 1), nz = field(kInteractionN + 2);
+  V8 sx, sy, sz, b, ty, tz;
+  FrameOfNormal(d, nx, ny, nz, sx, sy, sz, b, ty, tz);
   const V8 local_x = hn::Add(hn::Add(hn::Mul(wx, sx), hn::Mul(wy, sy)), hn::Mul(wz, sz));
   const V8 local_y = hn::Add(hn::Add(hn::Mul(wx, b), hn::Mul(wy, ty)), hn::Mul(wz, tz));
   const V8 local_z = hn::Add(hn::Add(hn::Mul(wx, nx), hn::Mul(wy, ny)), hn::Mul(wz, nz));
@@ -133,7 +107,7 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
     const auto valid_i = hn::RebindMask(di, valid);
     const size_t k = c->rows;
     const auto material = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(in.its),
-                                          hn::Add(row, hn::Set(di, kItsMaterial)));
+                                          hn::Add(row, hn::Set(di, kInteractionMaterial)));
     hn::StoreU(hn::Compress(hn::And(material, hn::Set(di, 0x0fffffff)), valid_i), di,
                reinterpret_cast<int32_t*>(c->index + k));
     hn::StoreU(hn::Compress(hn::Add(hn::Iota(di, 0), hn::Set(di, int32_t(j))), valid_i), di,

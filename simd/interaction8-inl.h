@@ -17,6 +17,7 @@
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
+#include "simd/shading_point8-inl.h"
 #include "simd/triangle_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -115,6 +116,150 @@ inline void MakeInteractionBatchKernel(const Scene& scene, const RayPacket8* ray
         hn::BlendedStore(u, m, d, out.u + row);
         hn::BlendedStore(v, m, d, out.v + row);
       }
+    }
+  }
+}
+
+// SurfaceInteraction as the row kernel stores it: 20 four-byte fields, p, ng, frame (s, t, n),
+// uv, prim, material, emitter, in that order.
+inline constexpr size_t kInteractionFields = sizeof(SurfaceInteraction) / sizeof(float);
+static_assert(kInteractionFields == 20 && offsetof(SurfaceInteraction, frame) == 24 &&
+              offsetof(SurfaceInteraction, uv) == 60 && offsetof(SurfaceInteraction, prim) == 68 &&
+              offsetof(SurfaceInteraction, material) == 72 &&
+              offsetof(SurfaceInteraction, emitter) == 76);
+
+// Four fields of the lanes i.. of a packet (vectors f0..f3) into their rows: lane j's
+// (f0, f1, f2, f3) as 16 bytes at lane0 + j * stride floats. A 4x4 transpose per 128-bit block,
+// so on 8-lane targets one vector holds the quads of lanes j and j + 4.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void StoreQuadRows(D d, V f0, V f1, V f2, V f3, float* lane0, size_t stride) {
+#if HWY_TARGET == HWY_SCALAR
+  lane0[0] = hn::GetLane(f0), lane0[1] = hn::GetLane(f1);
+  lane0[2] = hn::GetLane(f2), lane0[3] = hn::GetLane(f3);
+  (void)d, (void)stride;
+#else
+  const hn::Repartition<double, D> dd;
+  const auto lo01 = hn::BitCast(dd, hn::InterleaveLower(d, f0, f1));
+  const auto lo23 = hn::BitCast(dd, hn::InterleaveLower(d, f2, f3));
+  const auto hi01 = hn::BitCast(dd, hn::InterleaveUpper(d, f0, f1));
+  const auto hi23 = hn::BitCast(dd, hn::InterleaveUpper(d, f2, f3));
+  const V r0 = hn::BitCast(d, hn::InterleaveLower(dd, lo01, lo23));
+  const V r1 = hn::BitCast(d, hn::InterleaveUpper(dd, lo01, lo23));
+  const V r2 = hn::BitCast(d, hn::InterleaveLower(dd, hi01, hi23));
+  const V r3 = hn::BitCast(d, hn::InterleaveUpper(dd, hi01, hi23));
+  if constexpr (hn::MaxLanes(d) == 4) {
+    hn::StoreU(r0, d, lane0), hn::StoreU(r1, d, lane0 + stride);
+    hn::StoreU(r2, d, lane0 + 2 * stride), hn::StoreU(r3, d, lane0 + 3 * stride);
+  } else {
+    static_assert(hn::MaxLanes(d) == 8);
+    const hn::Half<D> dh;
+    hn::StoreU(hn::LowerHalf(dh, r0), dh, lane0);
+    hn::StoreU(hn::LowerHalf(dh, r1), dh, lane0 + stride);
+    hn::StoreU(hn::LowerHalf(dh, r2), dh, lane0 + 2 * stride);
+    hn::StoreU(hn::LowerHalf(dh, r3), dh, lane0 + 3 * stride);
+    hn::StoreU(hn::UpperHalf(dh, r0), dh, lane0 + 4 * stride);
+    hn::StoreU(hn::UpperHalf(dh, r1), dh, lane0 + 5 * stride);
+    hn::StoreU(hn::UpperHalf(dh, r2), dh, lane0 + 6 * stride);
+    hn::StoreU(hn::UpperHalf(dh, r3), dh, lane0 + 7 * stride);
+  }
+#endif
+}
+
+// ptlab::MakeInteractionBatch into rows, eight lanes at a time: every lane as a triangle hit
+// (row 0 and barycentrics 0 in the lanes of no triangle hit, so that they stay finite):
+// TrianglePoint8, Frame(n), wo = Frame::ToLocal(-d * (1 / |d|)) and the material and emitter
+// refs, stored into all the rows of the vector through 4x4 transposes; then the sphere lanes'
+// rows again with the scalar code.
+inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays,
+                                      const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+                                      const InteractionRows& out) {
+  const hn::CappedTag<float, 8> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  const size_t lanes = hn::Lanes(d);
+  const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const auto zero_i = hn::Zero(di), sphere_bit = hn::Set(di, int32_t(kSphereHitBit));
+  const auto no_vertex = hn::Set(di, int32_t(kNoVertex));
+  const TriangleShadingTable& sh = scene.shading;
+  const bool vertex_normals = !scene.vertices.n_x.empty();
+  const auto as_i = [](const auto* p) { return reinterpret_cast<const int32_t*>(p); };
+  alignas(32) static constexpr int32_t kLaneBits[8] = {1, 2, 4, 8, 16, 32, 64, 128};
+  for (size_t k = 0; k < packets; ++k) {
+    const Mask8 hit = hit_mask[k] & kAllLanes;
+    if (hit == 0) continue;
+    const RayPacket8& r = rays[k];
+    const HitPacket8& h = hits[k];
+    float* const rows = reinterpret_cast<float*>(out.its + k * kPacketWidth);
+    alignas(32) float wo[3][kPacketWidth];
+    Mask8 spheres = 0;
+    for (size_t i = 0; i < kPacketWidth; i += lanes) {
+      const auto hit_i = hn::TestBit(hn::Set(di, int32_t(hit)), hn::Load(di, kLaneBits + i));
+      const auto prim = hn::Load(di, as_i(h.prim) + i);
+      const auto sphere_i = hn::And(hit_i, hn::Ne(hn::And(prim, sphere_bit), zero_i));
+      const auto tri_i = hn::AndNot(sphere_i, hit_i);
+      const auto tri = hn::RebindMask(d, tri_i);
+      if (!hn::AllFalse(di, sphere_i)) {
+        uint8_t bits[8] = {};
+        hn::StoreMaskBits(di, sphere_i, bits);
+        spheres |= Mask8(bits[0]) << i;
+      }
+      if (hn::AllFalse(di, tri_i)) continue;
+      const auto ti = hn::IfThenElseZero(tri_i, prim);
+      const auto b1 = hn::IfThenElseZero(tri, hn::Load(d, h.b1 + i));
+      const auto b2 = hn::IfThenElseZero(tri, hn::Load(d, h.b2 + i));
+      const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
+      // ShadingNormalAt's test: the mesh has vertex normals (vertex rows 0 elsewhere).
+      auto vn_i = hn::Lt(zero_i, zero_i);
+      auto i0 = zero_i, i1 = zero_i, i2 = zero_i;
+      if (vertex_normals) {
+        i0 = hn::GatherIndex(di, as_i(sh.vertex0.data()), ti);
+        vn_i = hn::And(tri_i, hn::Ne(i0, no_vertex));
+        if (!hn::AllFalse(di, vn_i)) {
+          i0 = hn::IfThenElseZero(vn_i, i0);
+          i1 = hn::IfThenElseZero(vn_i, hn::GatherIndex(di, as_i(sh.vertex1.data()), ti));
+          i2 = hn::IfThenElseZero(vn_i, hn::GatherIndex(di, as_i(sh.vertex2.data()), ti));
+        }
+      }
+      auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
+      auto nx = zero, ny = zero, nz = zero;
+      auto has_ng = hn::Gt(zero, zero);
+      TrianglePoint8(d, scene, ti, b0, b1, b2, hn::RebindMask(d, vn_i), i0, i1, i2, px, py, pz, gx,
+                     gy, gz, nx, ny, nz, has_ng);
+      hn::Vec<decltype(d)> sx, sy, sz, b, ty, tz;
+      FrameOfNormal(d, nx, ny, nz, sx, sy, sz, b, ty, tz);
+      // wo = ToLocal(-d * (1 / |d|)); d = +z in the lanes of no triangle hit (the padding lanes
+      // of a queue's last packet have d = 0).
+      const auto dx = hn::IfThenElseZero(tri, hn::Load(d, r.dir_x + i));
+      const auto dy = hn::IfThenElseZero(tri, hn::Load(d, r.dir_y + i));
+      const auto dz = hn::IfThenElse(tri, hn::Load(d, r.dir_z + i), one);
+      const auto inv = hn::Div(
+          one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz))));
+      const auto wx = hn::Mul(hn::Neg(dx), inv), wy = hn::Mul(hn::Neg(dy), inv);
+      const auto wz = hn::Mul(hn::Neg(dz), inv);
+      hn::Store(hn::Add(hn::Add(hn::Mul(wx, sx), hn::Mul(wy, sy)), hn::Mul(wz, sz)), d, wo[0] + i);
+      hn::Store(hn::Add(hn::Add(hn::Mul(wx, b), hn::Mul(wy, ty)), hn::Mul(wz, tz)), d, wo[1] + i);
+      hn::Store(hn::Add(hn::Add(hn::Mul(wx, nx), hn::Mul(wy, ny)), hn::Mul(wz, nz)), d, wo[2] + i);
+      const auto material = hn::GatherIndex(di, as_i(sh.material.data()), ti);
+      const auto mesh = hn::GatherIndex(di, as_i(sh.mesh.data()), ti);
+      const auto emitter = hn::GatherIndex(di, as_i(scene.meshes.emitter.data()), mesh);
+      float* const lane0 = rows + i * kInteractionFields;
+      StoreQuadRows(d, px, py, pz, gx, lane0, kInteractionFields);
+      StoreQuadRows(d, gy, gz, sx, sy, lane0 + 4, kInteractionFields);
+      StoreQuadRows(d, sz, b, ty, tz, lane0 + 8, kInteractionFields);
+      StoreQuadRows(d, nx, ny, nz, zero, lane0 + 12, kInteractionFields);
+      StoreQuadRows(d, zero, hn::BitCast(d, prim), hn::BitCast(d, material),
+                    hn::BitCast(d, emitter), lane0 + 16, kInteractionFields);
+      Vec3f* const wo_rows = out.wo + k * kPacketWidth + i;
+      for (size_t j = 0; j < lanes; ++j) wo_rows[j] = {wo[0][i + j], wo[1][i + j], wo[2][i + j]};
+    }
+    // Sphere lanes: the scalar code (an analytic surface, rare in triangle scenes).
+    for (Mask8 todo = spheres; todo != 0; todo &= todo - 1) {
+      const int j = std::countr_zero(todo);
+      const size_t q = k * kPacketWidth + size_t(j);
+      const Ray ray = GetLaneRay(r, j);
+      SurfaceInteraction& its = out.its[q];
+      its = MakeInteraction(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]});
+      its.uv = {};  // the rows carry no surface coordinates
+      out.wo[q] = LocalDirectionBack(its.frame, ray.d);
     }
   }
 }

@@ -16,6 +16,10 @@ void MakeInteractionBatchTarget(const Scene& scene, const RayPacket8* rays,
                                 const InteractionColumns& out) {
   MakeInteractionBatchKernel(scene, rays, hits, hit_mask, packets, out);
 }
+void MakeInteractionRowsTarget(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                               const Mask8* hit_mask, size_t packets, const InteractionRows& out) {
+  MakeInteractionRowsKernel(scene, rays, hits, hit_mask, packets, out);
+}
 const char* Interaction8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -28,12 +32,19 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(MakeInteractionBatchTarget);
+HWY_EXPORT(MakeInteractionRowsTarget);
 HWY_EXPORT(Interaction8TargetNameTarget);
 
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionColumns& out) {
   if (packets == 0) return;
   HWY_DYNAMIC_DISPATCH(MakeInteractionBatchTarget)(scene, rays, hits, hit_mask, packets, out);
+}
+
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionRows& out) {
+  if (packets == 0) return;
+  HWY_DYNAMIC_DISPATCH(MakeInteractionRowsTarget)(scene, rays, hits, hit_mask, packets, out);
 }
 
 const char* Interaction8TargetName() { return HWY_DYNAMIC_DISPATCH(Interaction8TargetNameTarget)(); }

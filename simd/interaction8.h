@@ -22,6 +22,19 @@ namespace ptlab::simd {
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionColumns& out);
 
+/// ptlab::MakeInteractionBatch into rows (the wavefront's interaction slot), eight lanes per
+/// step: the triangle hits' points and normals as above, then Frame(n), wo (-d / |d| in the
+/// frame) and the material and emitter refs (gathered), stored into the SurfaceInteraction rows
+/// through 4x4 transposes; sphere lanes take the scalar MakeInteraction lane by lane. Every row
+/// of a vector of lanes with a triangle hit is written: rows of lanes that did not hit get
+/// finite floats (vertex 0 of triangle 0 and its geometric frame) and are otherwise unspecified.
+/// out.its and out.wo need 8 rows per packet.
+/// Oracle: ptlab::MakeInteractionBatch (rows). Contract: the hit rows bit-identical to the
+/// oracle's on every target (the scalar float operations in their order, FMA contraction off,
+/// correctly rounded Sqrt and Div); tests/simd/interaction8_test.cpp.
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionRows& out);
+
 /// Name of the Highway target MakeInteractionBatch dispatches to now; for logs and tests.
 const char* Interaction8TargetName();
 

@@ -16,6 +16,7 @@
 #include "engine/render/interaction.h"
 #include "engine/render/spawn_batch.h"
 #include "hwy/highway.h"
+#include "simd/shading_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -23,43 +24,28 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// OffsetRayOrigin for one coordinate: p moved by 256 * ng units in the last place (the step
-/// negated where p < 0, so that it moves along +ng), or by ng / 65536 within 1/32 of zero.
-template <class D>
-HWY_INLINE hn::Vec<D> OffsetCoordinate(D d, hn::Vec<D> p, hn::Vec<D> ng) {
-  const hn::RebindToSigned<D> di;
-  const auto of = hn::ConvertTo(di, hn::Mul(hn::Set(d, 256.0f), ng));
-  const auto step = hn::IfThenElse(hn::RebindMask(di, hn::Lt(p, hn::Zero(d))), hn::Neg(of), of);
-  const auto stepped = hn::BitCast(d, hn::Add(hn::BitCast(di, p), step));
-  const auto near_zero = hn::Lt(hn::Abs(p), hn::Set(d, 1.0f / 32.0f));
-  return hn::IfThenElse(near_zero, hn::Add(p, hn::Mul(hn::Set(d, 1.0f / 65536.0f), ng)), stepped);
-}
-
-inline void SpawnRayBatchKernel(const InteractionColumns& points, size_t n, const SpawnInputs& in,
+inline void SpawnRayBatchKernel(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                                 RayPacket8* out) {
   const hn::CappedTag<float, 8> d;
   const hn::RebindToSigned<decltype(d)> di;
   const size_t lanes = hn::Lanes(d);
-  const auto one = hn::Set(d, 1.0f), minus_one = hn::Set(d, -1.0f), zero = hn::Zero(d);
+  const auto zero = hn::Zero(d);
   const auto infinity = hn::Set(d, std::numeric_limits<float>::infinity());
   const size_t full = n / kPacketWidth;
   for (size_t k = 0; k < full; ++k) {
     RayPacket8& ray = out[k];
     for (size_t j = 0; j < kPacketWidth; j += lanes) {
       const size_t row = k * kPacketWidth + j;
-      const auto q = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + row));
-      const auto n_x = hn::GatherIndex(d, points.n_x, q);
-      const auto n_y = hn::GatherIndex(d, points.n_y, q);
-      const auto n_z = hn::GatherIndex(d, points.n_z, q);
-      // Frame(n): Duff et al. 2017, in engine/core/frame.h's order.
-      const auto sign = hn::CopySign(one, n_z);
-      const auto a = hn::Div(minus_one, hn::Add(sign, n_z));
-      const auto b = hn::Mul(hn::Mul(n_x, n_y), a);
-      const auto s_x = hn::Add(one, hn::Mul(hn::Mul(hn::Mul(sign, n_x), n_x), a));
-      const auto s_y = hn::Mul(sign, b);
-      const auto s_z = hn::Mul(hn::Neg(sign), n_x);
-      const auto t_y = hn::Add(sign, hn::Mul(hn::Mul(n_y, n_y), a));
-      const auto t_z = hn::Neg(n_y);
+      const auto first =
+          InteractionFirst(hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + row)));
+      const auto field = [&](int32_t offset) HWY_ATTR {
+        return InteractionField(d, its, first, offset);
+      };
+      const auto n_x = field(kInteractionN), n_y = field(kInteractionN + 1),
+                 n_z = field(kInteractionN + 2);
+      // The frame as the interaction slot built it (Frame(n)): fewer gathers than reading it.
+      hn::Vec<decltype(d)> s_x, s_y, s_z, b, t_y, t_z;
+      FrameOfNormal(d, n_x, n_y, n_z, s_x, s_y, s_z, b, t_y, t_z);
       // ToWorld: s * wi.x + t * wi.y + n * wi.z (t_x = b).
       const auto u_x = hn::LoadU(d, in.wi_x + row), u_y = hn::LoadU(d, in.wi_y + row);
       const auto u_z = hn::LoadU(d, in.wi_z + row);
@@ -67,17 +53,15 @@ inline void SpawnRayBatchKernel(const InteractionColumns& points, size_t n, cons
       const auto w_y = hn::Add(hn::Add(hn::Mul(s_y, u_x), hn::Mul(t_y, u_y)), hn::Mul(n_y, u_z));
       const auto w_z = hn::Add(hn::Add(hn::Mul(s_z, u_x), hn::Mul(t_z, u_y)), hn::Mul(n_z, u_z));
       // SpawnOrigin: the geometric normal flipped to wi's side (Dot(ng, wi) >= 0 keeps it).
-      auto g_x = hn::GatherIndex(d, points.ng_x, q);
-      auto g_y = hn::GatherIndex(d, points.ng_y, q);
-      auto g_z = hn::GatherIndex(d, points.ng_z, q);
+      auto g_x = field(kInteractionNg), g_y = field(kInteractionNg + 1),
+           g_z = field(kInteractionNg + 2);
       const auto side = hn::Add(hn::Add(hn::Mul(g_x, w_x), hn::Mul(g_y, w_y)), hn::Mul(g_z, w_z));
       const auto keep = hn::Ge(side, zero);
       g_x = hn::IfThenElse(keep, g_x, hn::Neg(g_x));
       g_y = hn::IfThenElse(keep, g_y, hn::Neg(g_y));
       g_z = hn::IfThenElse(keep, g_z, hn::Neg(g_z));
-      const auto p_x = hn::GatherIndex(d, points.p_x, q);
-      const auto p_y = hn::GatherIndex(d, points.p_y, q);
-      const auto p_z = hn::GatherIndex(d, points.p_z, q);
+      const auto p_x = field(kInteractionP), p_y = field(kInteractionP + 1),
+                 p_z = field(kInteractionP + 2);
       hn::Store(OffsetCoordinate(d, p_x, g_x), d, ray.org_x + j);
       hn::Store(OffsetCoordinate(d, p_y, g_y), d, ray.org_y + j);
       hn::Store(OffsetCoordinate(d, p_z, g_z), d, ray.org_z + j);
@@ -92,7 +76,7 @@ inline void SpawnRayBatchKernel(const InteractionColumns& points, size_t n, cons
   const size_t done = full * kPacketWidth;
   if (done == n) return;
   const SpawnInputs rest{in.entry + done, in.wi_x + done, in.wi_y + done, in.wi_z + done};
-  ptlab::SpawnRayBatch(points, n - done, rest, out + full);
+  ptlab::SpawnRayBatch(its, n - done, rest, out + full);
 }
 
 }  // namespace HWY_NAMESPACE

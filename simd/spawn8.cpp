@@ -11,9 +11,9 @@ HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
-void SpawnRayBatchTarget(const InteractionColumns& points, size_t n, const SpawnInputs& in,
+void SpawnRayBatchTarget(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                          RayPacket8* out) {
-  SpawnRayBatchKernel(points, n, in, out);
+  SpawnRayBatchKernel(its, n, in, out);
 }
 const char* Spawn8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
@@ -29,10 +29,10 @@ namespace ptlab::simd {
 HWY_EXPORT(SpawnRayBatchTarget);
 HWY_EXPORT(Spawn8TargetNameTarget);
 
-void SpawnRayBatch(const InteractionColumns& points, size_t n, const SpawnInputs& in,
+void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                    RayPacket8* out) {
   if (n == 0) return;
-  HWY_DYNAMIC_DISPATCH(SpawnRayBatchTarget)(points, n, in, out);
+  HWY_DYNAMIC_DISPATCH(SpawnRayBatchTarget)(its, n, in, out);
 }
 
 const char* Spawn8TargetName() { return HWY_DYNAMIC_DISPATCH(Spawn8TargetNameTarget)(); }

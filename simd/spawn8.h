@@ -10,16 +10,17 @@
 namespace ptlab::simd {
 
 /// ptlab::SpawnRayBatch, eight rows per step (hn::CappedTag<float, 8>): each packet of eight
-/// rows gathers its shading points (p, ng, n) by in.entry, builds the shading frame (Duff et
-/// al.), turns wi into world space, offsets the origin (OffsetRayOrigin's integer step, or its
-/// fixed step near zero) and stores the packet with whole-vector stores; the last, partial
-/// packet takes the oracle row by row.
+/// rows gathers its shading points' p, ng and n by in.entry, rebuilds their frame from n as
+/// Frame(n) does (the rows' frames are Frame(n): see ptlab::SpawnRayBatch), turns wi into
+/// world space, offsets the origin (OffsetRayOrigin's integer step, or its fixed step near
+/// zero) and stores the packet with whole-vector stores; the last, partial packet takes the
+/// oracle row by row.
 /// Oracle: ptlab::SpawnRayBatch. Contract: every output bit-identical to the oracle's on every
 /// target (its float operations in its order; FMA contraction is off, Highway's Div is
 /// correctly rounded and its float -> int conversion truncates as the cast does for |x| <= 256).
 /// Inputs: finite points at least 256 ulps below the largest float, unit normals.
 /// tests/simd/spawn8_test.cpp.
-void SpawnRayBatch(const InteractionColumns& points, size_t n, const SpawnInputs& in,
+void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                    RayPacket8* out);
 
 /// Name of the Highway target SpawnRayBatch dispatches to now; for logs and tests.

@@ -90,4 +90,19 @@ void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitP
   }
 }
 
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionRows& out) {
+  for (size_t k = 0; k < packets; ++k) {
+    for (Mask8 todo = hit_mask[k] & kAllLanes; todo != 0; todo &= todo - 1) {
+      const int j = std::countr_zero(todo);
+      const HitPacket8& h = hits[k];
+      const Ray ray = GetLaneRay(rays[k], j);
+      const size_t q = k * kPacketWidth + size_t(j);
+      SurfaceInteraction& its = out.its[q];
+      its = MakeInteractionWith(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]}, false);
+      out.wo[q] = LocalDirectionBack(its.frame, ray.d);
+    }
+  }
+}
+
 }  // namespace ptlab

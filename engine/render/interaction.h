@@ -35,11 +35,11 @@ Vec2f SphereUv(const Vec3f& n);
 /// normal is (p - c)/r; spheres never emit.
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
 
-/// The interaction stage's SoA columns of shading points, world space, one row per queue entry
-/// (row q = lane q % 8 of packet q / 8): p, the unit geometric normal ng and the unit shading
+/// SoA columns of shading points, world space, one row per ray of a batch of packets (row q =
+/// lane q % 8 of packet q / 8): p, the unit geometric normal ng and the unit shading
 /// normal n (the z axis of SurfaceInteraction::frame), and the surface coordinates (u, v)
 /// (SurfaceInteraction::uv). u and v may both be null: then no surface coordinates are computed
-/// (the wavefront has no stage that reads them, and the vertex uvs are a gather per corner).
+/// (the vertex uvs are a gather per corner).
 struct InteractionColumns {
   float *p_x, *p_y, *p_z, *ng_x, *ng_y, *ng_z, *n_x, *n_y, *n_z, *u, *v;
 };
@@ -47,9 +47,31 @@ struct InteractionColumns {
 /// MakeInteraction for every hit lane of `packets` ray/hit packets: row k * 8 + j is written
 /// when bit j of hit_mask[k] is set (hits[k] lane j valid), other rows are left as they are;
 /// without out.u / out.v, everything but the surface coordinates (not computed).
-/// The wavefront's interaction slot; SIMD twin: simd::MakeInteractionBatch.
+/// SIMD twin: simd::MakeInteractionBatch (columns).
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionColumns& out);
+
+/// The shading stage's rows, one per queue entry (row q = lane q % 8 of packet q / 8), each
+/// array with room for 8 rows per packet: the interaction as MakeInteraction builds it but
+/// without surface coordinates (uv (0, 0): no stage of the wavefront reads them), and wo, the
+/// unit direction back along the ray, -d / |d|, in the interaction's shading frame.
+struct InteractionRows {
+  SurfaceInteraction* its;
+  Vec3f* wo;
+};
+
+/// The direction back along a ray of direction d (|d|² a normal float), in `frame`: the
+/// operations of the wavefront's shading stage, in its order.
+inline Vec3f LocalDirectionBack(const Frame& frame, const Vec3f& d) {
+  return frame.ToLocal(-d / Length(d));
+}
+
+/// For every hit lane of `packets` ray/hit packets (bit j of hit_mask[k] set): row k * 8 + j of
+/// out.its = MakeInteraction without uv and of out.wo = LocalDirectionBack(its.frame, d); other
+/// rows are left as they are. The wavefront's interaction slot, so the oracle table keeps the
+/// scalar path's bits; SIMD twin: simd::MakeInteractionBatch (rows).
+void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+                          const Mask8* hit_mask, size_t packets, const InteractionRows& out);
 
 /// Writes row q of `out` from `its` (uv only when out has the columns).
 inline void SetInteractionRow(const InteractionColumns& out, size_t q,
@@ -58,30 +80,6 @@ inline void SetInteractionRow(const InteractionColumns& out, size_t q,
   out.ng_x[q] = its.ng.x, out.ng_y[q] = its.ng.y, out.ng_z[q] = its.ng.z;
   out.n_x[q] = its.frame.n.x, out.n_y[q] = its.frame.n.y, out.n_z[q] = its.frame.n.z;
   if (out.u != nullptr) out.u[q] = its.uv.x, out.v[q] = its.uv.y;
-}
-
-/// Writes *its: the SurfaceInteraction of row q of the columns for a hit on `prim` (Hit::prim):
-/// the frame built from n, uv read back (0, 0 when the columns have none), the material and
-/// emitter looked up by prim.
-/// Bit-identical to MakeInteraction when the row came from MakeInteractionBatch. Every field is
-/// written in place (no returned struct: a caller storing one copied it from the stack, 16 bytes at
-/// a time over the callee's narrower stores, which stalls store forwarding). Inline, so a caller
-/// reading the frame right after reuses its registers instead of loading 8 bytes across 4-byte
-/// stores.
-inline void InteractionAt(const Scene& scene, const InteractionColumns& in, size_t q, uint32_t prim,
-                          SurfaceInteraction* its) {
-  its->p = {in.p_x[q], in.p_y[q], in.p_z[q]};
-  its->ng = {in.ng_x[q], in.ng_y[q], in.ng_z[q]};
-  its->frame = Frame(Vec3f{in.n_x[q], in.n_y[q], in.n_z[q]});
-  its->uv = in.u != nullptr ? Vec2f{in.u[q], in.v[q]} : Vec2f{};
-  its->prim = prim;
-  if (IsSphereHit(prim)) {
-    its->material = scene.spheres.material[SphereHitRow(prim)];
-    its->emitter = EmitterRef::None();
-  } else {
-    its->material = scene.shading.material[prim];
-    its->emitter = scene.meshes.emitter[scene.shading.mesh[prim]];
-  }
 }
 
 }  // namespace ptlab

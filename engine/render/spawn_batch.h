@@ -14,9 +14,9 @@
 
 namespace ptlab {
 
-/// One row per path that goes on, in the order its ray takes in the next queue: the row of
-/// its shading point in the interaction stage's columns and the sampled direction wi in that
-/// point's shading frame (unit, as the bsdf slot wrote it).
+/// One row per path that goes on, in the order its ray takes in the next queue: the queue
+/// entry of its shading point (its row in the interaction stage's SurfaceInteraction rows) and
+/// the sampled direction wi in that point's shading frame (unit, as the bsdf slot wrote it).
 struct SpawnInputs {
   const uint32_t* entry = nullptr;
   const float* wi_x = nullptr;
@@ -24,25 +24,21 @@ struct SpawnInputs {
   const float* wi_z = nullptr;
 };
 
-/// The next ray from shading point row q of `points` along local direction wi_local, as the
-/// scalar integrators spawn it from the SurfaceInteraction that InteractionAt builds from that
-/// row: wi = Frame(n).ToWorld(wi_local), origin integrator::SpawnOrigin (p offset along the
-/// geometric normal on wi's side), t in [0, inf).
-inline Ray SpawnRayAt(const InteractionColumns& points, size_t q, const Vec3f& wi_local) {
-  const Frame frame(Vec3f{points.n_x[q], points.n_y[q], points.n_z[q]});
-  const Vec3f p{points.p_x[q], points.p_y[q], points.p_z[q]};
-  const Vec3f ng{points.ng_x[q], points.ng_y[q], points.ng_z[q]};
-  const Vec3f wi = frame.ToWorld(wi_local);
-  return Ray{OffsetRayOrigin(p, Dot(ng, wi) >= 0 ? ng : -ng), wi, 0.0f,
+/// The next ray from shading point `its` along local direction wi_local, as the scalar
+/// integrators spawn it: wi = its.frame.ToWorld(wi_local), origin integrator::SpawnOrigin (p
+/// offset along the geometric normal on wi's side), t in [0, inf).
+inline Ray SpawnRayAt(const SurfaceInteraction& its, const Vec3f& wi_local) {
+  const Vec3f wi = its.frame.ToWorld(wi_local);
+  return Ray{OffsetRayOrigin(its.p, Dot(its.ng, wi) >= 0 ? its.ng : -its.ng), wi, 0.0f,
              std::numeric_limits<float>::infinity()};
 }
 
-/// The wavefront's spawn slot: row k's ray (SpawnRayAt of points row in.entry[k]) into lane
-/// k % 8 of out[k / 8], for k in [0, n); the lanes after row n - 1 in the last packet are
-/// zero (as RayQueue::Push leaves them). `out` holds (n + 7) / 8 packets; the rows of
-/// `points` that in.entry names are those of hits (written by the interaction slot).
+/// The wavefront's spawn slot: row k's ray (SpawnRayAt of its[in.entry[k]]) into lane k % 8 of
+/// out[k / 8], for k in [0, n); the lanes after row n - 1 in the last packet are zero (as
+/// RayQueue::Push leaves them). `out` holds (n + 7) / 8 packets; the rows of `its` that
+/// in.entry names are those of hits, as the interaction slot writes them (frame = Frame(n)).
 /// SIMD twin: simd::SpawnRayBatch (simd/spawn8.h).
-void SpawnRayBatch(const InteractionColumns& points, size_t n, const SpawnInputs& in,
+void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                    RayPacket8* out);
 
 }  // namespace ptlab

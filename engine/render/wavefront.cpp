@@ -178,7 +178,7 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_,
                           request_contribution_, occluded_, nee_paths_, nonfinite_nee_);
-    bytes += points_.Bytes() + bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes();
+    bytes += bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
     bytes += escaped_.Bytes();
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
@@ -294,25 +294,31 @@ class alignas(kColumnAlignment) Wavefront {
   }
 
   // Emission at hits, environment light for escaped rays; lists the entries that go on to the
-  // sampling stage (goes_on_; its_ / wo_ hold their shading points).
+  // sampling stage (goes_on_; its_ / wo_ hold their shading points, which the interaction slot
+  // writes for the whole wave, frames and wo included, so that this loop visits a hit only for
+  // its emission and its material group).
   void Shade(int depth) {
-    const size_t n = rays_.size();
-    its_.resize(n), wo_.resize(n), goes_on_.clear();
+    const size_t packets = rays_.packets.size();
+    // Eight rows per packet: the SIMD slot may write every row of a packet with a hit. Only
+    // grown: a resize up would construct each new row, and the queue shrinks and grows back
+    // every wave.
+    GrowColumns(packets * kLanes, &its_, &wo_);
+    goes_on_.clear();
     std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
     const bool batch_escaped = EscapedRaysBatch();
     escaped_.Clear();
-    points_.Resize(rays_.packets.size() * kPacketWidth);
-    const InteractionColumns points = points_.View();
-    kernels_->interaction(*scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(),
-                         rays_.packets.size(), points);
-    for (size_t q = 0; q < n; ++q) {
-      const uint32_t i = rays_.owner[q];
-      const size_t k = q / kLanes, j = q % kLanes;
-      const Vec3f d = rays_.Direction(q);
-      if (!LaneActive(hit_mask_[k], int(j))) {
+    kernels_->interaction(*scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(), packets,
+                          {its_.data(), wo_.data()});
+    const bool goes_on = rules_.max_depth < 0 || depth < rules_.max_depth;
+    for (size_t k = 0; k < packets; ++k) {
+      const Mask8 hit = hit_mask_[k];
+      for (Mask8 todo = rays_.Active(k) & ~hit; todo != 0; todo &= todo - 1) {
         // Escaped: environment light, counted unless emitter sampling already did (after a
         // non-specular bounce), MIS-weighted when mis is on.
-        if (rules_.normals) continue;
+        if (rules_.normals) break;
+        const size_t q = k * kLanes + size_t(std::countr_zero(todo));
+        const uint32_t i = rays_.owner[q];
+        const Vec3f d = rays_.Direction(q);
         const Vec3f w = d / Length(d);
         const bool plain = !rules_.nee || specular_[i];
         if (!plain && !rules_.mis) continue;
@@ -321,37 +327,40 @@ class alignas(kColumnAlignment) Wavefront {
         } else {
           L_[i] += throughput_[i] * Escaped(*scene_, w, !plain, plain ? 0.0f : prev_pdf_[i]);
         }
-        continue;
       }
-      SurfaceInteraction& its = its_[q];  // built in place: the sampling stage reads it there
-      InteractionAt(*scene_, points, q, hits_[k].prim[j], &its);
-      // wo in the frame now, while the frame is in registers: after the stores to L_ below
-      // the compiler reloads it 8 bytes wide over InteractionAt's 4-byte stores (a
-      // store-forwarding stall per hit).
-      const Vec3f wo_world = -d / Length(d);
-      const Vec3f wo_local = its.frame.ToLocal(wo_world);
-      if (rules_.normals) {
-        const Vec3f a = Abs(its.frame.n);
-        L_[i] = {a.x, a.y, a.z};
-        continue;
-      }
-      const Color3f Le = Emitted(*scene_, its, wo_world);
-      if (!IsBlack(Le)) {
-        float w = 1.0f;
-        if (rules_.nee && !specular_[i]) {
-          // Emitter sampling already counted this light from the previous vertex.
-          w = rules_.mis ? MisWeight(prev_pdf_[i], EmitterPdf(*scene_, its, prev_p_[i]),
-                                     scene_->integrator.power_heuristic)
-                         : 0.0f;
+      for (Mask8 todo = hit; todo != 0; todo &= todo - 1) {
+        const size_t q = k * kLanes + size_t(std::countr_zero(todo));
+        const SurfaceInteraction& its = its_[q];
+        if (rules_.normals) {
+          const Vec3f a = Abs(its.frame.n);
+          L_[rays_.owner[q]] = {a.x, a.y, a.z};
+          continue;
         }
-        L_[i] += throughput_[i] * Le * w;
+        // Only area lights emit at a surface (Emitted's test; EmitterRef::None's tag is not
+        // kArea): the other hits skip the direction's length.
+        if (its.emitter.tag() == EmitterTag::kArea) AddEmission(q, its);
+        if (!goes_on) continue;
+        goes_on_.push_back(uint32_t(q));
+        ++goes_on_tags_[BsdfColumns::Group(its.material)];
       }
-      if (rules_.max_depth >= 0 && depth >= rules_.max_depth) continue;
-      wo_[q] = wo_local;
-      goes_on_.push_back(uint32_t(q));
-      ++goes_on_tags_[BsdfColumns::Group(its.material)];
     }
     if (batch_escaped) ShadeEscaped();
+  }
+
+  // The light that the hit of entry q emits back along its ray, MIS-weighted against emitter
+  // sampling when that already counted this light from the previous vertex.
+  void AddEmission(size_t q, const SurfaceInteraction& its) {
+    const uint32_t i = rays_.owner[q];
+    const Vec3f d = rays_.Direction(q);
+    const Color3f Le = Emitted(*scene_, its, -d / Length(d));
+    if (IsBlack(Le)) return;
+    float w = 1.0f;
+    if (rules_.nee && !specular_[i]) {
+      w = rules_.mis ? MisWeight(prev_pdf_[i], EmitterPdf(*scene_, its, prev_p_[i]),
+                                 scene_->integrator.power_heuristic)
+                     : 0.0f;
+    }
+    L_[i] += throughput_[i] * Le * w;
   }
 
   // Whether the escaped rays take the environment_eval batch: when every infinite emitter is
@@ -631,7 +640,6 @@ class alignas(kColumnAlignment) Wavefront {
     sp.Clear(n);
     next_rays_.owner.resize(n);
     uint32_t* owner = next_rays_.owner.data();
-    const InteractionColumns points = points_.View();
     size_t m = 0;
     for (int t = 0; t < kMaterialTagCount; ++t) {
       const uint8_t specular = IsDeltaMaterial(static_cast<MaterialTag>(t));
@@ -649,7 +657,7 @@ class alignas(kColumnAlignment) Wavefront {
         specular_[i] = specular;
         prev_pdf_[i] = b.pdf[c];
         const uint32_t q = b.entry[c];
-        prev_p_[i] = {points.p_x[q], points.p_y[q], points.p_z[q]};  // its_[q].p
+        prev_p_[i] = its_[q].p;
         sp.entry[m] = q, sp.wi_x[m] = b.wi_x[c], sp.wi_y[m] = b.wi_y[c], sp.wi_z[m] = b.wi_z[c];
         owner[m++] = i;
       }
@@ -657,7 +665,7 @@ class alignas(kColumnAlignment) Wavefront {
     // Their rays (integrator::SpawnOrigin, the sample's world direction) through the kernel
     // table's spawn slot, straight into the queue's packets.
     next_rays_.Resize(m);
-    kernels_->spawn(points, m, sp.Inputs(), next_rays_.packets.data());
+    kernels_->spawn(its_.data(), m, sp.Inputs(), next_rays_.packets.data());
   }
 
   // Sobol' numbers of every decision of vertex `depth` for the paths that go on (continuing_,
@@ -943,20 +951,6 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
-  /// The interaction stage's SoA columns: the shading point of each queue entry that hit. No
-  /// surface coordinates: no stage of the wavefront reads them.
-  struct PointColumns {
-    AlignedVector<float> p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z;
-    void Resize(size_t n) {
-      for (auto* c : {&p_x, &p_y, &p_z, &ng_x, &ng_y, &ng_z, &n_x, &n_y, &n_z}) c->resize(n);
-    }
-    size_t Bytes() const { return VectorsBytes(p_x, p_y, p_z, ng_x, ng_y, ng_z, n_x, n_y, n_z); }
-    InteractionColumns View() {
-      return {p_x.data(), p_y.data(), p_z.data(), ng_x.data(), ng_y.data(), ng_z.data(),
-              n_x.data(), n_y.data(), n_z.data(), nullptr,     nullptr};
-    }
-  };
-
   /// The splat stage's SoA columns: film position and radiance of each finite sample, rows
   /// [0, rows).
   struct SplatColumns {
@@ -1005,7 +999,6 @@ class alignas(kColumnAlignment) Wavefront {
   RayQueue rays_, next_rays_, shadows_;
   std::vector<HitPacket8> hits_;
   std::vector<Mask8> hit_mask_;
-  PointColumns points_;
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
   // The entries that go on to the sampling stage, in queue order: a list rather than a flag

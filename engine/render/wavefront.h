@@ -121,15 +121,15 @@ struct WavefrontKernels {
                        const EnvironmentBatchInputs& in,
                        const EnvironmentBatchOutputs& out) = nullptr;
 
-  // Interaction stage: a wave's hit records -> shading points (p, ng, shading normal; uv when
-  // out has the columns, which the wavefront's do not: no stage reads them) as SoA columns,
-  // row = queue entry, written for the hit lanes of each packet only; the wavefront builds
-  // each SurfaceInteraction from its row with InteractionAt (frame, material, emitter).
-  // Oracle: ptlab::MakeInteractionBatch (MakeInteraction per row, so the oracle table keeps the
-  // scalar path's bits); SIMD: simd::MakeInteractionBatch (simd/interaction8.h).
+  // Interaction stage: a wave's hit records -> the shading stage's rows (engine/render/
+  // interaction.h, InteractionRows): the SurfaceInteraction of each hit (its frame, material
+  // and emitter; no uv: no stage reads it) and wo, the direction back along the ray in its
+  // frame; row = queue entry, 8 rows per packet. Oracle: ptlab::MakeInteractionBatch
+  // (MakeInteraction and LocalDirectionBack per hit row, so the oracle table keeps the scalar
+  // path's bits); SIMD: simd::MakeInteractionBatch, bit-identical on the hit rows, and may
+  // write the other rows of a packet with a hit (simd/interaction8.h).
   void (*interaction)(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                      const Mask8* hit_mask, size_t packets,
-                      const InteractionColumns& out) = nullptr;
+                      const Mask8* hit_mask, size_t packets, const InteractionRows& out) = nullptr;
 
   // Spawn stage: the next rays of the paths that go on after the BSDF stage, one row per path
   // in next-queue order (the wavefront writes each row's shading-point entry and local wi as it
@@ -137,7 +137,7 @@ struct WavefrontKernels {
   // lanes zero. Oracle: ptlab::SpawnRayBatch (SpawnRayAt per row: Frame::ToWorld and
   // integrator::SpawnOrigin, the scalar path's bits); SIMD: simd::SpawnRayBatch, bit-identical
   // (simd/spawn8.h).
-  void (*spawn)(const InteractionColumns& points, size_t n, const SpawnInputs& in,
+  void (*spawn)(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                 RayPacket8* out) = nullptr;
 
   // Not in the table, row by row in the wavefront (PrepareEmitterSampleFrom): the delta lights

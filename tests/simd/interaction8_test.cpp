@@ -1,17 +1,24 @@
-// simd::MakeInteractionBatch against its oracle ptlab::MakeInteractionBatch (MakeInteraction per
+// simd::MakeInteractionBatch against its oracle ptlab::MakeInteractionBatch, into columns and
+// into rows. Columns (MakeInteraction per
 // hit lane): every output (p, ng, n, uv) bit-identical on every compiled target for 10^6 random
 // hits per scene and the hard cases (barycentrics on edges and vertices, degenerate triangles,
 // vertex normals that interpolate to zero, degenerate and huge texture coordinates, meshes
 // without uvs next to meshes with them, sphere lanes mixed in, partial hit masks), no NaN or Inf
 // out, and rows of lanes that did not hit left untouched. Plus the uv rules themselves:
-// barycentrics without mesh uvs, interpolated mesh uvs, a sphere's (φ/2π, θ/π).
+// barycentrics without mesh uvs, interpolated mesh uvs, a sphere's (φ/2π, θ/π). Rows (the
+// wavefront's: the whole SurfaceInteraction and wo): bit-identical on the hit rows on every
+// target for the same hits plus shading normals at the frame's edge cases (-z, z = -0, tiny
+// negative z, nearly -z), a clockwise quad (ng = -z) and rays of lengths 2^-60..2^60 and
+// axis-aligned; no NaN or Inf in any row written.
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/interaction8.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -44,11 +51,14 @@ struct Columns {
 
 // A quad (two triangles) in the z = 1 plane with the given per-vertex normals and uvs (either
 // may be empty), appended to the scene; returns its first triangle.
-uint32_t AddQuad(Scene* scene, std::vector<Vec3f> normals, std::vector<Vec2f> uvs) {
+// `clockwise`: wound the other way, so that the geometric normal is -z.
+uint32_t AddQuad(Scene* scene, std::vector<Vec3f> normals, std::vector<Vec2f> uvs,
+                 bool clockwise = false) {
   MeshData m;
   m.positions = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   m.normals = std::move(normals), m.uvs = std::move(uvs);
   m.indices = {0, 1, 2, 0, 2, 3};
+  if (clockwise) m.indices = {0, 2, 1, 0, 3, 2};
   const uint32_t first = uint32_t(scene->triangles.size());
   AddMesh(scene, m, Transform(), scene->shading.material[0], "quad");
   return first;
@@ -188,6 +198,109 @@ void ExpectBatchMatchesOracle(const std::string& path, bool with_uv = true) {
   });
 }
 
+// Quads whose shading normals are the frame's edge cases: n = -z, n = (1, 0, -0) (z = -0:
+// copysign gives -1), n.z = -1e-30 and n = (1e-20, 0, -1) (sign + z = -2), and one wound
+// clockwise without normals (ng = n = -z); returns their triangles.
+std::vector<uint32_t> AddFrameCases(Scene* scene) {
+  std::vector<uint32_t> tris;
+  const std::vector<Vec3f> normals[] = {
+      std::vector<Vec3f>(4, Vec3f{0, 0, -1}), std::vector<Vec3f>(4, Vec3f{1, 0, -0.0f}),
+      std::vector<Vec3f>(4, Vec3f{1, 0, -1e-30f}), std::vector<Vec3f>(4, Vec3f{1e-20f, 0, -1})};
+  for (const std::vector<Vec3f>& n : normals) {
+    const uint32_t first = AddQuad(scene, n, {});
+    tris.push_back(first), tris.push_back(first + 1);
+  }
+  const uint32_t first = AddQuad(scene, {}, {}, /*clockwise=*/true);
+  tris.push_back(first), tris.push_back(first + 1);
+  return tris;
+}
+
+// Ray directions of every length the rows' float Length handles (|d|² a normal float):
+// random directions scaled by 2^-60..2^60, and one lane in eight axis-aligned (±0 components).
+void SetDirections(Packets* p, Pcg32& rng) {
+  const Vec3f axes[] = {{0, 0, -1}, {-0.0f, 0, 1}, {1, -0.0f, 0}, {0, -1, -0.0f}};
+  for (RayPacket8& r : p->rays) {
+    for (int j = 0; j < 8; ++j) {
+      Vec3f dir;
+      if (rng.NextUint() % 8 == 0) {
+        dir = axes[rng.NextUint() % 4] * std::ldexp(1.0f, int(rng.NextUint() % 121) - 60);
+      } else {
+        do {
+          dir = {rng.NextFloat() * 2 - 1, rng.NextFloat() * 2 - 1, rng.NextFloat() * 2 - 1};
+        } while (Dot(dir, dir) < 1e-4f);
+        dir = dir * std::ldexp(1.0f, int(rng.NextUint() % 121) - 60);
+      }
+      r.dir_x[j] = dir.x, r.dir_y[j] = dir.y, r.dir_z[j] = dir.z;
+    }
+  }
+}
+
+struct Rows {
+  explicit Rows(size_t n) {
+    SurfaceInteraction fill;
+    fill.p = fill.ng = {kUntouched, kUntouched, kUntouched};
+    fill.frame.s = fill.frame.t = fill.frame.n = fill.p;
+    fill.uv = {kUntouched, kUntouched};
+    its.assign(n, fill), wo.assign(n, fill.p);
+  }
+  std::vector<SurfaceInteraction> its;
+  std::vector<Vec3f> wo;
+  InteractionRows Out() { return {its.data(), wo.data()}; }
+};
+
+// The float fields of a row (all but prim, material, emitter) and its wo, all finite.
+bool FiniteRow(const SurfaceInteraction& its, const Vec3f& wo) {
+  const float f[] = {its.p.x,       its.p.y,       its.p.z,       its.ng.x,      its.ng.y,
+                     its.ng.z,      its.frame.s.x, its.frame.s.y, its.frame.s.z, its.frame.t.x,
+                     its.frame.t.y, its.frame.t.z, its.frame.n.x, its.frame.n.y, its.frame.n.z,
+                     its.uv.x,      its.uv.y,      wo.x,          wo.y,          wo.z};
+  for (const float x : f)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+void ExpectRowsMatchOracle(const std::string& path) {
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  StatusOr<Scene> loaded = LoadSceneFile(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  Scene& scene = *loaded;
+  ASSERT_GT(scene.triangles.v0_x.size(), 8u);
+  std::vector<uint32_t> hard = AddHardCases(&scene);
+  for (const uint32_t tri : AddFrameCases(&scene)) hard.push_back(tri);
+  Pcg32 rng(7, 23);
+  Packets p = MakePackets(scene, hard, 1000003, rng);
+  SetDirections(&p, rng);
+  const size_t packets = p.rays.size(), rows = packets * kPacketWidth;
+  Rows want(rows);
+  const Rows fill(1);
+  MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets, want.Out());
+  test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
+    Rows got(rows);
+    simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
+                               got.Out());
+    size_t differ = 0, nonfinite = 0, oracle_wrote = 0, first = rows;
+    for (size_t q = 0; q < rows; ++q) {
+      const bool hit = LaneActive(p.mask[q / kPacketWidth], int(q % kPacketWidth));
+      const SurfaceInteraction& g = got.its[q];
+      if (!hit) {
+        // The oracle leaves the row; the kernel may write it, with finite floats.
+        oracle_wrote += std::memcmp(&want.its[q], &fill.its[0], sizeof(SurfaceInteraction)) != 0;
+        nonfinite += !FiniteRow(g, got.wo[q]);
+        continue;
+      }
+      nonfinite += !FiniteRow(g, got.wo[q]);
+      if (std::memcmp(&g, &want.its[q], sizeof(SurfaceInteraction)) != 0 ||
+          std::memcmp(&got.wo[q], &want.wo[q], sizeof(Vec3f)) != 0) {
+        ++differ;
+        first = std::min(first, q);
+      }
+    }
+    EXPECT_EQ(differ, 0u) << "first differing row " << first << " of " << rows;
+    EXPECT_EQ(nonfinite, 0u);
+    EXPECT_EQ(oracle_wrote, 0u);
+  });
+}
+
 const std::string kSharedData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
 
 TEST(Interaction8, BatchMatchesOracleOnCbox) {  // no vertex normals
@@ -205,6 +318,15 @@ TEST(Interaction8, BatchMatchesOracleWithoutUvOnCbox) {
 
 TEST(Interaction8, BatchMatchesOracleWithoutUvOnTable) {  // texture coordinates in the meshes
   ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml", false);
+}
+
+// The wavefront's rows (no vertex normals in cbox but on the frame-case quads).
+TEST(Interaction8, RowsMatchOracleOnCbox) {
+  ExpectRowsMatchOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");
+}
+
+TEST(Interaction8, RowsMatchOracleOnTable) {
+  ExpectRowsMatchOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml");
 }
 
 }  // namespace

@@ -22,19 +22,17 @@
 namespace ptlab {
 namespace {
 
-/// Shading points as the interaction stage's columns (no uv).
+/// Shading points as the interaction stage writes them: SurfaceInteraction rows whose frame
+/// is Frame(n).
 struct Points {
-  std::vector<float> col[9];  // p, ng, n (x, y, z each)
-  size_t size() const { return col[0].size(); }
+  std::vector<SurfaceInteraction> rows;
+  size_t size() const { return rows.size(); }
   void Push(const Vec3f& p, const Vec3f& ng, const Vec3f& n) {
-    const float v[9] = {p.x, p.y, p.z, ng.x, ng.y, ng.z, n.x, n.y, n.z};
-    for (int c = 0; c < 9; ++c) col[c].push_back(v[c]);
+    SurfaceInteraction its;
+    its.p = p, its.ng = ng, its.frame = Frame(n);
+    rows.push_back(its);
   }
-  InteractionColumns View() {
-    return {col[0].data(), col[1].data(), col[2].data(), col[3].data(),
-            col[4].data(), col[5].data(), col[6].data(), col[7].data(),
-            col[8].data(), nullptr,       nullptr};
-  }
+  const SurfaceInteraction* View() const { return rows.data(); }
 };
 
 /// The spawn rows: shading-point entry and local direction.
@@ -132,8 +130,7 @@ void ExpectSameAsOracle(Points& points, const Rows& rows, size_t from, size_t n)
   }
 }
 
-// The oracle is the scalar path's ray: its.frame.ToWorld(wi) from SpawnOrigin(its, wi), with the
-// SurfaceInteraction that InteractionAt builds from the row.
+// The oracle is the scalar path's ray: its.frame.ToWorld(wi) from SpawnOrigin(its, wi).
 TEST(Spawn8, OracleIsTheScalarPathsRay) {
   Pcg32 rng(7, 1);
   Points points;
@@ -143,16 +140,12 @@ TEST(Spawn8, OracleIsTheScalarPathsRay) {
                   scale * (2 * rng.NextFloat() - 1)};
     points.Push(p, RandomUnit(rng), RandomUnit(rng));
   }
-  const InteractionColumns view = points.View();
   for (uint32_t q = 0; q < points.size(); ++q) {
-    SurfaceInteraction its;
-    its.p = {view.p_x[q], view.p_y[q], view.p_z[q]};
-    its.ng = {view.ng_x[q], view.ng_y[q], view.ng_z[q]};
-    its.frame = Frame(Vec3f{view.n_x[q], view.n_y[q], view.n_z[q]});
+    const SurfaceInteraction& its = points.rows[q];
     const Vec3f wi_local = RandomUnit(rng);
     const Vec3f wi = its.frame.ToWorld(wi_local);
     const Ray want{integrator::SpawnOrigin(its, wi), wi, 0.0f, integrator::kInfinity};
-    const Ray got = SpawnRayAt(view, q, wi_local);
+    const Ray got = SpawnRayAt(its, wi_local);
     ASSERT_EQ(std::memcmp(&want, &got, sizeof(Ray)), 0) << "row " << q;
   }
 }

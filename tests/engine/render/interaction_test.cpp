@@ -1,9 +1,11 @@
 // MakeInteraction's surface uv: a mesh's texture coordinates interpolated at the hit, the
-// barycentrics on meshes without them (Nori), (φ/2π, θ/π) on spheres; InteractionAt reads it back.
+// barycentrics on meshes without them (Nori), (φ/2π, θ/π) on spheres. The batches into columns and
+// into the wavefront's rows.
 #include "engine/render/interaction.h"
 
 #include <gtest/gtest.h>
 
+#include <tuple>
 #include <vector>
 
 #include "engine/bvh/sphere_intersect.h"
@@ -76,7 +78,7 @@ TEST(Interaction, SphereUvIsPhiAndTheta) {
   EXPECT_GE(SphereUv({1, -1e-30f, 0}).x, 0.0f);
 }
 
-TEST(Interaction, InteractionAtReadsUvBack) {
+TEST(Interaction, SetInteractionRowWritesUv) {
   const Scene scene = QuadScene();
   std::vector<float> col[11];
   for (auto& c : col) c.assign(1, 0.0f);
@@ -85,10 +87,8 @@ TEST(Interaction, InteractionAtReadsUvBack) {
                                 col[8].data(), col[9].data(), col[10].data()};
   const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.2f, 0.3f, 1});
   SetInteractionRow(cols, 0, its);
-  SurfaceInteraction back;
-  InteractionAt(scene, cols, 0, 1, &back);
-  EXPECT_EQ(back.uv.x, its.uv.x);
-  EXPECT_EQ(back.uv.y, its.uv.y);
+  EXPECT_EQ(col[9][0], its.uv.x);
+  EXPECT_EQ(col[10][0], its.uv.y);
 }
 
 // Columns without u, v (the wavefront's): the batch writes the rest as MakeInteraction does.
@@ -106,14 +106,51 @@ TEST(Interaction, BatchWithoutUvColumns) {
   const Mask8 hit = LaneBit(0);
   MakeInteractionBatch(scene, &rays, &hits, &hit, 1, cols);
   const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.2f, 0.3f, 1});
-  SurfaceInteraction back;
-  InteractionAt(scene, cols, 0, 1, &back);
-  EXPECT_EQ(back.p, its.p);
-  EXPECT_EQ(back.ng, its.ng);
-  EXPECT_EQ(back.frame.n, its.frame.n);
-  EXPECT_EQ(back.uv.x, 0.0f);
-  EXPECT_EQ(back.uv.y, 0.0f);
+  EXPECT_EQ((Vec3f{col[0][0], col[1][0], col[2][0]}), its.p);
+  EXPECT_EQ((Vec3f{col[3][0], col[4][0], col[5][0]}), its.ng);
+  EXPECT_EQ((Vec3f{col[6][0], col[7][0], col[8][0]}), its.frame.n);
   EXPECT_EQ(col[0][1], -1.0f);  // a lane without a hit: its row is left as it was
+}
+
+// The wavefront's rows: MakeInteraction without uv, and wo = -d / |d| in its frame, for the hit
+// lanes (a triangle and a sphere); the other rows left as they were.
+TEST(Interaction, BatchIntoRows) {
+  Scene scene = QuadScene();
+  scene.spheres.Append({0.5f, 0.5f, -2}, 1.0f, MaterialRef::Make(MaterialTag::kMirror, 3));
+  const Ray slanted{{0.25f, 0.5f, 3}, {0.5f, -1.0f, -4}};
+  RayPacket8 rays{};
+  HitPacket8 hits{};
+  SetLaneRay(&rays, 0, slanted);
+  SetLaneHit(&hits, 0, 0.5f, 0.2f, 0.3f, 1);
+  SetLaneRay(&rays, 2, kDown);
+  SetLaneHit(&hits, 2, 4, 0, 0, kSphereHitBit | 0);
+  const Mask8 hit = LaneBit(0) | LaneBit(2);
+  SurfaceInteraction fill;
+  fill.prim = 77;
+  std::vector<SurfaceInteraction> its(kPacketWidth, fill);
+  std::vector<Vec3f> wo(kPacketWidth, Vec3f{-1, -1, -1});
+  MakeInteractionBatch(scene, &rays, &hits, &hit, 1, InteractionRows{its.data(), wo.data()});
+  const SurfaceInteraction tri = MakeInteraction(scene, slanted, Hit{0.5f, 0.2f, 0.3f, 1});
+  const SurfaceInteraction sphere = MakeInteraction(scene, kDown, Hit{4, 0, 0, kSphereHitBit});
+  for (const auto& [q, want, ray] : {std::tuple{0, tri, slanted}, std::tuple{2, sphere, kDown}}) {
+    SCOPED_TRACE(q);
+    EXPECT_EQ(its[q].p, want.p);
+    EXPECT_EQ(its[q].ng, want.ng);
+    EXPECT_EQ(its[q].frame.s, want.frame.s);
+    EXPECT_EQ(its[q].frame.t, want.frame.t);
+    EXPECT_EQ(its[q].frame.n, want.frame.n);
+    EXPECT_EQ(its[q].uv.x, 0.0f);
+    EXPECT_EQ(its[q].uv.y, 0.0f);
+    EXPECT_EQ(its[q].prim, want.prim);
+    EXPECT_EQ(its[q].material, want.material);
+    EXPECT_EQ(its[q].emitter, want.emitter);
+    EXPECT_EQ(wo[q], want.frame.ToLocal(-ray.d / Length(ray.d)));
+  }
+  EXPECT_EQ(its[2].material, MaterialRef::Make(MaterialTag::kMirror, 3));
+  EXPECT_FALSE(its[2].emitter.valid());
+  EXPECT_NEAR(Length(wo[0]), 1.0f, 1e-6f);
+  EXPECT_EQ(its[1].prim, 77u);  // lanes without a hit: rows left as they were
+  EXPECT_EQ(wo[1], (Vec3f{-1, -1, -1}));
 }
 
 }  // namespace
