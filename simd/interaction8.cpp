@@ -11,11 +11,6 @@ HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
-void MakeInteractionBatchTarget(const Scene& scene, const RayPacket8* rays,
-                                const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
-                                const InteractionColumns& out) {
-  MakeInteractionBatchKernel(scene, rays, hits, hit_mask, packets, out);
-}
 void MakeInteractionRowsTarget(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                                const Mask8* hit_mask, size_t packets, const InteractionRows& out) {
   MakeInteractionRowsKernel(scene, rays, hits, hit_mask, packets, out);
@@ -31,15 +26,9 @@ HWY_AFTER_NAMESPACE();
 
 namespace ptlab::simd {
 
-HWY_EXPORT(MakeInteractionBatchTarget);
 HWY_EXPORT(MakeInteractionRowsTarget);
 HWY_EXPORT(Interaction8TargetNameTarget);
 
-void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out) {
-  if (packets == 0) return;
-  HWY_DYNAMIC_DISPATCH(MakeInteractionBatchTarget)(scene, rays, hits, hit_mask, packets, out);
-}
 
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionRows& out) {

@@ -9,23 +9,11 @@
 
 namespace ptlab::simd {
 
-/// ptlab::MakeInteractionBatch, eight lanes per step (hn::CappedTag<float, 8>): for the triangle
-/// hits of a packet the vertices, the vertex normals and texture coordinates (where the mesh
-/// has them) and the interpolation and normalizations of MakeInteraction / ShadingNormalAt /
-/// SurfaceUvAt run as vectors over
-/// gathered triangle data; sphere hits take the scalar MakeInteraction lane by lane. Rows of
-/// lanes that did not hit are not written; without out.u / out.v no texture coordinate is
-/// gathered.
-/// Oracle: ptlab::MakeInteractionBatch. Contract: every output bit-identical to the oracle's on
-/// every target (its float operations in its order; FMA contraction is off, and Highway's Sqrt
-/// and Div are correctly rounded); tests/simd/interaction8_test.cpp.
-void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out);
-
 /// ptlab::MakeInteractionBatch into rows (the wavefront's interaction slot), eight lanes per
-/// step: the triangle hits' points and normals as above, then Frame(n), wo (-d / |d| in the
-/// frame) and the material and emitter refs (gathered), stored into the SurfaceInteraction rows
-/// through 4x4 transposes; sphere lanes take the scalar MakeInteraction lane by lane. Every row
+/// step: for the triangle hits of a packet the vertices and vertex normals are gathered and the
+/// interpolation and normalizations of MakeInteraction / ShadingNormalAt run as vectors, then
+/// Frame(n), wo (-d / |d| in the frame) and the material and emitter refs (gathered), stored
+/// into the SurfaceInteraction rows through 4x4 transposes; sphere lanes take the scalar MakeInteraction lane by lane. Every row
 /// of a vector of lanes with a triangle hit is written: rows of lanes that did not hit get
 /// finite floats (vertex 0 of triangle 0 and its geometric frame) and are otherwise unspecified.
 /// out.its and out.wo need 8 rows per packet.

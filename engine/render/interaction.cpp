@@ -77,20 +77,6 @@ SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit
 }
 
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out) {
-  const bool with_uv = out.u != nullptr;
-  for (size_t k = 0; k < packets; ++k) {
-    for (Mask8 todo = hit_mask[k] & kAllLanes; todo != 0; todo &= todo - 1) {
-      const int j = std::countr_zero(todo);
-      const HitPacket8& h = hits[k];
-      const Hit hit{h.t[j], h.b1[j], h.b2[j], h.prim[j]};
-      SetInteractionRow(out, k * kPacketWidth + size_t(j),
-                        MakeInteractionWith(scene, GetLaneRay(rays[k], j), hit, with_uv));
-    }
-  }
-}
-
-void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionRows& out) {
   for (size_t k = 0; k < packets; ++k) {
     for (Mask8 todo = hit_mask[k] & kAllLanes; todo != 0; todo &= todo - 1) {

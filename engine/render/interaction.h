@@ -35,22 +35,6 @@ Vec2f SphereUv(const Vec3f& n);
 /// normal is (p - c)/r; spheres never emit.
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
 
-/// SoA columns of shading points, world space, one row per ray of a batch of packets (row q =
-/// lane q % 8 of packet q / 8): p, the unit geometric normal ng and the unit shading
-/// normal n (the z axis of SurfaceInteraction::frame), and the surface coordinates (u, v)
-/// (SurfaceInteraction::uv). u and v may both be null: then no surface coordinates are computed
-/// (the vertex uvs are a gather per corner).
-struct InteractionColumns {
-  float *p_x, *p_y, *p_z, *ng_x, *ng_y, *ng_z, *n_x, *n_y, *n_z, *u, *v;
-};
-
-/// MakeInteraction for every hit lane of `packets` ray/hit packets: row k * 8 + j is written
-/// when bit j of hit_mask[k] is set (hits[k] lane j valid), other rows are left as they are;
-/// without out.u / out.v, everything but the surface coordinates (not computed).
-/// SIMD twin: simd::MakeInteractionBatch (columns).
-void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionColumns& out);
-
 /// The shading stage's rows, one per queue entry (row q = lane q % 8 of packet q / 8), each
 /// array with room for 8 rows per packet: the interaction as MakeInteraction builds it but
 /// without surface coordinates (uv (0, 0): no stage of the wavefront reads them), and wo, the
@@ -72,14 +56,5 @@ inline Vec3f LocalDirectionBack(const Frame& frame, const Vec3f& d) {
 /// scalar path's bits; SIMD twin: simd::MakeInteractionBatch (rows).
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
                           const Mask8* hit_mask, size_t packets, const InteractionRows& out);
-
-/// Writes row q of `out` from `its` (uv only when out has the columns).
-inline void SetInteractionRow(const InteractionColumns& out, size_t q,
-                              const SurfaceInteraction& its) {
-  out.p_x[q] = its.p.x, out.p_y[q] = its.p.y, out.p_z[q] = its.p.z;
-  out.ng_x[q] = its.ng.x, out.ng_y[q] = its.ng.y, out.ng_z[q] = its.ng.z;
-  out.n_x[q] = its.frame.n.x, out.n_y[q] = its.frame.n.y, out.n_z[q] = its.frame.n.z;
-  if (out.u != nullptr) out.u[q] = its.uv.x, out.v[q] = its.uv.y;
-}
 
 }  // namespace ptlab

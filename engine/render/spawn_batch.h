@@ -4,12 +4,10 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 
-#include "engine/bvh/ray_offset.h"
-#include "engine/core/frame.h"
 #include "engine/core/packet8.h"
 #include "engine/core/ray.h"
+#include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
 
 namespace ptlab {
@@ -29,8 +27,7 @@ struct SpawnInputs {
 /// offset along the geometric normal on wi's side), t in [0, inf).
 inline Ray SpawnRayAt(const SurfaceInteraction& its, const Vec3f& wi_local) {
   const Vec3f wi = its.frame.ToWorld(wi_local);
-  return Ray{OffsetRayOrigin(its.p, Dot(its.ng, wi) >= 0 ? its.ng : -its.ng), wi, 0.0f,
-             std::numeric_limits<float>::infinity()};
+  return Ray{integrator::SpawnOrigin(its, wi), wi, 0.0f, integrator::kInfinity};
 }
 
 /// The wavefront's spawn slot: row k's ray (SpawnRayAt of its[in.entry[k]]) into lane k % 8 of

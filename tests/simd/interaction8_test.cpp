@@ -1,15 +1,11 @@
-// simd::MakeInteractionBatch against its oracle ptlab::MakeInteractionBatch, into columns and
-// into rows. Columns (MakeInteraction per
-// hit lane): every output (p, ng, n, uv) bit-identical on every compiled target for 10^6 random
-// hits per scene and the hard cases (barycentrics on edges and vertices, degenerate triangles,
-// vertex normals that interpolate to zero, degenerate and huge texture coordinates, meshes
-// without uvs next to meshes with them, sphere lanes mixed in, partial hit masks), no NaN or Inf
-// out, and rows of lanes that did not hit left untouched. Plus the uv rules themselves:
-// barycentrics without mesh uvs, interpolated mesh uvs, a sphere's (φ/2π, θ/π). Rows (the
-// wavefront's: the whole SurfaceInteraction and wo): bit-identical on the hit rows on every
-// target for the same hits plus shading normals at the frame's edge cases (-z, z = -0, tiny
-// negative z, nearly -z), a clockwise quad (ng = -z) and rays of lengths 2^-60..2^60 and
-// axis-aligned; no NaN or Inf in any row written.
+// simd::MakeInteractionBatch (the wavefront's rows: the whole SurfaceInteraction without uv,
+// and wo) against its oracle ptlab::MakeInteractionBatch: the hit rows bit-identical on every
+// compiled target for 10^6 random hits per scene and the hard cases (barycentrics on edges and
+// vertices, degenerate triangles, vertex normals that interpolate to zero, meshes with and
+// without uvs, sphere lanes mixed in, partial hit masks), shading normals at the frame's edge
+// cases (-z, z = -0, tiny negative z, nearly -z), a clockwise quad (ng = -z) and rays of lengths
+// 2^-60..2^60 and axis-aligned; no NaN or Inf in any row written, and the oracle leaves the rows
+// of lanes that did not hit untouched.
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/interaction8.h"
 
@@ -33,21 +29,7 @@
 namespace ptlab {
 namespace {
 
-constexpr float kUntouched = -12345.0f;  // rows the kernels must not write
-constexpr size_t kColumns = 11;           // p, ng, n (3 each), u, v
-
-struct Columns {
-  explicit Columns(size_t n) : col(kColumns, std::vector<float>(n, kUntouched)) {}
-  std::vector<std::vector<float>> col;
-  // with_uv false: no u, v columns (the kernels must leave those rows as they are).
-  InteractionColumns Out(bool with_uv = true) {
-    InteractionColumns out{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
-                           col[4].data(), col[5].data(), col[6].data(), col[7].data(),
-                           col[8].data(), col[9].data(), col[10].data()};
-    if (!with_uv) out.u = out.v = nullptr;
-    return out;
-  }
-};
+constexpr float kUntouched = -12345.0f;  // rows the oracle must not write
 
 // A quad (two triangles) in the z = 1 plane with the given per-vertex normals and uvs (either
 // may be empty), appended to the scene; returns its first triangle.
@@ -149,53 +131,6 @@ Packets MakePackets(const Scene& scene, const std::vector<uint32_t>& hard, size_
     for (const auto& b : bary) push(tri, b[0], b[1]);
   }
   return p;
-}
-
-void ExpectBatchMatchesOracle(const std::string& path, bool with_uv = true) {
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
-  StatusOr<Scene> loaded = LoadSceneFile(path);
-  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
-  Scene& scene = *loaded;
-  ASSERT_GT(scene.triangles.v0_x.size(), 8u);
-  const std::vector<uint32_t> hard = AddHardCases(&scene);
-  Pcg32 rng(5, 17);
-  const Packets p = MakePackets(scene, hard, 1000003, rng);
-  const size_t packets = p.rays.size(), rows = packets * kPacketWidth;
-  Columns want(rows);
-  MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
-                       want.Out(with_uv));
-  test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
-    Columns got(rows);
-    simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
-                               got.Out(with_uv));
-    size_t differ = 0, nonfinite = 0, untouched = 0, untouched_uv = 0, first = rows;
-    for (size_t c = 0; c < kColumns; ++c) {
-      for (size_t q = 0; q < rows; ++q) {
-        const float g = got.col[c][q];
-        const bool hit = LaneActive(p.mask[q / kPacketWidth], int(q % kPacketWidth));
-        if (!with_uv && c >= 9) {  // no uv columns: oracle and kernel leave them untouched
-          untouched_uv += g == kUntouched && want.col[c][q] == kUntouched;
-          continue;
-        }
-        if (!hit) {
-          untouched += g == kUntouched;
-          continue;
-        }
-        nonfinite += !std::isfinite(g);
-        if (std::bit_cast<uint32_t>(g) != std::bit_cast<uint32_t>(want.col[c][q])) {
-          ++differ;
-          first = std::min(first, q);
-        }
-      }
-    }
-    EXPECT_EQ(differ, 0u) << "first differing row " << first << " of " << rows;
-    EXPECT_EQ(nonfinite, 0u);
-    size_t misses = 0;
-    for (const Mask8 m : p.mask) misses += 8 - std::popcount(m);
-    const size_t written = with_uv ? kColumns : kColumns - 2;
-    EXPECT_EQ(untouched, written * misses);
-    EXPECT_EQ(untouched_uv, with_uv ? 0u : 2 * rows);
-  });
 }
 
 // Quads whose shading normals are the frame's edge cases: n = -z, n = (1, 0, -0) (z = -0:
@@ -302,23 +237,6 @@ void ExpectRowsMatchOracle(const std::string& path) {
 }
 
 const std::string kSharedData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
-
-TEST(Interaction8, BatchMatchesOracleOnCbox) {  // no vertex normals
-  ExpectBatchMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");
-}
-
-TEST(Interaction8, BatchMatchesOracleOnTable) {  // vertex normals
-  ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml");
-}
-
-// The wavefront's columns: no u, v (the hard cases include quads with uvs and spheres).
-TEST(Interaction8, BatchMatchesOracleWithoutUvOnCbox) {
-  ExpectBatchMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml", false);
-}
-
-TEST(Interaction8, BatchMatchesOracleWithoutUvOnTable) {  // texture coordinates in the meshes
-  ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml", false);
-}
 
 // The wavefront's rows (no vertex normals in cbox but on the frame-case quads).
 TEST(Interaction8, RowsMatchOracleOnCbox) {

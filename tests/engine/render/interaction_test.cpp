@@ -1,6 +1,6 @@
 // MakeInteraction's surface uv: a mesh's texture coordinates interpolated at the hit, the
-// barycentrics on meshes without them (Nori), (φ/2π, θ/π) on spheres. The batches into columns and
-// into the wavefront's rows.
+// barycentrics on meshes without them (Nori), (φ/2π, θ/π) on spheres. The batch into the
+// wavefront's rows.
 #include "engine/render/interaction.h"
 
 #include <gtest/gtest.h>
@@ -76,40 +76,6 @@ TEST(Interaction, SphereUvIsPhiAndTheta) {
   // Just below the seam φ = 2π: u stays below 1.
   EXPECT_LT(SphereUv({1, -1e-30f, 0}).x, 1.0f);
   EXPECT_GE(SphereUv({1, -1e-30f, 0}).x, 0.0f);
-}
-
-TEST(Interaction, SetInteractionRowWritesUv) {
-  const Scene scene = QuadScene();
-  std::vector<float> col[11];
-  for (auto& c : col) c.assign(1, 0.0f);
-  const InteractionColumns cols{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
-                                col[4].data(), col[5].data(), col[6].data(), col[7].data(),
-                                col[8].data(), col[9].data(), col[10].data()};
-  const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.2f, 0.3f, 1});
-  SetInteractionRow(cols, 0, its);
-  EXPECT_EQ(col[9][0], its.uv.x);
-  EXPECT_EQ(col[10][0], its.uv.y);
-}
-
-// Columns without u, v (the wavefront's): the batch writes the rest as MakeInteraction does.
-TEST(Interaction, BatchWithoutUvColumns) {
-  const Scene scene = QuadScene();
-  std::vector<float> col[9];
-  for (auto& c : col) c.assign(kPacketWidth, -1.0f);
-  const InteractionColumns cols{col[0].data(), col[1].data(), col[2].data(), col[3].data(),
-                                col[4].data(), col[5].data(), col[6].data(), col[7].data(),
-                                col[8].data(), nullptr,       nullptr};
-  RayPacket8 rays{};
-  HitPacket8 hits{};
-  SetLaneRay(&rays, 0, kDown);
-  SetLaneHit(&hits, 0, 2, 0.2f, 0.3f, 1);
-  const Mask8 hit = LaneBit(0);
-  MakeInteractionBatch(scene, &rays, &hits, &hit, 1, cols);
-  const SurfaceInteraction its = MakeInteraction(scene, kDown, Hit{2, 0.2f, 0.3f, 1});
-  EXPECT_EQ((Vec3f{col[0][0], col[1][0], col[2][0]}), its.p);
-  EXPECT_EQ((Vec3f{col[3][0], col[4][0], col[5][0]}), its.ng);
-  EXPECT_EQ((Vec3f{col[6][0], col[7][0], col[8][0]}), its.frame.n);
-  EXPECT_EQ(col[0][1], -1.0f);  // a lane without a hit: its row is left as it was
 }
 
 // The wavefront's rows: MakeInteraction without uv, and wo = -d / |d| in its frame, for the hit
