@@ -63,12 +63,15 @@ void BM_Interaction_Rows(benchmark::State& state, const char* relative, bool sim
   Batch* b = std::string(relative) == "veach" ? veach : table;
   if (b == nullptr) return state.SkipWithError("shared data not found");
   const InteractionRows out{b->its.data(), b->wo.data()};
+  std::vector<uint32_t> entries(kPackets * kPacketWidth), area(kPackets * kPacketWidth);
+  HitLists lists{entries.data(), area.data()};
   for (auto _ : state) {
     if (simd) {
       simd::MakeInteractionBatch(b->scene, b->rays.data(), b->hits.data(), b->mask.data(), kPackets,
-                                 out);
+                                 out, &lists);
     } else {
-      MakeInteractionBatch(b->scene, b->rays.data(), b->hits.data(), b->mask.data(), kPackets, out);
+      MakeInteractionBatch(b->scene, b->rays.data(), b->hits.data(), b->mask.data(), kPackets, out,
+                           &lists);
     }
     benchmark::ClobberMemory();
   }

@@ -70,14 +70,39 @@ HWY_INLINE void StoreQuadRows(D d, V f0, V f1, V f2, V f3, float* lane0, size_t 
 #endif
 }
 
+// The hit lists of lanes i.. of a packet (HitLists): the queue entries of the hit lanes and of
+// those on an area light compressed into the lists, in lane order, and the hit lanes counted
+// by the group of their material (MaterialGroup: the tag, at most kMaterialTagCount).
+template <class DI, class M = hn::Mask<DI>, class VI = hn::Vec<DI>>
+HWY_INLINE void ListHits(DI di, M hit, M tri, VI material, VI emitter, size_t first_entry,
+                         HitLists* lists) {
+  const auto entries = hn::Iota(di, int32_t(first_entry));
+  lists->hits += uint32_t(hn::CompressStore(
+      entries, hit, di, reinterpret_cast<int32_t*>(lists->entries) + lists->hits));
+  // EmitterTag::kArea is tag 0 (a sphere's EmitterRef::None, tag 15, is not).
+  const auto tag_bits = hn::Set(di, int32_t(0xf0000000u));
+  const M area = hn::And(tri, hn::Eq(hn::And(emitter, tag_bits), hn::Zero(di)));
+  if (!hn::AllFalse(di, area)) {
+    lists->area_hits += uint32_t(hn::CompressStore(
+        entries, area, di, reinterpret_cast<int32_t*>(lists->area_entries) + lists->area_hits));
+  }
+  const hn::RebindToUnsigned<DI> du;
+  const auto group = hn::BitCast(
+      di, hn::Min(hn::ShiftRight<28>(hn::BitCast(du, material)), hn::Set(du, kMaterialTagCount)));
+  for (int g = 0; g < kMaterialGroups; ++g)
+    lists->group_hits[g] +=
+        uint32_t(hn::CountTrue(di, hn::And(hit, hn::Eq(group, hn::Set(di, g)))));
+}
+
 // ptlab::MakeInteractionBatch into rows, eight lanes at a time: every lane as a triangle hit
 // (row 0 and barycentrics 0 in the lanes of no triangle hit, so that they stay finite):
 // TrianglePoint8, Frame(n), wo = Frame::ToLocal(-d * (1 / |d|)) and the material and emitter
 // refs, stored into all the rows of the vector through 4x4 transposes; then the sphere lanes'
-// rows again with the scalar code.
+// rows again with the scalar code. The hit lists from the lanes' refs (sphere lanes' material
+// gathered too) as each vector's rows are made.
 inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays,
                                       const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
-                                      const InteractionRows& out) {
+                                      const InteractionRows& out, HitLists* lists) {
   const hn::CappedTag<float, 8> d;
   const hn::RebindToSigned<decltype(d)> di;
   const size_t lanes = hn::Lanes(d);
@@ -87,7 +112,10 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays
   const TriangleShadingTable& sh = scene.shading;
   const bool vertex_normals = !scene.vertices.n_x.empty();
   const auto as_i = [](const auto* p) { return reinterpret_cast<const int32_t*>(p); };
+  const auto no_emitter = hn::Set(di, int32_t(EmitterRef::None().bits));
   alignas(32) static constexpr int32_t kLaneBits[8] = {1, 2, 4, 8, 16, 32, 64, 128};
+  lists->hits = lists->area_hits = 0;
+  for (uint32_t& count : lists->group_hits) count = 0;
   for (size_t k = 0; k < packets; ++k) {
     const Mask8 hit = hit_mask[k] & kAllLanes;
     if (hit == 0) continue;
@@ -102,13 +130,24 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays
       const auto sphere_i = hn::And(hit_i, hn::Ne(hn::And(prim, sphere_bit), zero_i));
       const auto tri_i = hn::AndNot(sphere_i, hit_i);
       const auto tri = hn::RebindMask(d, tri_i);
+      const auto ti = hn::IfThenElseZero(tri_i, prim);
+      const bool any_tri = !hn::AllFalse(di, tri_i);
+      auto material = zero_i, emitter = no_emitter;
+      if (any_tri) {
+        material = hn::GatherIndex(di, as_i(sh.material.data()), ti);
+        const auto mesh = hn::GatherIndex(di, as_i(sh.mesh.data()), ti);
+        emitter = hn::GatherIndex(di, as_i(scene.meshes.emitter.data()), mesh);
+      }
       if (!hn::AllFalse(di, sphere_i)) {
         uint8_t bits[8] = {};
         hn::StoreMaskBits(di, sphere_i, bits);
         spheres |= Mask8(bits[0]) << i;
+        const auto si = hn::IfThenElseZero(sphere_i, hn::AndNot(sphere_bit, prim));
+        material = hn::IfThenElse(
+            sphere_i, hn::GatherIndex(di, as_i(scene.spheres.material.data()), si), material);
       }
-      if (hn::AllFalse(di, tri_i)) continue;
-      const auto ti = hn::IfThenElseZero(tri_i, prim);
+      ListHits(di, hit_i, tri_i, material, emitter, k * kPacketWidth + i, lists);
+      if (!any_tri) continue;
       const auto b1 = hn::IfThenElseZero(tri, hn::Load(d, h.b1 + i));
       const auto b2 = hn::IfThenElseZero(tri, hn::Load(d, h.b2 + i));
       const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
@@ -143,9 +182,6 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays
       hn::Store(hn::Add(hn::Add(hn::Mul(wx, sx), hn::Mul(wy, sy)), hn::Mul(wz, sz)), d, wo[0] + i);
       hn::Store(hn::Add(hn::Add(hn::Mul(wx, b), hn::Mul(wy, ty)), hn::Mul(wz, tz)), d, wo[1] + i);
       hn::Store(hn::Add(hn::Add(hn::Mul(wx, nx), hn::Mul(wy, ny)), hn::Mul(wz, nz)), d, wo[2] + i);
-      const auto material = hn::GatherIndex(di, as_i(sh.material.data()), ti);
-      const auto mesh = hn::GatherIndex(di, as_i(sh.mesh.data()), ti);
-      const auto emitter = hn::GatherIndex(di, as_i(scene.meshes.emitter.data()), mesh);
       float* const lane0 = rows + i * size_t(kInteractionFloats);
       StoreQuadRows(d, px, py, pz, gx, lane0, size_t(kInteractionFloats));
       StoreQuadRows(d, gy, gz, sx, sy, lane0 + 4, size_t(kInteractionFloats));

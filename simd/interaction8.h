@@ -16,12 +16,16 @@ namespace ptlab::simd {
 /// into the SurfaceInteraction rows through 4x4 transposes; sphere lanes take the scalar MakeInteraction lane by lane. Every row
 /// of a vector of lanes with a triangle hit is written: rows of lanes that did not hit get
 /// finite floats (vertex 0 of triangle 0 and its geometric frame) and are otherwise unspecified.
-/// out.its and out.wo need 8 rows per packet.
+/// out.its and out.wo need 8 rows per packet. The hit lists (HitLists) from the refs in
+/// registers: entries compressed into the lists lane by lane, groups counted per vector; past
+/// each list's count its room may be written.
 /// Oracle: ptlab::MakeInteractionBatch (rows). Contract: the hit rows bit-identical to the
 /// oracle's on every target (the scalar float operations in their order, FMA contraction off,
-/// correctly rounded Sqrt and Div); tests/simd/interaction8_test.cpp.
+/// correctly rounded Sqrt and Div), the lists' counts and entries [0, count) equal to the
+/// oracle's; tests/simd/interaction8_test.cpp.
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionRows& out);
+                          const Mask8* hit_mask, size_t packets, const InteractionRows& out,
+                          HitLists* lists);
 
 /// Name of the Highway target MakeInteractionBatch dispatches to now; for logs and tests.
 const char* Interaction8TargetName();

@@ -77,7 +77,11 @@ SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit
 }
 
 void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionRows& out) {
+                          const Mask8* hit_mask, size_t packets, const InteractionRows& out,
+                          HitLists* lists) {
+  HitLists& l = *lists;
+  l.hits = l.area_hits = 0;
+  std::fill(std::begin(l.group_hits), std::end(l.group_hits), 0u);
   for (size_t k = 0; k < packets; ++k) {
     for (Mask8 todo = hit_mask[k] & kAllLanes; todo != 0; todo &= todo - 1) {
       const int j = std::countr_zero(todo);
@@ -87,6 +91,9 @@ void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitP
       SurfaceInteraction& its = out.its[q];
       its = MakeInteractionWith(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]}, false);
       out.wo[q] = LocalDirectionBack(its.frame, ray.d);
+      l.entries[l.hits++] = uint32_t(q);
+      if (its.emitter.tag() == EmitterTag::kArea) l.area_entries[l.area_hits++] = uint32_t(q);
+      ++l.group_hits[MaterialGroup(its.material)];
     }
   }
 }

@@ -176,7 +176,7 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,
                           path_of_slot_);
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
-    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, request_traced_,
+    bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, area_hits_, request_traced_,
                           request_contribution_, occluded_, nee_paths_, nonfinite_nee_);
     bytes += bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
@@ -294,28 +294,36 @@ class alignas(kColumnAlignment) Wavefront {
   }
 
   // Emission at hits, environment light for escaped rays; lists the entries that go on to the
-  // sampling stage (goes_on_; its_ / wo_ hold their shading points, which the interaction slot
-  // writes for the whole wave, frames and wo included, so that this loop visits a hit only for
-  // its emission and its material group).
+  // sampling stage (goes_on_; its_ / wo_ hold their shading points). The interaction slot
+  // writes the shading points for the whole wave, frames and wo included, and lists the hits
+  // (all, and those on area lights) with their material groups' counts, so that this stage
+  // visits only the hits that emit and the escaped rays.
   void Shade(int depth) {
     const size_t packets = rays_.packets.size();
-    // Eight rows per packet: the SIMD slot may write every row of a packet with a hit. Only
-    // grown: a resize up would construct each new row, and the queue shrinks and grows back
-    // every wave.
-    GrowColumns(packets * kLanes, &its_, &wo_);
-    goes_on_.clear();
-    std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
+    // Eight rows per packet: the SIMD slot may write every row of a packet with a hit and the
+    // lists' room past their counts. Only grown: a resize up would construct each new row, and
+    // the queue shrinks and grows back every wave.
+    GrowColumns(packets * kLanes, &its_, &wo_, &goes_on_, &area_hits_);
     const bool batch_escaped = EscapedRaysBatch();
     escaped_.Clear();
+    HitLists lists{goes_on_.data(), area_hits_.data()};
     kernels_->interaction(*scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(), packets,
-                          {its_.data(), wo_.data()});
-    const bool goes_on = rules_.max_depth < 0 || depth < rules_.max_depth;
+                          {its_.data(), wo_.data()}, &lists);
+    if (rules_.normals) {
+      // The first hit's |n|, nothing else: no path goes on.
+      for (uint32_t h = 0; h < lists.hits; ++h) {
+        const uint32_t q = goes_on_[h];
+        const Vec3f a = Abs(its_[q].frame.n);
+        L_[rays_.owner[q]] = {a.x, a.y, a.z};
+      }
+      n_goes_on_ = 0;
+      std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
+      return;
+    }
     for (size_t k = 0; k < packets; ++k) {
-      const Mask8 hit = hit_mask_[k];
-      for (Mask8 todo = rays_.Active(k) & ~hit; todo != 0; todo &= todo - 1) {
+      for (Mask8 todo = rays_.Active(k) & ~hit_mask_[k]; todo != 0; todo &= todo - 1) {
         // Escaped: environment light, counted unless emitter sampling already did (after a
         // non-specular bounce), MIS-weighted when mis is on.
-        if (rules_.normals) break;
         const size_t q = k * kLanes + size_t(std::countr_zero(todo));
         const uint32_t i = rays_.owner[q];
         const Vec3f d = rays_.Direction(q);
@@ -328,22 +336,16 @@ class alignas(kColumnAlignment) Wavefront {
           L_[i] += throughput_[i] * Escaped(*scene_, w, !plain, plain ? 0.0f : prev_pdf_[i]);
         }
       }
-      for (Mask8 todo = hit; todo != 0; todo &= todo - 1) {
-        const size_t q = k * kLanes + size_t(std::countr_zero(todo));
-        const SurfaceInteraction& its = its_[q];
-        if (rules_.normals) {
-          const Vec3f a = Abs(its.frame.n);
-          L_[rays_.owner[q]] = {a.x, a.y, a.z};
-          continue;
-        }
-        // Only area lights emit at a surface (Emitted's test; EmitterRef::None's tag is not
-        // kArea): the other hits skip the direction's length.
-        if (its.emitter.tag() == EmitterTag::kArea) AddEmission(q, its);
-        if (!goes_on) continue;
-        goes_on_.push_back(uint32_t(q));
-        ++goes_on_tags_[BsdfColumns::Group(its.material)];
-      }
     }
+    // Only area lights emit at a surface (Emitted's test; EmitterRef::None's tag is not kArea).
+    for (uint32_t h = 0; h < lists.area_hits; ++h) {
+      const uint32_t q = area_hits_[h];
+      AddEmission(q, its_[q]);
+    }
+    // Past the last vertex that is shaded no hit goes on; otherwise every hit does.
+    const bool goes_on = rules_.max_depth < 0 || depth < rules_.max_depth;
+    n_goes_on_ = goes_on ? lists.hits : 0;
+    for (int g = 0; g < kMaterialGroups; ++g) goes_on_tags_[g] = goes_on ? lists.group_hits[g] : 0;
     if (batch_escaped) ShadeEscaped();
   }
 
@@ -433,7 +435,7 @@ class alignas(kColumnAlignment) Wavefront {
     if (sobol_) DrawVertexNumbers(depth);
     const bool emitters = !scene_->emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
-    for (size_t k = 0; k < goes_on_.size(); ++k) {
+    for (size_t k = 0; k < n_goes_on_; ++k) {
       const uint32_t q = goes_on_[k];
       const uint32_t i = rays_.owner[q];
       const SurfaceInteraction& its = its_[q];
@@ -672,7 +674,7 @@ class alignas(kColumnAlignment) Wavefront {
   // in queue order), one batch draw per dimension (and emitter sub-sample).
   void DrawVertexNumbers(int depth) {
     continuing_.clear();
-    for (const uint32_t q : goes_on_) continuing_.push_back(rays_.owner[q]);
+    for (size_t k = 0; k < n_goes_on_; ++k) continuing_.push_back(rays_.owner[goes_on_[k]]);
     const size_t m = continuing_.size();
     const uint32_t n_light = uint32_t(rules_.light_samples);
     if (rules_.nee && !scene_->emitters.empty()) {
@@ -828,13 +830,10 @@ class alignas(kColumnAlignment) Wavefront {
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
     // Groups 0..kMaterialTagCount - 1 by tag, group kMaterialTagCount: no material.
-    static constexpr int kGroups = kMaterialTagCount + 1;
+    static constexpr int kGroups = kMaterialGroups;
     uint32_t begin[kGroups] = {}, next[kGroups] = {};
     size_t rows = 0;
 
-    static uint32_t Group(MaterialRef ref) {
-      return std::min(uint32_t(ref.tag()), uint32_t(kMaterialTagCount));
-    }
     size_t size() const { return rows; }
     size_t Bytes() const {
       return VectorsBytes(path, entry, material_index, roulette_scale, wo_x, wo_y, wo_z, u_lobe,
@@ -853,7 +852,7 @@ class alignas(kColumnAlignment) Wavefront {
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
-      const uint32_t c = next[Group(ref)]++;
+      const uint32_t c = next[MaterialGroup(ref)]++;
       ++rows;
       path[c] = path_id, entry[c] = queue_entry, roulette_scale[c] = scale;
       material_index[c] = ref.index();
@@ -913,7 +912,7 @@ class alignas(kColumnAlignment) Wavefront {
     }
     void Push(uint32_t req, uint32_t queue_entry, MaterialRef material, uint32_t light_row,
               float pmf, const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
-      const uint32_t c = next[BsdfColumns::Group(material)]++;
+      const uint32_t c = next[MaterialGroup(material)]++;
       ++rows;
       request[c] = req, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
       ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
@@ -1001,10 +1000,13 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<Mask8> hit_mask_;
   std::vector<SurfaceInteraction> its_;
   std::vector<Vec3f> wo_;
-  // The entries that go on to the sampling stage, in queue order: a list rather than a flag
-  // per entry, so that Sample has no branch per entry on whether its path ended here.
+  // The entries that go on to the sampling stage, in queue order, rows [0, n_goes_on_): a list
+  // rather than a flag per entry, so that Sample has no branch per entry on whether its path
+  // ended here. The interaction slot writes it (HitLists::entries) with room for 8 per packet.
   std::vector<uint32_t> goes_on_;
-  uint32_t goes_on_tags_[BsdfColumns::kGroups] = {};  // entries that go on, by material group
+  size_t n_goes_on_ = 0;
+  uint32_t goes_on_tags_[kMaterialGroups] = {};  // entries that go on, by material group
+  std::vector<uint32_t> area_hits_;              // entries whose hit is on an area light (HitLists)
   // The emitter samples' requests (EmitterSampleRequest as columns), rows [0, n_requests_).
   std::vector<uint8_t> request_traced_;
   std::vector<Color3f> request_contribution_;

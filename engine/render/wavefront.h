@@ -124,12 +124,18 @@ struct WavefrontKernels {
   // Interaction stage: a wave's hit records -> the shading stage's rows (engine/render/
   // interaction.h, InteractionRows): the SurfaceInteraction of each hit (its frame, material
   // and emitter; no uv: no stage reads it) and wo, the direction back along the ray in its
-  // frame; row = queue entry, 8 rows per packet. Oracle: ptlab::MakeInteractionBatch
-  // (MakeInteraction and LocalDirectionBack per hit row, so the oracle table keeps the scalar
-  // path's bits); SIMD: simd::MakeInteractionBatch, bit-identical on the hit rows, and may
-  // write the other rows of a packet with a hit (simd/interaction8.h).
+  // frame; row = queue entry, 8 rows per packet. And the wave's hit lists (HitLists, same
+  // header): every hit's queue entry and those of the hits on area lights, in queue order, and
+  // the hits per material group; the shading stage adds emission over the area list only and
+  // the sampling stage takes the entry list and group counts as they are. Oracle:
+  // ptlab::MakeInteractionBatch (MakeInteraction and LocalDirectionBack per hit row, so the
+  // oracle table keeps the scalar path's bits, and each hit row's list entries); SIMD:
+  // simd::MakeInteractionBatch, bit-identical on the hit rows and in the lists' counts and
+  // entries, and may write the other rows of a packet with a hit and the lists' room past their
+  // counts (simd/interaction8.h).
   void (*interaction)(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                      const Mask8* hit_mask, size_t packets, const InteractionRows& out) = nullptr;
+                      const Mask8* hit_mask, size_t packets, const InteractionRows& out,
+                      HitLists* lists) = nullptr;
 
   // Spawn stage: the next rays of the paths that go on after the BSDF stage, one row per path
   // in next-queue order (the wavefront writes each row's shading-point entry and local wi as it

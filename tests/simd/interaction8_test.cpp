@@ -5,7 +5,11 @@
 // without uvs, sphere lanes mixed in, partial hit masks), shading normals at the frame's edge
 // cases (-z, z = -0, tiny negative z, nearly -z), a clockwise quad (ng = -z) and rays of lengths
 // 2^-60..2^60 and axis-aligned; no NaN or Inf in any row written, and the oracle leaves the rows
-// of lanes that did not hit untouched.
+// of lanes that did not hit untouched. And the hit lists (HitLists: every hit's queue entry,
+// those on area lights, the hits per material group) equal to the oracle's and to the rows'
+// own count on every target, on the same packets and on adversarial masks (no hit, all hits,
+// single lanes, alternating lanes) over every material tag, no material, area and other
+// emitter tags and sphere lanes.
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/interaction8.h"
 
@@ -183,6 +187,52 @@ struct Rows {
   InteractionRows Out() { return {its.data(), wo.data()}; }
 };
 
+constexpr uint32_t kUntouchedEntry = 0xdeadbeefu;  // list entries the oracle must not write
+
+// The hit lists' storage, 8 entries per packet, filled with kUntouchedEntry.
+struct Lists {
+  explicit Lists(size_t n) : entries(n, kUntouchedEntry), area(n, kUntouchedEntry) {
+    lists.group_hits[0] = kUntouchedEntry;  // the kernels must reset the counts
+  }
+  std::vector<uint32_t> entries, area;
+  HitLists lists{entries.data(), area.data()};
+};
+
+// The lists as the oracle's rows say they should be: every hit lane's q in order, the q whose
+// row's emitter is an area light, the rows by MaterialGroup.
+void ExpectListsOfRows(const Packets& p, const std::vector<SurfaceInteraction>& its,
+                       const Lists& l) {
+  std::vector<uint32_t> hits, area;
+  uint32_t groups[kMaterialGroups] = {};
+  for (size_t q = 0; q < p.mask.size() * kPacketWidth; ++q) {
+    if (!LaneActive(p.mask[q / kPacketWidth], int(q % kPacketWidth))) continue;
+    hits.push_back(uint32_t(q));
+    if (its[q].emitter.tag() == EmitterTag::kArea) area.push_back(uint32_t(q));
+    ++groups[MaterialGroup(its[q].material)];
+  }
+  ASSERT_EQ(l.lists.hits, hits.size());
+  ASSERT_EQ(l.lists.area_hits, area.size());
+  EXPECT_TRUE(std::equal(hits.begin(), hits.end(), l.entries.begin()));
+  EXPECT_TRUE(std::equal(area.begin(), area.end(), l.area.begin()));
+  for (int g = 0; g < kMaterialGroups; ++g) EXPECT_EQ(l.lists.group_hits[g], groups[g]) << g;
+  // The oracle writes the lists' entries [0, count) only.
+  EXPECT_TRUE(std::all_of(l.entries.begin() + ptrdiff_t(hits.size()), l.entries.end(),
+                          [](uint32_t e) { return e == kUntouchedEntry; }));
+  EXPECT_TRUE(std::all_of(l.area.begin() + ptrdiff_t(area.size()), l.area.end(),
+                          [](uint32_t e) { return e == kUntouchedEntry; }));
+}
+
+// The kernel's lists against the oracle's: counts, entries [0, count) and group counts.
+void ExpectListsMatch(const Lists& got, const Lists& want) {
+  ASSERT_EQ(got.lists.hits, want.lists.hits);
+  ASSERT_EQ(got.lists.area_hits, want.lists.area_hits);
+  const ptrdiff_t hits = ptrdiff_t(want.lists.hits), area = ptrdiff_t(want.lists.area_hits);
+  EXPECT_TRUE(std::equal(want.entries.begin(), want.entries.begin() + hits, got.entries.begin()));
+  EXPECT_TRUE(std::equal(want.area.begin(), want.area.begin() + area, got.area.begin()));
+  for (int g = 0; g < kMaterialGroups; ++g)
+    EXPECT_EQ(got.lists.group_hits[g], want.lists.group_hits[g]) << "group " << g;
+}
+
 // The float fields of a row (all but prim, material, emitter) and its wo, all finite.
 bool FiniteRow(const SurfaceInteraction& its, const Vec3f& wo) {
   const float f[] = {its.p.x,       its.p.y,       its.p.z,       its.ng.x,      its.ng.y,
@@ -208,11 +258,17 @@ void ExpectRowsMatchOracle(const std::string& path) {
   const size_t packets = p.rays.size(), rows = packets * kPacketWidth;
   Rows want(rows);
   const Rows fill(1);
-  MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets, want.Out());
+  Lists want_lists(rows);
+  MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets, want.Out(),
+                       &want_lists.lists);
+  ExpectListsOfRows(p, want.its, want_lists);
+  EXPECT_GT(want_lists.lists.area_hits, 0u);  // both scenes have area lights
   test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
     Rows got(rows);
+    Lists got_lists(rows);
     simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
-                               got.Out());
+                               got.Out(), &got_lists.lists);
+    ExpectListsMatch(got_lists, want_lists);
     size_t differ = 0, nonfinite = 0, oracle_wrote = 0, first = rows;
     for (size_t q = 0; q < rows; ++q) {
       const bool hit = LaneActive(p.mask[q / kPacketWidth], int(q % kPacketWidth));
@@ -236,6 +292,65 @@ void ExpectRowsMatchOracle(const std::string& path) {
   });
 }
 
+// The lists on adversarial hit masks: no hit, all hits, each lane alone, alternating lanes and
+// halves, and random masks, over triangles whose materials cycle through every tag and no
+// material and whose meshes' emitters cycle through an area light, another tag and none, and
+// spheres of every material group (a sphere never emits).
+void ExpectListsMatchOracleOnMasks(const std::string& path) {
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  StatusOr<Scene> loaded = LoadSceneFile(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  Scene& scene = *loaded;
+  const std::vector<uint32_t> hard = AddHardCases(&scene);
+  std::vector<MaterialRef> materials = {MaterialRef::None()};
+  for (int t = 0; t < kMaterialTagCount; ++t)
+    materials.push_back(MaterialRef::Make(MaterialTag(t), uint32_t(t)));
+  for (size_t tri = 0; tri < scene.shading.size(); ++tri)
+    scene.shading.material[tri] = materials[tri % materials.size()];
+  const EmitterRef emitters[] = {EmitterRef::Make(EmitterTag::kArea, 0), EmitterRef::None(),
+                                 EmitterRef::Make(EmitterTag::kEnvironment, 0),
+                                 EmitterRef::Make(EmitterTag::kArea, 0x0fffffffu)};
+  for (size_t m = 0; m < scene.meshes.emitter.size(); ++m)
+    scene.meshes.emitter[m] = emitters[m % std::size(emitters)];
+  for (const MaterialRef m : materials) scene.spheres.Append({0, 0, 0}, 1.0f, m);
+  Pcg32 rng(11, 5);
+  Packets p = MakePackets(scene, hard, 40000, rng);
+  SetDirections(&p, rng);
+  std::vector<Mask8> masks = {0, kAllLanes, 0x55, 0xaa, 0x0f, 0xf0, 0x81, 0x7e};
+  for (int j = 0; j < 8; ++j) masks.push_back(LaneBit(j)), masks.push_back(kAllLanes & ~LaneBit(j));
+  for (size_t k = 0; k < p.mask.size(); ++k)
+    p.mask[k] = k < masks.size() * 4 ? masks[k % masks.size()] : Mask8(rng.NextUint() & 0xff);
+  // One packet of nothing but spheres, one without any hit at the end.
+  for (int j = 0; j < 8; ++j) p.hits[1].prim[j] = kSphereHitBit | uint32_t(j % materials.size());
+  p.mask.back() = 0;
+  const size_t packets = p.rays.size(), rows = packets * kPacketWidth;
+  Rows want(rows);
+  Lists want_lists(rows);
+  MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets, want.Out(),
+                       &want_lists.lists);
+  ExpectListsOfRows(p, want.its, want_lists);
+  for (int g = 0; g < kMaterialGroups; ++g) EXPECT_GT(want_lists.lists.group_hits[g], 0u) << g;
+  EXPECT_GT(want_lists.lists.area_hits, 0u);
+  test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
+    Rows got(rows);
+    Lists got_lists(rows);
+    simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
+                               got.Out(), &got_lists.lists);
+    ExpectListsMatch(got_lists, want_lists);
+    // Every prefix of packets (down to none) and single packets: the counts restart per call.
+    for (const size_t n : {size_t(0), size_t(1), size_t(2), size_t(33)}) {
+      Lists w(rows), g(rows);
+      Rows scratch(rows);
+      MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), n, scratch.Out(),
+                           &w.lists);
+      simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), n,
+                                 scratch.Out(), &g.lists);
+      SCOPED_TRACE(n);
+      ExpectListsMatch(g, w);
+    }
+  });
+}
+
 const std::string kSharedData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
 
 // The wavefront's rows (no vertex normals in cbox but on the frame-case quads).
@@ -245,6 +360,14 @@ TEST(Interaction8, RowsMatchOracleOnCbox) {
 
 TEST(Interaction8, RowsMatchOracleOnTable) {
   ExpectRowsMatchOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml");
+}
+
+TEST(Interaction8, ListsMatchOracleOnAdversarialMasksCbox) {
+  ExpectListsMatchOracleOnMasks(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");
+}
+
+TEST(Interaction8, ListsMatchOracleOnAdversarialMasksTable) {
+  ExpectListsMatchOracleOnMasks(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml");
 }
 
 }  // namespace

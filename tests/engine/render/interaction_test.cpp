@@ -95,7 +95,10 @@ TEST(Interaction, BatchIntoRows) {
   fill.prim = 77;
   std::vector<SurfaceInteraction> its(kPacketWidth, fill);
   std::vector<Vec3f> wo(kPacketWidth, Vec3f{-1, -1, -1});
-  MakeInteractionBatch(scene, &rays, &hits, &hit, 1, InteractionRows{its.data(), wo.data()});
+  std::vector<uint32_t> entries(kPacketWidth, 99), area(kPacketWidth, 99);
+  HitLists lists{entries.data(), area.data()};
+  MakeInteractionBatch(scene, &rays, &hits, &hit, 1, InteractionRows{its.data(), wo.data()},
+                       &lists);
   const SurfaceInteraction tri = MakeInteraction(scene, slanted, Hit{0.5f, 0.2f, 0.3f, 1});
   const SurfaceInteraction sphere = MakeInteraction(scene, kDown, Hit{4, 0, 0, kSphereHitBit});
   for (const auto& [q, want, ray] : {std::tuple{0, tri, slanted}, std::tuple{2, sphere, kDown}}) {
@@ -117,6 +120,15 @@ TEST(Interaction, BatchIntoRows) {
   EXPECT_NEAR(Length(wo[0]), 1.0f, 1e-6f);
   EXPECT_EQ(its[1].prim, 77u);  // lanes without a hit: rows left as they were
   EXPECT_EQ(wo[1], (Vec3f{-1, -1, -1}));
+  // The lists: both hits in lane order, counted by material group.
+  ASSERT_EQ(lists.hits, 2u);
+  EXPECT_EQ(entries[0], 0u);
+  EXPECT_EQ(entries[1], 2u);
+  EXPECT_EQ(entries[2], 99u);
+  EXPECT_EQ(lists.area_hits, 0u);  // the quads do not emit, spheres never do
+  uint32_t groups[kMaterialGroups] = {};
+  ++groups[kMaterialTagCount], ++groups[int(MaterialTag::kMirror)];  // no material; mirror
+  for (int g = 0; g < kMaterialGroups; ++g) EXPECT_EQ(lists.group_hits[g], groups[g]) << g;
 }
 
 }  // namespace
