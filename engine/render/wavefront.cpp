@@ -320,11 +320,16 @@ class alignas(kColumnAlignment) Wavefront {
       std::fill(std::begin(goes_on_tags_), std::end(goes_on_tags_), 0u);
       return;
     }
+    // Without infinite lights an escaped ray brings no light: Escaped's zero times a finite
+    // throughput adds ±0, which leaves L as it is (it starts at +0 and never becomes -0), so only
+    // the paths whose throughput is not finite (0 times Inf or NaN is NaN) take the loop below.
+    const bool infinite = scene_->environment_maps.size() + scene_->distant_disks.size() != 0;
     for (size_t k = 0; k < packets; ++k) {
       for (Mask8 todo = rays_.Active(k) & ~hit_mask_[k]; todo != 0; todo &= todo - 1) {
         // Escaped: environment light, counted unless emitter sampling already did (after a
         // non-specular bounce), MIS-weighted when mis is on.
         const size_t q = k * kLanes + size_t(std::countr_zero(todo));
+        if (!infinite && IsFinite(throughput_[rays_.owner[q]])) continue;
         const uint32_t i = rays_.owner[q];
         const Vec3f d = rays_.Direction(q);
         const Vec3f w = d / Length(d);
