@@ -943,14 +943,25 @@ HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState*
 }
 
 // Out of line, so that the single-ray loop is compiled as tightly as simd::Intersect1 and not
-// inside the much larger packet function (measured: ~15% faster on incoherent packets). Takes
-// the lane, not a SingleRay: the lane's constants are read where they are used instead of
-// being copied into a struct on the caller's side and read back.
+// inside the much larger packet function (measured: ~15% faster on incoherent packets). The
+// loop over the lanes is inside: one call and one stack frame for the lanes of a subtree.
 template <bool kAnyHit>
-HWY_NOINLINE bool TraverseSingleOutOfLine(const Bvh8& bvh, Bvh8Ref start, const PacketState& s,
-                                          int j, LaneBest* best) {
-  return TraverseSingle<kAnyHit>(bvh, start, LaneSingleRay(s, j), s.wt, static_cast<size_t>(j),
-                                 best);
+HWY_NOINLINE uint32_t TraverseLanesAlone(const Bvh8& bvh, Bvh8Ref ref, PacketState* s, uint32_t m) {
+  uint32_t hit_lanes = 0;
+  for (; m != 0; m &= m - 1) {
+    const int j = std::countr_zero(m);
+    LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
+                  s->best_b2[j]};
+    if (TraverseSingle<kAnyHit>(bvh, ref, LaneSingleRay(*s, j), s->wt, static_cast<size_t>(j),
+                                &best)) {
+      hit_lanes |= LaneBit(j);
+    }
+    if constexpr (!kAnyHit) {
+      s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
+      s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
+    }
+  }
+  return hit_lanes;
 }
 
 // Each lane of m traverses the subtree `ref` alone. Returns the lanes that hit (any hit).
@@ -962,18 +973,7 @@ HWY_INLINE uint32_t SingleRayLanes(const Bvh8& bvh, Bvh8Ref ref, PacketState* s,
   // so it keeps the traversal. In the renders, of the lanes that go single, those at a leaf
   // are any hit: table 32 %, veach 6 %; closest hit: table 44 %, veach 66 %.
   if (kAnyHit && IsLeaf(ref)) return LeafLanes<kAnyHit>(DF(), bvh, ref, s, m);
-  uint32_t hit_lanes = 0;
-  for (; m != 0; m &= m - 1) {
-    const int j = std::countr_zero(m);
-    LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
-                  s->best_b2[j]};
-    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, *s, j, &best)) hit_lanes |= LaneBit(j);
-    if constexpr (!kAnyHit) {
-      s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
-      s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
-    }
-  }
-  return hit_lanes;
+  return TraverseLanesAlone<kAnyHit>(bvh, ref, s, m);
 }
 
 // Largest closest-hit distance among the lanes of m (the frustum's far end).
