@@ -59,8 +59,9 @@ HWY_INLINE MF MaskFromBits(DF d, uint32_t bits) {
   return hn::LoadMaskBits(d, b);
 }
 
-// The per-ray constants of the watertight test, one lane per ray of a packet (a single ray
-// fills lane 0 only and is broadcast); kernels load them as vectors where they need them.
+// The per-ray constants of the watertight test, one lane per ray of a packet (a lone ray
+// fills lane 0 only); packet kernels load them as vectors, a single ray's tests broadcast its
+// lane (a packet lane that traverses alone reads its own lane of the packet's).
 struct WatertightLanes {
   alignas(32) float ox[8], oy[8], oz[8];  // origin permuted to the lane's (kx, ky, kz)
   alignas(32) float sx[8], sy[8], sz[8];  // shear constants
@@ -103,10 +104,10 @@ HWY_NOINLINE void EdgeFallback(DF d, MF on_edge, VF a_x, VF a_y, VF b_x, VF b_y,
 }
 
 // One ray constant for a vector of tests: lanes [i, i + Lanes(d)) of a packet's column, or
-// (kOneRay) the single ray's value in lane 0, broadcast.
+// (kOneRay) the single ray's value in lane i, broadcast.
 template <bool kOneRay>
 HWY_INLINE VF RayConstant(DF d, const float* column, size_t i) {
-  if constexpr (kOneRay) return hn::Set(d, column[0]);
+  if constexpr (kOneRay) return hn::Set(d, column[i]);
   return hn::Load(d, column + i);
 }
 
@@ -114,7 +115,7 @@ HWY_INLINE VF RayConstant(DF d, const float* column, size_t i) {
 // order (the including .cpp disables FMA contraction), so every lane's decision and t, b1, b2
 // equal the scalar test's bit for bit. Vertices are permuted to (kx, ky, kz) already. Returns
 // the lanes of `valid` that hit; *t, *b1, *b2 are meaningful in those lanes only. The rays
-// are lanes [i, i + Lanes(d)) of `r`, or with kOneRay the one ray in lane 0 of `r` against
+// are lanes [i, i + Lanes(d)) of `r`, or with kOneRay the one ray in lane i of `r` against
 // a vector of triangles.
 template <bool kOneRay = false>
 HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF ay, VF az, VF bx,
@@ -176,10 +177,12 @@ HWY_INLINE MF WatertightTest(DF d, const WatertightLanes& r, size_t i, VF ax, VF
 // ---------------------------------------------------------------------------------------------
 // Single ray: eight child boxes per vector, up to eight leaf triangles per vector.
 
+// A ray's box-test constants and watertight axes; its other watertight constants are one lane
+// of a WatertightLanes (LeafSingle).
 struct SingleRay {
   float o[3], inv_d[3];
   uint32_t near[3], far[3];  // plane column offsets chosen by the sign of 1/d (as the oracle)
-  WatertightRay wt;
+  int k[3];                  // the watertight axes (kx, ky, kz)
   float t_min, t_max;
 };
 
@@ -189,7 +192,9 @@ struct LaneBest {
   float b1, b2;
 };
 
-HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, float t_max) {
+// A lone ray, its watertight constants in lane 0 of *rv.
+HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, float t_max,
+                                   WatertightLanes* rv) {
   SingleRay r;
   const uint32_t lo[3] = {kLoX, kLoY, kLoZ}, hi[3] = {kHiX, kHiY, kHiZ};
   for (int a = 0; a < 3; ++a) {
@@ -199,18 +204,15 @@ HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, 
     r.near[a] = neg ? hi[a] : lo[a];
     r.far[a] = neg ? lo[a] : hi[a];
   }
-  r.wt = MakeWatertightRay(o, d);
+  const WatertightRay wt = MakeWatertightRay(o, d);
+  r.k[0] = wt.kx, r.k[1] = wt.ky, r.k[2] = wt.kz;
   r.t_min = t_min;
   r.t_max = t_max;
+  // Eight scalar stores instead of 64: WatertightTest<true> broadcasts lane 0.
+  rv->ox[0] = wt.ox, rv->oy[0] = wt.oy, rv->oz[0] = wt.oz;
+  rv->sx[0] = wt.sx, rv->sy[0] = wt.sy, rv->sz[0] = wt.sz;
+  rv->t_min[0] = t_min, rv->t_max[0] = t_max;
   return r;
-}
-
-// The single ray's watertight constants in lane 0 (WatertightTest<true> broadcasts them):
-// eight scalar stores per traversal instead of 64.
-HWY_INLINE void OneRayWatertight(const SingleRay& r, WatertightLanes* out) {
-  out->ox[0] = r.wt.ox, out->oy[0] = r.wt.oy, out->oz[0] = r.wt.oz;
-  out->sx[0] = r.wt.sx, out->sy[0] = r.wt.sy, out->sz[0] = r.wt.sz;
-  out->t_min[0] = r.t_min, out->t_max[0] = r.t_max;
 }
 
 // Starts loading a child before it is visited: traversal of large scenes waits on memory.
@@ -226,30 +228,31 @@ HWY_INLINE void PrefetchChild(const Bvh8& bvh, Bvh8Ref ref) {
   }
 }
 
-// One ray against the (up to eight) triangles of a leaf, all in one vector (two on 128-bit
-// targets). Closest hit: updates *best with the oracle's rule (smaller t, then lower scene
-// row). Any hit: returns true at the first hit.
+// One ray (watertight axes k, its other constants in lane `lane` of rv) against the (up to
+// eight) triangles of a leaf, all in one vector (two on 128-bit targets). Closest hit: updates
+// *best with the oracle's rule (smaller t, then lower scene row). Any hit: returns true at the
+// first hit.
 template <bool kAnyHit>
-HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const SingleRay& r,
-                           const WatertightLanes& rv, LaneBest* best) {
+HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const int* k,
+                           const WatertightLanes& rv, size_t lane, LaneBest* best) {
   const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
   const float* base = bvh.tris.data() + size_t{9} * first;
-  const float* ax = base + r.wt.kx * n;
-  const float* ay = base + r.wt.ky * n;
-  const float* az = base + r.wt.kz * n;
-  const float* bx = base + (3 + r.wt.kx) * n;
-  const float* by = base + (3 + r.wt.ky) * n;
-  const float* bz = base + (3 + r.wt.kz) * n;
-  const float* cx = base + (6 + r.wt.kx) * n;
-  const float* cy = base + (6 + r.wt.ky) * n;
-  const float* cz = base + (6 + r.wt.kz) * n;
+  const float* ax = base + k[0] * n;
+  const float* ay = base + k[1] * n;
+  const float* az = base + k[2] * n;
+  const float* bx = base + (3 + k[0]) * n;
+  const float* by = base + (3 + k[1]) * n;
+  const float* bz = base + (3 + k[2]) * n;
+  const float* cx = base + (6 + k[0]) * n;
+  const float* cy = base + (6 + k[1]) * n;
+  const float* cz = base + (6 + k[2]) * n;
   const uint32_t lanes = static_cast<uint32_t>(hn::Lanes(d));
   for (uint32_t i = 0; i < n; i += lanes) {
     VF t = hn::Zero(d), b1 = t, b2 = t;
-    const MF hit = WatertightTest<true>(d, rv, 0, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i),
-                                  hn::LoadU(d, az + i), hn::LoadU(d, bx + i), hn::LoadU(d, by + i),
-                                  hn::LoadU(d, bz + i), hn::LoadU(d, cx + i), hn::LoadU(d, cy + i),
-                                  hn::LoadU(d, cz + i), hn::FirstN(d, n - i), &t, &b1, &b2);
+    const MF hit = WatertightTest<true>(
+        d, rv, lane, hn::LoadU(d, ax + i), hn::LoadU(d, ay + i), hn::LoadU(d, az + i),
+        hn::LoadU(d, bx + i), hn::LoadU(d, by + i), hn::LoadU(d, bz + i), hn::LoadU(d, cx + i),
+        hn::LoadU(d, cy + i), hn::LoadU(d, cz + i), hn::FirstN(d, n - i), &t, &b1, &b2);
     uint32_t bits = MaskBits(d, hit);
     if (bits == 0) continue;
     if constexpr (kAnyHit) {
@@ -293,16 +296,21 @@ HWY_INLINE uint32_t ChildrenBefore(DF d, const float* dist, float best_t) {
 }
 
 // Single-ray traversal of the subtree `start` (the oracle's order-independent closest-hit
-// rule, so the result does not depend on the visiting order). Closest hit: *best starts as
-// {t_max, kNoHit} (or a packet lane's hit so far) and is updated. Any hit: returns whether
-// something was hit.
+// rule, so the result does not depend on the visiting order), the ray's watertight constants
+// in lane `lane` of ray_wt. Closest hit: *best starts as {t_max, kNoHit} (or a packet lane's
+// hit so far) and is updated. Any hit: returns whether something was hit.
 template <bool kAnyHit>
 HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& r,
-                               LaneBest* best_io) {
+                               const WatertightLanes& ray_wt, size_t lane, LaneBest* best_io) {
   const DF d;
   const size_t lanes = hn::Lanes(d);
+  // A local copy of the ray's constants (lane 0): the leaf tests' broadcasts stay in
+  // registers, which they did not when read from the packet (measured: Intersect8 terrain
+  // bounce rays -5 %).
   WatertightLanes rv;
-  OneRayWatertight(r, &rv);
+  rv.ox[0] = ray_wt.ox[lane], rv.oy[0] = ray_wt.oy[lane], rv.oz[0] = ray_wt.oz[lane];
+  rv.sx[0] = ray_wt.sx[lane], rv.sy[0] = ray_wt.sy[lane], rv.sz[0] = ray_wt.sz[lane];
+  rv.t_min[0] = ray_wt.t_min[lane], rv.t_max[0] = ray_wt.t_max[lane];
   // The closest hit so far lives in locals (registers) until the end: through the pointer,
   // every store to it would force the next node's far end to be reloaded from memory.
   LaneBest best = *best_io;
@@ -357,7 +365,7 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
       if (const uint32_t leaves = bits & LeafChildren(d, node); leaves != 0) {
         bool hit = false;
         for (uint32_t l = leaves; l != 0 && !hit; l &= l - 1) {
-          hit = LeafSingle<kAnyHit>(d, bvh, node.child[std::countr_zero(l)], r, rv, &best);
+          hit = LeafSingle<kAnyHit>(d, bvh, node.child[std::countr_zero(l)], r.k, rv, 0, &best);
         }
         if (kAnyHit && hit) {
           any = true;
@@ -438,7 +446,7 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
         cur = hit[n - 1].ref;
         continue;
       }
-    } else if (LeafSingle<kAnyHit>(d, bvh, cur, r, rv, &best)) {
+    } else if (LeafSingle<kAnyHit>(d, bvh, cur, r.k, rv, 0, &best)) {
       any = true;
       break;
     }
@@ -489,8 +497,8 @@ HWY_INLINE int LaneWatertightAxis(const PacketState& s, int a, int j) {
   return 2 - 2 * is0 - is1;
 }
 
-// Lane j as a single ray (for the single-ray switch and per-lane leaf tests); the same values
-// MakeSingleRay computes from the lane's ray.
+// Lane j as a single ray (for the single-ray switch); the same values MakeSingleRay computes
+// from the lane's ray, whose other watertight constants are lane j of s.wt.
 HWY_INLINE SingleRay LaneSingleRay(const PacketState& s, int j) {
   SingleRay r;
   r.o[0] = s.o_x[j], r.o[1] = s.o_y[j], r.o[2] = s.o_z[j];
@@ -501,10 +509,7 @@ HWY_INLINE SingleRay LaneSingleRay(const PacketState& s, int j) {
     r.near[a] = neg ? hi[a] : lo[a];
     r.far[a] = neg ? lo[a] : hi[a];
   }
-  r.wt.kx = LaneWatertightAxis(s, 0, j), r.wt.ky = LaneWatertightAxis(s, 1, j);
-  r.wt.kz = LaneWatertightAxis(s, 2, j);
-  r.wt.sx = s.wt.sx[j], r.wt.sy = s.wt.sy[j], r.wt.sz = s.wt.sz[j];
-  r.wt.ox = s.wt.ox[j], r.wt.oy = s.wt.oy[j], r.wt.oz = s.wt.oz[j];
+  for (int a = 0; a < 3; ++a) r.k[a] = LaneWatertightAxis(s, a, j);
   r.t_min = s.wt.t_min[j];
   r.t_max = s.wt.t_max[j];
   return r;
@@ -904,6 +909,28 @@ HWY_NOINLINE uint32_t LeafBroadcastMixedK(const Bvh8& bvh, Bvh8Ref leaf, PacketS
   return LeafBroadcast<kAnyHit, true>(DF(), bvh, leaf, s, m);
 }
 
+// Each lane of m tests the leaf alone, its constants read from its lane of the packet's.
+// Closest hit: updates the lanes' best hits. Any hit: returns the lanes that hit.
+template <bool kAnyHit>
+HWY_INLINE uint32_t LeafLanes(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState* s, uint32_t m) {
+  uint32_t hit_lanes = 0;
+  for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
+    const int j = std::countr_zero(bits);
+    const int k[3] = {LaneWatertightAxis(*s, 0, j), LaneWatertightAxis(*s, 1, j),
+                      LaneWatertightAxis(*s, 2, j)};
+    LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
+                  s->best_b2[j]};
+    if (LeafSingle<kAnyHit>(d, bvh, leaf, k, s->wt, static_cast<size_t>(j), &best)) {
+      hit_lanes |= LaneBit(j);
+    }
+    if constexpr (!kAnyHit) {
+      s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
+      s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
+    }
+  }
+  return hit_lanes;
+}
+
 template <bool kAnyHit>
 HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState* s, uint32_t m,
                                const Traverse8Options& options) {
@@ -912,48 +939,41 @@ HWY_INLINE uint32_t LeafPacket(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketState*
     if (s->uniform_k[0] >= 0) return LeafBroadcast<kAnyHit, false>(d, bvh, leaf, s, m);
     return LeafBroadcastMixedK<kAnyHit>(bvh, leaf, s, m);
   }
-  uint32_t hit_lanes = 0;
-  for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
-    const int j = std::countr_zero(bits);
-    const SingleRay r = LaneSingleRay(*s, j);
-    WatertightLanes rv;
-    OneRayWatertight(r, &rv);
-    LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
-                  s->best_b2[j]};
-    if (LeafSingle<kAnyHit>(d, bvh, leaf, r, rv, &best)) hit_lanes |= LaneBit(j);
-    if constexpr (!kAnyHit) {
-      s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
-      s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
-    }
-  }
-  return hit_lanes;
+  return LeafLanes<kAnyHit>(d, bvh, leaf, s, m);
 }
 
 // Out of line, so that the single-ray loop is compiled as tightly as simd::Intersect1 and not
-// inside the much larger packet function (measured: ~15% faster on incoherent packets). Takes
-// the lane, not a SingleRay: the lane's constants are read where they are used instead of
-// being copied into a struct on the caller's side and read back.
+// inside the much larger packet function (measured: ~15% faster on incoherent packets). The
+// loop over the lanes is inside: one call and one stack frame for the lanes of a subtree.
 template <bool kAnyHit>
-HWY_NOINLINE bool TraverseSingleOutOfLine(const Bvh8& bvh, Bvh8Ref start, const PacketState& s,
-                                          int j, LaneBest* best) {
-  return TraverseSingle<kAnyHit>(bvh, start, LaneSingleRay(s, j), best);
-}
-
-// Each lane of m traverses the subtree `ref` alone. Returns the lanes that hit (any hit).
-template <bool kAnyHit>
-HWY_INLINE uint32_t SingleRayLanes(const Bvh8& bvh, Bvh8Ref ref, PacketState* s, uint32_t m) {
+HWY_NOINLINE uint32_t TraverseLanesAlone(const Bvh8& bvh, Bvh8Ref ref, PacketState* s, uint32_t m) {
   uint32_t hit_lanes = 0;
   for (; m != 0; m &= m - 1) {
     const int j = std::countr_zero(m);
     LaneBest best{s->best_t[j], static_cast<uint32_t>(s->best_prim[j]), s->best_b1[j],
                   s->best_b2[j]};
-    if (TraverseSingleOutOfLine<kAnyHit>(bvh, ref, *s, j, &best)) hit_lanes |= LaneBit(j);
+    if (TraverseSingle<kAnyHit>(bvh, ref, LaneSingleRay(*s, j), s->wt, static_cast<size_t>(j),
+                                &best)) {
+      hit_lanes |= LaneBit(j);
+    }
     if constexpr (!kAnyHit) {
       s->best_t[j] = best.t, s->best_prim[j] = static_cast<int32_t>(best.prim);
       s->best_b1[j] = best.b1, s->best_b2[j] = best.b2;
     }
   }
   return hit_lanes;
+}
+
+// Each lane of m traverses the subtree `ref` alone. Returns the lanes that hit (any hit).
+template <bool kAnyHit>
+HWY_INLINE uint32_t SingleRayLanes(const Bvh8& bvh, Bvh8Ref ref, PacketState* s, uint32_t m) {
+  // Any hit: a leaf needs none of the traversal's setup, each lane tests it from its lane of
+  // the packet. Measured (Occluded8, same run): shadow rays table +7 %, terrain +3 %,
+  // bounce rays terrain +7 %. Closest hit lost 3 % on camera rays that way (table, terrain),
+  // so it keeps the traversal. In the renders, of the lanes that go single, those at a leaf
+  // are any hit: table 32 %, veach 6 %; closest hit: table 44 %, veach 66 %.
+  if (kAnyHit && IsLeaf(ref)) return LeafLanes<kAnyHit>(DF(), bvh, ref, s, m);
+  return TraverseLanesAlone<kAnyHit>(bvh, ref, s, m);
 }
 
 // Largest closest-hit distance among the lanes of m (the frustum's far end).
@@ -1232,8 +1252,11 @@ HWY_INLINE Mask8 Occluded8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8 
 HWY_INLINE bool Intersect1Kernel(const Bvh8& bvh, const Ray& ray, Hit* hit) {
   if (!(ray.t_min < ray.t_max)) return false;
   LaneBest best{ray.t_max, kNoHit, 0.0f, 0.0f};
-  if (!bvh.empty())
-    TraverseSingle<false>(bvh, 0, MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max), &best);
+  if (!bvh.empty()) {
+    WatertightLanes rv;
+    const SingleRay r = MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max, &rv);
+    TraverseSingle<false>(bvh, 0, r, rv, 0, &best);
+  }
   if (IntersectSpheres1(bvh.spheres, ray, &best.t, &best.prim)) best.b1 = best.b2 = 0.0f;
   if (best.prim == kNoHit) return false;
   hit->t = best.t;
@@ -1245,10 +1268,12 @@ HWY_INLINE bool Intersect1Kernel(const Bvh8& bvh, const Ray& ray, Hit* hit) {
 
 HWY_INLINE bool Occluded1Kernel(const Bvh8& bvh, const Ray& ray) {
   if (!(ray.t_min < ray.t_max)) return false;
-  LaneBest best{ray.t_max, kNoHit, 0.0f, 0.0f};
-  if (!bvh.empty() &&
-      TraverseSingle<true>(bvh, 0, MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max), &best))
-    return true;
+  if (!bvh.empty()) {
+    LaneBest best{ray.t_max, kNoHit, 0.0f, 0.0f};
+    WatertightLanes rv;
+    const SingleRay r = MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max, &rv);
+    if (TraverseSingle<true>(bvh, 0, r, rv, 0, &best)) return true;
+  }
   return OccludedSpheres1(bvh.spheres, ray);
 }
 
