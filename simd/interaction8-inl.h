@@ -79,7 +79,10 @@ HWY_INLINE void ListHits(DI di, M hit, M tri, VI material, VI emitter, size_t fi
   const auto entries = hn::Iota(di, int32_t(first_entry));
   lists->hits += uint32_t(hn::CompressStore(
       entries, hit, di, reinterpret_cast<int32_t*>(lists->entries) + lists->hits));
-  // EmitterTag::kArea is tag 0 (a sphere's EmitterRef::None, tag 15, is not).
+  // EmitterTag::kArea is tag 0 (a sphere's EmitterRef::None, tag 15, is not), in the top 4 bits.
+  static_assert(uint32_t(EmitterTag::kArea) == 0 &&
+                EmitterRef::Make(EmitterTag::kSpot, 0).bits >> 28 == uint32_t(EmitterTag::kSpot) &&
+                MaterialRef::Make(MaterialTag(1), 0).bits >> 28 == 1);
   const auto tag_bits = hn::Set(di, int32_t(0xf0000000u));
   const M area = hn::And(tri, hn::Eq(hn::And(emitter, tag_bits), hn::Zero(di)));
   if (!hn::AllFalse(di, area)) {
