@@ -329,8 +329,8 @@ class alignas(kColumnAlignment) Wavefront {
         // Escaped: environment light, counted unless emitter sampling already did (after a
         // non-specular bounce), MIS-weighted when mis is on.
         const size_t q = k * kLanes + size_t(std::countr_zero(todo));
-        if (!infinite && IsFinite(throughput_[rays_.owner[q]])) continue;
         const uint32_t i = rays_.owner[q];
+        if (!infinite && IsFinite(throughput_[i])) continue;
         const Vec3f d = rays_.Direction(q);
         const Vec3f w = d / Length(d);
         const bool plain = !rules_.nee || specular_[i];
@@ -430,9 +430,9 @@ class alignas(kColumnAlignment) Wavefront {
     // when it traces): no request struct per row. The columns only grow.
     n_requests_ = 0;
     GrowColumns(emitter_rows, &request_traced_, &request_contribution_);
-    uint32_t area_rows[EmitterColumns::kGroups] = {};
+    uint32_t area_rows[kMaterialGroups] = {};
     if (rules_.nee)
-      for (int t = 0; t < EmitterColumns::kGroups; ++t)
+      for (int t = 0; t < kMaterialGroups; ++t)
         area_rows[t] = goes_on_tags_[t] * uint32_t(n_light);
     area_.Clear(emitter_rows, area_rows);
     for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
@@ -835,8 +835,7 @@ class alignas(kColumnAlignment) Wavefront {
     AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
     AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
     // Groups 0..kMaterialTagCount - 1 by tag, group kMaterialTagCount: no material.
-    static constexpr int kGroups = kMaterialGroups;
-    uint32_t begin[kGroups] = {}, next[kGroups] = {};
+    uint32_t begin[kMaterialGroups] = {}, next[kMaterialGroups] = {};
     size_t rows = 0;
 
     size_t size() const { return rows; }
@@ -847,13 +846,13 @@ class alignas(kColumnAlignment) Wavefront {
     /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
     /// place; only grows. group_rows: the most rows each group can get (they sum to at most
     /// capacity).
-    void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
+    void Clear(size_t capacity, const uint32_t (&group_rows)[kMaterialGroups]) {
       rows = 0;
       GrowColumns(capacity, &path, &entry, &material_index, &roulette_scale, &wo_x, &wo_y, &wo_z,
                   &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
                   &eta);
       uint32_t at = 0;
-      for (int g = 0; g < kGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
+      for (int g = 0; g < kMaterialGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
     void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
               float lobe, const Vec2f& dir, float scale) {
@@ -892,8 +891,7 @@ class alignas(kColumnAlignment) Wavefront {
     AlignedVector<float> p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
     std::vector<uint8_t> traced;
     AlignedVector<float> o_x, o_y, o_z, d_x, d_y, d_z, r, g, b;
-    static constexpr int kGroups = BsdfColumns::kGroups;
-    uint32_t begin[kGroups] = {}, next[kGroups] = {};
+    uint32_t begin[kMaterialGroups] = {}, next[kMaterialGroups] = {};
     size_t rows = 0;
 
     size_t size() const { return rows; }
@@ -906,14 +904,14 @@ class alignas(kColumnAlignment) Wavefront {
     /// rows are written in place, which keeps the per-sample loop free of push_back calls).
     /// The columns only grow, so a wave sizes them once. group_rows: the most rows each
     /// group can get (they sum to at most capacity).
-    void Clear(size_t capacity, const uint32_t (&group_rows)[kGroups]) {
+    void Clear(size_t capacity, const uint32_t (&group_rows)[kMaterialGroups]) {
       rows = 0;
       GrowColumns(capacity, &request, &entry, &light, &pick_pmf, &ref_x, &ref_y, &ref_z, &wo_x,
                   &wo_y, &wo_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z,
                   &pdf);
       GrowColumns(capacity, &traced, &o_x, &o_y, &o_z, &d_x, &d_y, &d_z, &r, &g, &b);
       uint32_t at = 0;
-      for (int t = 0; t < kGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
+      for (int t = 0; t < kMaterialGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
     }
     void Push(uint32_t req, uint32_t queue_entry, MaterialRef material, uint32_t light_row,
               float pmf, const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
