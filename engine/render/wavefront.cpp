@@ -432,8 +432,7 @@ class alignas(kColumnAlignment) Wavefront {
     GrowColumns(emitter_rows, &request_traced_, &request_contribution_);
     uint32_t area_rows[kMaterialGroups] = {};
     if (rules_.nee)
-      for (int t = 0; t < kMaterialGroups; ++t)
-        area_rows[t] = goes_on_tags_[t] * uint32_t(n_light);
+      for (int t = 0; t < kMaterialGroups; ++t) area_rows[t] = goes_on_tags_[t] * uint32_t(n_light);
     area_.Clear(emitter_rows, area_rows);
     for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
     for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
