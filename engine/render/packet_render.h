@@ -12,10 +12,13 @@
 
 namespace ptlab {
 
+/// PixelSeed's stride between the render seeds: MixBits hashes seed * stride + pixel.
+inline constexpr uint64_t kPixelSeedStride = 0x9e3779b97f4a7c15ULL;
+
 /// Seed of a pixel's random streams; every sample s of the pixel uses Pcg32(PixelSeed, s).
 /// RenderTileScalar and the wavefront (wavefront.h) both seed with it.
 inline uint64_t PixelSeed(uint64_t seed, uint64_t pixel) {
-  return MixBits(seed * 0x9e3779b97f4a7c15ULL + pixel);
+  return MixBits(seed * kPixelSeedStride + pixel);
 }
 
 /// Thread time spent in each stage of the packet path (seconds of one thread, summed).

@@ -6,6 +6,8 @@
 // stratifying: sample indices continue across passes).
 #pragma once
 
+#include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -52,6 +54,19 @@ class PathSampler {
         pixel_seed32_(uint32_t(pixel_seed) ^ uint32_t(pixel_seed >> 32)),
         index_(sample_index),
         type_(type) {}
+
+  /// Same type, stream, seed and index: the two draw the same numbers from here on.
+  bool operator==(const PathSampler&) const = default;
+
+  /// Its bytes, which kernels that store whole rows of samplers rely on (simd/camera_paths8):
+  /// four 64-bit words, the stream's state and increment, then pixel_seed32 | index << 32,
+  /// then the type in the low byte (the rest is padding).
+  static constexpr bool RowLayoutHolds() {
+    return Pcg32::StateThenIncrement() && offsetof(PathSampler, rng_) == 0 &&
+           offsetof(PathSampler, pixel_seed32_) == 16 && offsetof(PathSampler, index_) == 20 &&
+           offsetof(PathSampler, type_) == 24 && sizeof(PathSampler) == 32 &&
+           sizeof(SamplerType) == 1 && std::endian::native == std::endian::little;
+  }
 
   SamplerType type() const { return type_; }
   /// What the Sobol' points depend on: the pixel's 32-bit seed and the sample index.
