@@ -1,6 +1,6 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
 // simd/splat8, simd/emitter8, simd/area_request8, simd/environment8, simd/distant_disk8,
-// simd/interaction8, simd/spawn8.
+// simd/interaction8, simd/spawn8, simd/vertex_batch8.
 #include "simd/wavefront_kernels.h"
 
 #include "simd/area_request8.h"
@@ -13,6 +13,7 @@
 #include "simd/spawn8.h"
 #include "simd/splat8.h"
 #include "simd/traverse8.h"
+#include "simd/vertex_batch8.h"
 
 namespace ptlab::simd {
 namespace {
@@ -43,6 +44,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
           .spawn = SpawnRayBatch,
+          .vertices = DecideVertices,
           .name = Traverse8TargetName()};
 }
 

@@ -157,6 +157,9 @@ class alignas(kColumnAlignment) Wavefront {
     scene_ = &ctx.scene, kernels_ = &kernels, stats_ = stats;
     rules_ = RulesFor(ctx.scene.integrator);
     sobol_ = ctx.scene.sampler.type == SamplerType::kSobol;
+    vertex_batch_ = !sobol_ && rules_.light_samples == 1 && rules_.bsdf_sampling &&
+                    !rules_.nee_ends_path && rules_.roulette != VertexRules::Roulette::kWhitted &&
+                    VertexBatchFits(ctx.scene);
     environment_.resize(ctx.scene.environment_maps.size());
     distant_disk_.resize(ctx.scene.distant_disks.size());
     for (int y = y0; y < y1; y += kWaveRows) {
@@ -436,16 +439,104 @@ class alignas(kColumnAlignment) Wavefront {
     area_.Clear(emitter_rows, area_rows);
     for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
     for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
+    GroupEntries();
     if (sobol_) DrawVertexNumbers(depth);
+    // Group by group (the BSDF and emitter columns' groups): a group's rows share their tag, so
+    // whether the vertex takes emitter samples is known per group, and its rows go to the
+    // columns' slots one after the other.
+    size_t k = 0;
+    for (int g = 0; g < kMaterialGroups; ++g) {
+      const size_t end = k + goes_on_tags_[g];
+      if (k == end) continue;
+      const bool delta = g < kMaterialTagCount && IsDeltaMaterial(static_cast<MaterialTag>(g));
+      SampleGroup(depth, delta, g, k, end);
+      k = end;
+    }
+    SampleAreaLights();
+    SampleInfiniteLights();
+    SampleBsdfs();
+  }
+
+  // goes_on_[0, n_goes_on_) in stable order by material group (a counting sort, whose counts
+  // are goes_on_tags_); as it is when one group holds every entry.
+  void GroupEntries() {
+    uint32_t at[kMaterialGroups];
+    uint32_t sum = 0, groups = 0;
+    for (int g = 0; g < kMaterialGroups; ++g) {
+      at[g] = sum, sum += goes_on_tags_[g];
+      groups += goes_on_tags_[g] != 0 ? 1u : 0u;
+    }
+    if (groups < 2) return;
+    GrowColumns(goes_on_.size(), &grouped_);
+    for (size_t k = 0; k < n_goes_on_; ++k) {
+      const uint32_t q = goes_on_[k];
+      grouped_[at[MaterialGroup(its_[q].material)]++] = q;
+    }
+    std::swap(goes_on_, grouped_);
+  }
+
+  // SampleGroup through the kernel table's vertices slot (vertex_batch_: the independent
+  // sampler, one emitter sample per vertex, only area lights, no Whitted rules).
+  void SampleGroupBatch(int depth, bool delta, int g, size_t k, size_t end) {
+    VertexBatchRules rules;
+    rules.depth = depth;
+    rules.emitter_sample = rules_.nee && (!delta || rules_.nee_on_delta);
+    rules.roulette = rules_.roulette == VertexRules::Roulette::kNori && depth >= 3;
+    rules.first_request = uint32_t(n_requests_);
+    const size_t n = end - k;
+    if (rules.emitter_sample) {
+      n_requests_ += n;
+      nee_paths_.resize(n_requests_);
+    }
+    EmitterColumns& a = area_;
+    BsdfColumns& b = bsdf_;
+    const uint32_t area_at = a.next[g], bsdf_at = b.next[g];
+    VertexBatchOutputs out;
+    out.area = {a.request.data() + area_at,  a.entry.data() + area_at, a.light.data() + area_at,
+                a.pick_pmf.data() + area_at, a.ref_x.data() + area_at, a.ref_y.data() + area_at,
+                a.ref_z.data() + area_at,    a.wo_x.data() + area_at,  a.wo_y.data() + area_at,
+                a.wo_z.data() + area_at,     a.u_x.data() + area_at,   a.u_y.data() + area_at};
+    out.bsdf = {b.path.data() + bsdf_at,
+                b.entry.data() + bsdf_at,
+                b.material_index.data() + bsdf_at,
+                b.roulette_scale.data() + bsdf_at,
+                b.wo_x.data() + bsdf_at,
+                b.wo_y.data() + bsdf_at,
+                b.wo_z.data() + bsdf_at,
+                b.u_lobe.data() + bsdf_at,
+                b.u_x.data() + bsdf_at,
+                b.u_y.data() + bsdf_at};
+    out.request_traced = request_traced_.data();
+    out.nee_paths = nee_paths_.data();
+    const size_t nonfinite_at = nonfinite_nee_.size();
+    nonfinite_nee_.resize(nonfinite_at + n);
+    out.nonfinite = nonfinite_nee_.data() + nonfinite_at;
+    const VertexBatchInputs in{goes_on_.data() + k, rays_.owner.data(), its_.data(), wo_.data(),
+                               eta_.data()};
+    const VertexBatchPaths paths{sampler_.data(), throughput_.data(), nee_throughput_.data()};
+    kernels_->vertices(*scene_, rules, n, in, paths, &out);
+    nonfinite_nee_.resize(nonfinite_at + out.nonfinite_rows);
+    a.rows += out.area_rows, a.next[g] += uint32_t(out.area_rows);
+    b.rows += out.bsdf_rows, b.next[g] += uint32_t(out.bsdf_rows);
+  }
+
+  // Sample's rows [k, end) of goes_on_, all of material group g (delta: its tag's lobes are all
+  // Dirac deltas).
+  void SampleGroup(int depth, bool delta, int g, size_t k, size_t end) {
+    if (vertex_batch_) {
+      SampleGroupBatch(depth, delta, g, k, end);
+      return;
+    }
+    const int n_light = rules_.light_samples;
     const bool emitters = !scene_->emitters.empty();
     const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
-    for (size_t k = 0; k < n_goes_on_; ++k) {
+    uint32_t area_at = area_.next[g], bsdf_at = bsdf_.next[g];
+    for (; k < end; ++k) {
       const uint32_t q = goes_on_[k];
       const uint32_t i = rays_.owner[q];
       const SurfaceInteraction& its = its_[q];
       const Vec3f& wo = wo_[q];
       PathSampler& sampler = sampler_[i];
-      const bool delta = IsDeltaMaterial(its.material.tag());
       if (rules_.nee && (!delta || rules_.nee_on_delta)) {
         for (int s = 0; s < n_light; ++s) {
           const uint32_t request = uint32_t(n_requests_++);
@@ -470,8 +561,7 @@ class alignas(kColumnAlignment) Wavefront {
           if (!(pick_pmf > 0)) continue;
           switch (emitter.tag()) {
             case EmitterTag::kArea:
-              area_.Push(request, uint32_t(q), its.material, emitter.index(), pick_pmf, its.p, wo,
-                         u);
+              area_.Put(area_at++, request, uint32_t(q), emitter.index(), pick_pmf, its.p, wo, u);
               break;
             case EmitterTag::kEnvironment:
               environment_[emitter.index()].Push(request, uint32_t(q), pick_pmf, u);
@@ -516,11 +606,10 @@ class alignas(kColumnAlignment) Wavefront {
       } else {
         DrawBsdfNumbers(sampler, depth, &u_lobe, &u_dir);
       }
-      bsdf_.Push(i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
+      bsdf_.Put(bsdf_at++, i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
     }
-    SampleAreaLights();
-    SampleInfiniteLights();
-    SampleBsdfs();
+    area_.rows += area_at - area_.next[g], area_.next[g] = area_at;
+    bsdf_.rows += bsdf_at - bsdf_.next[g], bsdf_.next[g] = bsdf_at;
   }
 
   // Row r of the request columns from a finished request; the row's flag is already 0 and
@@ -853,10 +942,9 @@ class alignas(kColumnAlignment) Wavefront {
       uint32_t at = 0;
       for (int g = 0; g < kMaterialGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
-    void Push(uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
-              float lobe, const Vec2f& dir, float scale) {
-      const uint32_t c = next[MaterialGroup(ref)]++;
-      ++rows;
+    /// Writes slot c of the group being filled (the caller advances next and rows).
+    void Put(uint32_t c, uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
+             float lobe, const Vec2f& dir, float scale) {
       path[c] = path_id, entry[c] = queue_entry, roulette_scale[c] = scale;
       material_index[c] = ref.index();
       wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
@@ -912,10 +1000,9 @@ class alignas(kColumnAlignment) Wavefront {
       uint32_t at = 0;
       for (int t = 0; t < kMaterialGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
     }
-    void Push(uint32_t req, uint32_t queue_entry, MaterialRef material, uint32_t light_row,
-              float pmf, const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
-      const uint32_t c = next[MaterialGroup(material)]++;
-      ++rows;
+    /// Writes slot c of the group being filled (the caller advances next and rows).
+    void Put(uint32_t c, uint32_t req, uint32_t queue_entry, uint32_t light_row, float pmf,
+             const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
       request[c] = req, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
       ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
       wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
@@ -980,6 +1067,7 @@ class alignas(kColumnAlignment) Wavefront {
   // Path state (SoA, by path id).
   std::vector<PathSampler> sampler_;
   bool sobol_ = false;
+  bool vertex_batch_ = false;  // Sample's groups take the vertices slot (SampleGroupBatch)
   // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
   std::vector<int> gen_px_, gen_py_;
   std::vector<float> gen_sx_, gen_sy_;
@@ -1005,7 +1093,7 @@ class alignas(kColumnAlignment) Wavefront {
   // The entries that go on to the sampling stage, in queue order, rows [0, n_goes_on_): a list
   // rather than a flag per entry, so that Sample has no branch per entry on whether its path
   // ended here. The interaction slot writes it (HitLists::entries) with room for 8 per packet.
-  std::vector<uint32_t> goes_on_;
+  std::vector<uint32_t> goes_on_, grouped_;  // grouped_: GroupEntries' scratch
   size_t n_goes_on_ = 0;
   uint32_t goes_on_tags_[kMaterialGroups] = {};  // entries that go on, by material group
   std::vector<uint32_t> area_hits_;              // entries whose hit is on an area light (HitLists)
@@ -1081,6 +1169,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .distant_disk = SampleDistantDiskBatch,
           .interaction = MakeInteractionBatch,
           .spawn = SpawnRayBatch,
+          .vertices = DecideVertices,
           .name = "scalar-oracle"};
 }
 

@@ -20,6 +20,7 @@
 #include "engine/render/interaction.h"
 #include "engine/render/packet_render.h"
 #include "engine/render/spawn_batch.h"
+#include "engine/render/vertex_batch.h"
 
 namespace ptlab {
 
@@ -145,6 +146,17 @@ struct WavefrontKernels {
   // (simd/spawn8.h).
   void (*spawn)(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                 RayPacket8* out) = nullptr;
+
+  // Sampling stage, the decisions at a material group's vertices (engine/render/
+  // vertex_batch.h): with the independent sampler, one emitter sample per vertex and only
+  // area lights (VertexBatchFits), each vertex's emitter pick, Nori's roulette and BSDF numbers
+  // as the rows of the emitter and BSDF stages' columns, one call per group; other scenes and
+  // integrators take the wavefront's per-row loop. Oracle: ptlab::DecideVertices (that loop's
+  // operations per row, so the oracle table keeps the scalar path's bits); SIMD:
+  // simd::DecideVertices, bit-identical (simd/vertex_batch8.h).
+  void (*vertices)(const Scene& scene, const VertexBatchRules& rules, size_t n,
+                   const VertexBatchInputs& in, const VertexBatchPaths& paths,
+                   VertexBatchOutputs* out) = nullptr;
 
   // Not in the table, row by row in the wavefront (PrepareEmitterSampleFrom): the delta lights
   // (point, and the CS184 directional and spot lights, engine/light/delta_light.h). Their
