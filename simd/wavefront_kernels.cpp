@@ -1,9 +1,10 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
 // simd/splat8, simd/emitter8, simd/area_request8, simd/environment8, simd/distant_disk8,
-// simd/interaction8, simd/spawn8, simd/vertex_batch8.
+// simd/interaction8, simd/spawn8, simd/vertex_batch8, simd/continue8.
 #include "simd/wavefront_kernels.h"
 
 #include "simd/area_request8.h"
+#include "simd/continue8.h"
 #include "simd/distant_disk8.h"
 #include "simd/emitter8.h"
 #include "simd/environment8.h"
@@ -45,6 +46,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .interaction = MakeInteractionBatch,
           .spawn = SpawnRayBatch,
           .vertices = DecideVertices,
+          .continuation = ContinuePaths,
           .name = Traverse8TargetName()};
 }
 

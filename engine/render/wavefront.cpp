@@ -704,8 +704,8 @@ class alignas(kColumnAlignment) Wavefront {
   // The BSDF stage: the kernel table's bsdf slot over the columns, one call per material tag
   // on its group of slots (Sample pushed the rows there; the rows of ShadeHitsWith's batches,
   // without its counting sort, gather and scatter); then each sampled path's throughput and
-  // state, as the scalar integrators do, and the next rays of those that go on as one batch of
-  // the spawn slot.
+  // state, as the scalar integrators do (the continuation slot, one call per tag), and the
+  // next rays of those that go on as one batch of the spawn slot.
   void SampleBsdfs() {
     BsdfColumns& b = bsdf_;
     const size_t n = b.size();
@@ -726,37 +726,35 @@ class alignas(kColumnAlignment) Wavefront {
                      b.material_index.data() + begin, count, in, out);
     }
     // Group by group, each in queue order, each sampled path's throughput and state, as the
-    // scalar integrators do; a path that goes on gets the next row of the spawn stage and the
-    // next entry of the queue. So the next queue holds the paths of each material tag together
-    // (the order changes no result: each path's numbers and state are its own), and this loop
-    // reads the columns in their order instead of in queue order through an index. Rows of no
-    // material (no group of ShadeHitsWith) sample nothing.
+    // scalar integrators do, through the kernel table's continuation slot, one call per tag; a
+    // path that goes on gets the next row of the spawn stage and the next entry of the queue.
+    // So the next queue holds the paths of each material tag together (the order changes no
+    // result: each path's numbers and state are its own), and the slot reads the columns in
+    // their order instead of in queue order through an index. Rows of no material (no group of
+    // ShadeHitsWith) sample nothing.
     SpawnColumns& sp = spawn_;
     sp.Clear(n);
     next_rays_.owner.resize(n);
-    uint32_t* owner = next_rays_.owner.data();
-    size_t m = 0;
+    ContinueBatchOutputs out{sp.entry.data(), sp.wi_x.data(), sp.wi_y.data(), sp.wi_z.data(),
+                             next_rays_.owner.data()};
+    const ContinueBatchPaths paths{throughput_.data(), eta_.data(), specular_.data(),
+                                   prev_pdf_.data(), prev_p_.data()};
+    const bool whitted = rules_.roulette == VertexRules::Roulette::kWhitted;
     for (int t = 0; t < kMaterialTagCount; ++t) {
-      const uint8_t specular = IsDeltaMaterial(static_cast<MaterialTag>(t));
-      for (uint32_t c = b.begin[t]; c < b.next[t]; ++c) {
-        if (!(b.pdf[c] > 0)) continue;  // no sample (BsdfSampleDirection false)
-        const uint32_t i = b.path[c];
-        const Color3f weight{b.weight_r[c], b.weight_g[c], b.weight_b[c]};
-        if (rules_.roulette == VertexRules::Roulette::kWhitted) {
-          throughput_[i] *= weight * b.roulette_scale[c];
-        } else {
-          throughput_[i] *= weight;
-        }
-        eta_[i] *= b.eta[c];
-        if (rules_.cut_black && IsBlack(throughput_[i])) continue;
-        specular_[i] = specular;
-        prev_pdf_[i] = b.pdf[c];
-        const uint32_t q = b.entry[c];
-        prev_p_[i] = its_[q].p;
-        sp.entry[m] = q, sp.wi_x[m] = b.wi_x[c], sp.wi_y[m] = b.wi_y[c], sp.wi_z[m] = b.wi_z[c];
-        owner[m++] = i;
-      }
+      const size_t begin = b.begin[t], count = b.next[t] - begin;
+      if (count == 0) continue;
+      const ContinueBatchRules rules{IsDeltaMaterial(static_cast<MaterialTag>(t)),
+                                     rules_.cut_black};
+      const ContinueBatchInputs in{
+          b.path.data() + begin,     b.entry.data() + begin,
+          b.weight_r.data() + begin, b.weight_g.data() + begin,
+          b.weight_b.data() + begin, whitted ? b.roulette_scale.data() + begin : nullptr,
+          b.pdf.data() + begin,      b.eta.data() + begin,
+          b.wi_x.data() + begin,     b.wi_y.data() + begin,
+          b.wi_z.data() + begin,     its_.data()};
+      kernels_->continuation(rules, count, in, paths, &out);
     }
+    const size_t m = out.rows;
     // Their rays (integrator::SpawnOrigin, the sample's world direction) through the kernel
     // table's spawn slot, straight into the queue's packets.
     next_rays_.Resize(m);
@@ -1080,7 +1078,7 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<Color3f> L_, throughput_, nee_throughput_;
   std::vector<float> eta_, prev_pdf_;
   std::vector<Vec3f> prev_p_;
-  std::vector<uint8_t> specular_;
+  std::vector<uint32_t> specular_;  // a flag; 32 bits so that a SIMD kernel can scatter it
   // The path of each result slot (scalar splat order: row, pixel, sample), kNoPath for the
   // slots of inactive pixels; Splat reads the path's film position and radiance through it.
   std::vector<uint32_t> path_of_slot_;
@@ -1170,6 +1168,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .interaction = MakeInteractionBatch,
           .spawn = SpawnRayBatch,
           .vertices = DecideVertices,
+          .continuation = ContinuePaths,
           .name = "scalar-oracle"};
 }
 

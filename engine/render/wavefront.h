@@ -14,6 +14,7 @@
 #include "engine/light/environment_batch.h"
 #include "engine/render/area_request_batch.h"
 #include "engine/render/camera.h"
+#include "engine/render/continue_batch.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
@@ -157,6 +158,16 @@ struct WavefrontKernels {
   void (*vertices)(const Scene& scene, const VertexBatchRules& rules, size_t n,
                    const VertexBatchInputs& in, const VertexBatchPaths& paths,
                    VertexBatchOutputs* out) = nullptr;
+
+  // BSDF stage, its finish (engine/render/continue_batch.h): after the bsdf slot, each sampled
+  // path's throughput, eta, specular flag, previous pdf and point, and the spawn row and next
+  // queue owner of each path that goes on, one call per material tag on the tag's rows of the
+  // BSDF columns (each row of a different path), appending at the running count of spawn rows.
+  // Oracle: ptlab::ContinuePaths (the scalar integrators' operations per row, so the oracle
+  // table keeps the scalar path's bits); SIMD: simd::ContinuePaths, bit-identical
+  // (simd/continue8.h).
+  void (*continuation)(const ContinueBatchRules& rules, size_t n, const ContinueBatchInputs& in,
+                       const ContinueBatchPaths& paths, ContinueBatchOutputs* out) = nullptr;
 
   // Not in the table, row by row in the wavefront (PrepareEmitterSampleFrom): the delta lights
   // (point, and the CS184 directional and spot lights, engine/light/delta_light.h). Their
