@@ -41,16 +41,24 @@ inline void ContinuePathsKernel(const ContinueBatchRules& rules, size_t n,
   const auto specular = hn::Set(di, rules.specular ? 1 : 0);
   // The batch's columns, read through locals: the compiler cannot tell that the scatters
   // below leave `in` alone, and would load each pointer again per vector.
-  const int32_t *const path_col = as_i(in.path), *const entry_col = as_i(in.entry);
-  const float *const weight_r = in.weight_r, *const weight_g = in.weight_g;
-  const float *const weight_b = in.weight_b, *const roulette_scale = in.roulette_scale;
-  const float *const pdf_col = in.pdf, *const eta_col = in.eta;
-  const float *const wi_x = in.wi_x, *const wi_y = in.wi_y, *const wi_z = in.wi_z;
+  const int32_t* const path_col = as_i(in.path);
+  const int32_t* const entry_col = as_i(in.entry);
+  const float* const weight_r = in.weight_r;
+  const float* const weight_g = in.weight_g;
+  const float* const weight_b = in.weight_b;
+  const float* const roulette_scale = in.roulette_scale;
+  const float* const pdf_col = in.pdf;
+  const float* const eta_col = in.eta;
+  const float* const wi_x = in.wi_x;
+  const float* const wi_y = in.wi_y;
+  const float* const wi_z = in.wi_z;
   float* const path_eta = paths.eta;
   float* const path_prev_pdf = paths.prev_pdf;
   int32_t* const out_entry = reinterpret_cast<int32_t*>(out->entry);
   int32_t* const out_owner = reinterpret_cast<int32_t*>(out->owner);
-  float *const out_wi_x = out->wi_x, *const out_wi_y = out->wi_y, *const out_wi_z = out->wi_z;
+  float* const out_wi_x = out->wi_x;
+  float* const out_wi_y = out->wi_y;
+  float* const out_wi_z = out->wi_z;
   size_t m = out->rows;
   size_t r = 0;
   for (; r + lanes <= n; r += lanes) {

@@ -8,8 +8,11 @@ void ContinuePaths(const ContinueBatchRules& rules, size_t n, const ContinueBatc
   // The spawn rows' count and columns in locals: the compiler cannot tell that the stores
   // below leave *out alone, and would load and store it per row.
   size_t m = out->rows;
-  uint32_t *const entry = out->entry, *const owner = out->owner;
-  float *const wi_x = out->wi_x, *const wi_y = out->wi_y, *const wi_z = out->wi_z;
+  uint32_t* const entry = out->entry;
+  uint32_t* const owner = out->owner;
+  float* const wi_x = out->wi_x;
+  float* const wi_y = out->wi_y;
+  float* const wi_z = out->wi_z;
   for (size_t k = 0; k < n; ++k) {
     if (!(in.pdf[k] > 0)) continue;  // no sample (BsdfSampleDirection false)
     const uint32_t i = in.path[k];
