@@ -13,6 +13,7 @@
 
 #include "engine/render/continue_batch.h"
 #include "hwy/highway.h"
+#include "simd/transpose4-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -29,19 +30,11 @@ namespace hn = hwy::HWY_NAMESPACE;
 // DF is CappedTag<float, 8>, whose vectors are 256 bits on these targets.
 template <class DF, class V>
 HWY_INLINE void StoreRows3(DF df, V x, V y, V z, const int32_t* row, float* base) {
-  const hn::Repartition<uint64_t, DF> du64;
   const hn::Half<DF> dh;
   const auto mask = hn::FirstN(dh, 3);
-  // Per 128-bit block: x0 y0 x1 y1 | x4 y4 x5 y5, and the same for z twice.
-  const auto xy_lo = hn::BitCast(du64, hn::InterleaveLower(df, x, y));
-  const auto xy_hi = hn::BitCast(du64, hn::InterleaveUpper(df, x, y));
-  const auto zz_lo = hn::BitCast(du64, hn::InterleaveLower(df, z, z));
-  const auto zz_hi = hn::BitCast(du64, hn::InterleaveUpper(df, z, z));
   // x0 y0 z0 z0 | x4 y4 z4 z4 and so on: rows j and j + 4 in the two blocks.
-  const auto r04 = hn::BitCast(df, hn::InterleaveLower(du64, xy_lo, zz_lo));
-  const auto r15 = hn::BitCast(df, hn::InterleaveUpper(du64, xy_lo, zz_lo));
-  const auto r26 = hn::BitCast(df, hn::InterleaveLower(du64, xy_hi, zz_hi));
-  const auto r37 = hn::BitCast(df, hn::InterleaveUpper(du64, xy_hi, zz_hi));
+  V r04, r15, r26, r37;
+  TransposeQuads(df, x, y, z, z, &r04, &r15, &r26, &r37);
   hn::BlendedStore(hn::LowerHalf(dh, r04), mask, dh, base + row[0]);
   hn::BlendedStore(hn::LowerHalf(dh, r15), mask, dh, base + row[1]);
   hn::BlendedStore(hn::LowerHalf(dh, r26), mask, dh, base + row[2]);

@@ -18,6 +18,7 @@
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
 #include "simd/shading_point8-inl.h"
+#include "simd/transpose4-inl.h"
 #include "simd/triangle_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -43,15 +44,8 @@ HWY_INLINE void StoreQuadRows(D d, V f0, V f1, V f2, V f3, float* lane0, size_t 
   lane0[2] = hn::GetLane(f2), lane0[3] = hn::GetLane(f3);
   (void)d, (void)stride;
 #else
-  const hn::Repartition<double, D> dd;
-  const auto lo01 = hn::BitCast(dd, hn::InterleaveLower(d, f0, f1));
-  const auto lo23 = hn::BitCast(dd, hn::InterleaveLower(d, f2, f3));
-  const auto hi01 = hn::BitCast(dd, hn::InterleaveUpper(d, f0, f1));
-  const auto hi23 = hn::BitCast(dd, hn::InterleaveUpper(d, f2, f3));
-  const V r0 = hn::BitCast(d, hn::InterleaveLower(dd, lo01, lo23));
-  const V r1 = hn::BitCast(d, hn::InterleaveUpper(dd, lo01, lo23));
-  const V r2 = hn::BitCast(d, hn::InterleaveLower(dd, hi01, hi23));
-  const V r3 = hn::BitCast(d, hn::InterleaveUpper(dd, hi01, hi23));
+  V r0, r1, r2, r3;
+  TransposeQuads(d, f0, f1, f2, f3, &r0, &r1, &r2, &r3);
   if constexpr (hn::MaxLanes(d) == 4) {
     hn::StoreU(r0, d, lane0), hn::StoreU(r1, d, lane0 + stride);
     hn::StoreU(r2, d, lane0 + 2 * stride), hn::StoreU(r3, d, lane0 + 3 * stride);
