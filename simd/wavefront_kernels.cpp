@@ -11,6 +11,7 @@
 #include "simd/interaction8.h"
 #include "simd/sampler8.h"
 #include "simd/shade8.h"
+#include "simd/shadow_rows8.h"
 #include "simd/spawn8.h"
 #include "simd/splat8.h"
 #include "simd/traverse8.h"
@@ -40,6 +41,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
           .area_request = AreaEmitterRequestBatch,
+          .shadow_rows = CompactShadowRows,
           .environment = SampleEnvironmentBatch,
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,

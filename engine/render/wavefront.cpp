@@ -181,7 +181,7 @@ class alignas(kColumnAlignment) Wavefront {
     bytes += rays_.Bytes() + next_rays_.Bytes() + shadows_.Bytes();
     bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, area_hits_, request_traced_,
                           request_contribution_, occluded_, nee_paths_, nonfinite_nee_);
-    bytes += bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes();
+    bytes += bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes() + shadow_rows_.Bytes();
     bytes += VectorsBytes(environment_, distant_disk_);
     bytes += escaped_.Bytes();
     for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();
@@ -658,17 +658,51 @@ class alignas(kColumnAlignment) Wavefront {
       kernels_->area_request(*scene_, static_cast<MaterialTag>(t), rules_.mis, count, request_in,
                              request_out);
     }
-    // Group by group (rows of no material trace nothing: BsdfEval is 0), each in request order.
+    // Group by group (rows of no material trace nothing: BsdfEval is 0), each in request order:
+    // the traced rows compacted through the shadow_rows slot, then queued a packet at a time.
+    ShadowRowColumns& st = shadow_rows_;
+    st.Clear(n);
+    size_t m = 0;
     for (int t = 0; t < kMaterialTagCount; ++t) {
-      for (uint32_t c = a.begin[t]; c < a.next[t]; ++c) {
-        if (!a.traced[c]) continue;
-        const uint32_t r = a.request[c];
-        request_traced_[r] = 1;
-        shadows_.Push(
-            Ray{{a.o_x[c], a.o_y[c], a.o_z[c]}, {a.d_x[c], a.d_y[c], a.d_z[c]}, 0.0f, 1.0f}, r);
-        Color3f& contribution = request_contribution_[r];
-        contribution.r = a.r[c], contribution.g = a.g[c], contribution.b = a.b[c];
-      }
+      const size_t b = a.begin[t], count = a.next[t] - b;
+      if (count == 0) continue;
+      const ShadowRowInputs in{a.traced.data() + b, a.request.data() + b, a.o_x.data() + b,
+                               a.o_y.data() + b,    a.o_z.data() + b,     a.d_x.data() + b,
+                               a.d_y.data() + b,    a.d_z.data() + b,     a.r.data() + b,
+                               a.g.data() + b,      a.b.data() + b};
+      m += kernels_->shadow_rows(count, in, st.Outputs().From(m));
+    }
+    QueueShadowRows(m);
+  }
+
+  // Rows [0, m) of shadow_rows_ into the shadow queue (owner: the request), a packet's run of
+  // lanes at a time, and each request's flag and contribution (StoreRequest's).
+  void QueueShadowRows(size_t m) {
+    const ShadowRowColumns& st = shadow_rows_;
+    size_t e = shadows_.size();
+    shadows_.Resize(e + m);
+    const auto copy = [&](RayPacket8& p, size_t j, size_t k, size_t run) {
+      std::copy_n(&st.o_x[k], run, &p.org_x[j]), std::copy_n(&st.o_y[k], run, &p.org_y[j]);
+      std::copy_n(&st.o_z[k], run, &p.org_z[j]), std::copy_n(&st.d_x[k], run, &p.dir_x[j]);
+      std::copy_n(&st.d_y[k], run, &p.dir_y[j]), std::copy_n(&st.d_z[k], run, &p.dir_z[j]);
+      std::fill_n(&p.t_min[j], run, 0.0f), std::fill_n(&p.t_max[j], run, 1.0f);
+    };
+    size_t k = 0;
+    // Whole packets (a constant run: eight-float moves), after the partial one the queue ends
+    // in and before the last.
+    if (e % kLanes != 0) {
+      const size_t run = std::min(kLanes - e % kLanes, m);
+      copy(shadows_.packets[e / kLanes], e % kLanes, 0, run);
+      k += run, e += run;
+    }
+    for (; k + kLanes <= m; k += kLanes, e += kLanes)
+      copy(shadows_.packets[e / kLanes], 0, k, kLanes);
+    if (k < m) copy(shadows_.packets[e / kLanes], 0, k, m - k);
+    std::copy_n(st.request.data(), m, shadows_.owner.data() + shadows_.size() - m);
+    for (k = 0; k < m; ++k) {
+      const uint32_t r = st.request[k];
+      request_traced_[r] = 1;
+      request_contribution_[r] = {st.r[k], st.g[k], st.b[k]};
     }
   }
 
@@ -1037,6 +1071,21 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
+  /// The shadow_rows slot's output: the traced area-light rows of a bounce, compacted.
+  struct ShadowRowColumns {
+    std::vector<uint32_t> request;
+    AlignedVector<float> o_x, o_y, o_z, d_x, d_y, d_z, r, g, b;
+    size_t Bytes() const { return VectorsBytes(request, o_x, o_y, o_z, d_x, d_y, d_z, r, g, b); }
+    /// Room for `capacity` rows, written in place; only grows.
+    void Clear(size_t capacity) {
+      GrowColumns(capacity, &request, &o_x, &o_y, &o_z, &d_x, &d_y, &d_z, &r, &g, &b);
+    }
+    ShadowRowOutputs Outputs() {
+      return {request.data(), o_x.data(), o_y.data(), o_z.data(), d_x.data(),
+              d_y.data(),     d_z.data(), r.data(),   g.data(),   b.data()};
+    }
+  };
+
   /// The splat stage's SoA columns: film position and radiance of each finite sample, rows
   /// [0, rows).
   struct SplatColumns {
@@ -1123,6 +1172,7 @@ class alignas(kColumnAlignment) Wavefront {
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
   std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
   SplatColumns splat_;
+  ShadowRowColumns shadow_rows_;
 };
 
 namespace {
@@ -1162,6 +1212,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .splat = SplatSamples,
           .area_light = SampleAreaLightBatch,
           .area_request = AreaEmitterRequestBatch,
+          .shadow_rows = CompactShadowRows,
           .environment = SampleEnvironmentBatch,
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,

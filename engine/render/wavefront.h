@@ -20,6 +20,7 @@
 #include "engine/render/integrator.h"
 #include "engine/render/interaction.h"
 #include "engine/render/packet_render.h"
+#include "engine/render/shadow_rows.h"
 #include "engine/render/spawn_batch.h"
 #include "engine/render/vertex_batch.h"
 
@@ -92,6 +93,13 @@ struct WavefrontKernels {
   // within simd::ShadeBatch's evaluation contract (simd/area_request8.h).
   void (*area_request)(const Scene& scene, MaterialTag tag, bool mis, size_t n,
                        const AreaRequestInputs& in, const AreaRequestOutputs& out) = nullptr;
+
+  // Emitter stage, the shadow queue's rows: an area_request batch's traced rows (request,
+  // shadow ray, contribution) compacted in row order, one call per material tag, which the
+  // wavefront then copies into the shadow queue's packets a packet at a time (no branch per
+  // row on the flag). Oracle: ptlab::CompactShadowRows; SIMD: simd::CompactShadowRows,
+  // bit-identical (simd/shadow_rows8.h).
+  size_t (*shadow_rows)(size_t n, const ShadowRowInputs& in, const ShadowRowOutputs& out) = nullptr;
 
   // Emitter stage, environment maps: the wave's samples of one map (every emitter sample whose
   // pick is environment map `map`) as one batch over SoA columns (engine/light/
