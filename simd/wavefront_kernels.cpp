@@ -1,6 +1,6 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
 // simd/splat8, simd/emitter8, simd/area_request8, simd/environment8, simd/distant_disk8,
-// simd/interaction8, simd/spawn8, simd/vertex_batch8, simd/continue8.
+// simd/interaction8, simd/spawn8, simd/vertex_batch8, simd/continue8, simd/shadow_rows8.
 #include "simd/wavefront_kernels.h"
 
 #include "simd/area_request8.h"

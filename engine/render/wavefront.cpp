@@ -421,7 +421,8 @@ class alignas(kColumnAlignment) Wavefront {
 
   // Emitter samples (shadow rays queued), Russian roulette and BSDF sampling, in the scalar
   // integrators' order of random numbers; continuing paths form the next, compact ray queue.
-  // The BSDF numbers are drawn here, per path in that order, into the BSDF stage's columns;
+  // The BSDF numbers are drawn here, per path in that order, into the BSDF stage's columns
+  // (group by group: through the vertices slot where it serves, else row by row);
   // SampleBsdfs then runs the kernel table's bsdf slot over them and continues the paths.
   void Sample(int depth) {
     const int n_light = rules_.light_samples;
