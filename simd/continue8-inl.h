@@ -13,6 +13,7 @@
 
 #include "engine/render/continue_batch.h"
 #include "hwy/highway.h"
+#include "simd/store_selected-inl.h"
 #include "simd/transpose4-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -156,11 +157,13 @@ inline void ContinuePathsKernel(const ContinueBatchRules& rules, size_t n,
     hn::ScatterIndex(p_z, df, prev_p, path_b);
 #endif
     // Their spawn rows and owners, in row order.
-    hn::CompressBlendedStore(entry, goes_on_i, di, out_entry + m);
-    hn::CompressBlendedStore(hn::LoadU(df, wi_x + r), goes_on, df, out_wi_x + m);
-    hn::CompressBlendedStore(hn::LoadU(df, wi_y + r), goes_on, df, out_wi_y + m);
-    hn::CompressBlendedStore(hn::LoadU(df, wi_z + r), goes_on, df, out_wi_z + m);
-    m += hn::CompressBlendedStore(path, goes_on_i, di, out_owner + m);
+    const bool all = hn::AllTrue(df, goes_on);
+    StoreSelected(di, entry, goes_on_i, all, out_entry + m);
+    StoreSelected(df, hn::LoadU(df, wi_x + r), goes_on, all, out_wi_x + m);
+    StoreSelected(df, hn::LoadU(df, wi_y + r), goes_on, all, out_wi_y + m);
+    StoreSelected(df, hn::LoadU(df, wi_z + r), goes_on, all, out_wi_z + m);
+    StoreSelected(di, path, goes_on_i, all, out_owner + m);
+    m += hn::CountTrue(df, goes_on);
   }
   out->rows = m;
   // The rows after the last whole vector: the oracle row by row.

@@ -6,6 +6,7 @@
 #include "engine/render/shadow_rows.h"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+#include "simd/store_selected-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -23,16 +24,18 @@ size_t CompactShadowRowsTarget(size_t n, const ShadowRowInputs& in, const Shadow
     const auto traced_u = hn::Ne(hn::PromoteTo(du, hn::LoadU(d8, in.traced + c)), hn::Zero(du));
     if (hn::AllFalse(du, traced_u)) continue;
     const auto traced = hn::RebindMask(d, traced_u);
-    hn::CompressBlendedStore(hn::LoadU(du, in.request + c), traced_u, du, out.request + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.o_x + c), traced, d, out.o_x + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.o_y + c), traced, d, out.o_y + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.o_z + c), traced, d, out.o_z + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.d_x + c), traced, d, out.d_x + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.d_y + c), traced, d, out.d_y + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.d_z + c), traced, d, out.d_z + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.r + c), traced, d, out.r + m);
-    hn::CompressBlendedStore(hn::LoadU(d, in.g + c), traced, d, out.g + m);
-    m += hn::CompressBlendedStore(hn::LoadU(d, in.b + c), traced, d, out.b + m);
+    const bool all = hn::AllTrue(du, traced_u);
+    StoreSelected(du, hn::LoadU(du, in.request + c), traced_u, all, out.request + m);
+    StoreSelected(d, hn::LoadU(d, in.o_x + c), traced, all, out.o_x + m);
+    StoreSelected(d, hn::LoadU(d, in.o_y + c), traced, all, out.o_y + m);
+    StoreSelected(d, hn::LoadU(d, in.o_z + c), traced, all, out.o_z + m);
+    StoreSelected(d, hn::LoadU(d, in.d_x + c), traced, all, out.d_x + m);
+    StoreSelected(d, hn::LoadU(d, in.d_y + c), traced, all, out.d_y + m);
+    StoreSelected(d, hn::LoadU(d, in.d_z + c), traced, all, out.d_z + m);
+    StoreSelected(d, hn::LoadU(d, in.r + c), traced, all, out.r + m);
+    StoreSelected(d, hn::LoadU(d, in.g + c), traced, all, out.g + m);
+    StoreSelected(d, hn::LoadU(d, in.b + c), traced, all, out.b + m);
+    m += hn::CountTrue(du, traced_u);
   }
   // The rows after the last whole vector: the oracle.
   return m + ptlab::CompactShadowRows(n - c, in.From(c), out.From(m));

@@ -18,6 +18,7 @@
 #include "engine/sampling/sampler.h"
 #include "hwy/highway.h"
 #include "simd/pcg8-inl.h"
+#include "simd/store_selected-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -112,20 +113,22 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
       const auto picked_i = hn::RebindMask(di, picked);
       const auto picked_u = hn::RebindMask(du, picked);
       const size_t c = out->area_rows;
-      hn::CompressBlendedStore(request, picked_u, du, a.request + c);
-      hn::CompressBlendedStore(entry, picked_i, di, reinterpret_cast<int32_t*>(a.entry + c));
-      hn::CompressBlendedStore(light, picked_i, di, reinterpret_cast<int32_t*>(a.light + c));
-      hn::CompressBlendedStore(pick_pmf, picked, df, a.pick_pmf + c);
-      hn::CompressBlendedStore(hn::GatherIndex(df, as_f(in.its), its_row), picked, df, a.ref_x + c);
-      hn::CompressBlendedStore(hn::GatherIndex(df, as_f(in.its), hn::Add(its_row, hn::Set(di, 1))),
-                               picked, df, a.ref_y + c);
-      hn::CompressBlendedStore(hn::GatherIndex(df, as_f(in.its), hn::Add(its_row, hn::Set(di, 2))),
-                               picked, df, a.ref_z + c);
-      hn::CompressBlendedStore(wo_x, picked, df, a.wo_x + c);
-      hn::CompressBlendedStore(wo_y, picked, df, a.wo_y + c);
-      hn::CompressBlendedStore(wo_z, picked, df, a.wo_z + c);
-      hn::CompressBlendedStore(u_x, picked, df, a.u_x + c);
-      hn::CompressBlendedStore(u_y, picked, df, a.u_y + c);
+      const bool all_picked = hn::AllTrue(df, picked);
+      StoreSelected(du, request, picked_u, all_picked, a.request + c);
+      StoreSelected(di, entry, picked_i, all_picked, reinterpret_cast<int32_t*>(a.entry + c));
+      StoreSelected(di, light, picked_i, all_picked, reinterpret_cast<int32_t*>(a.light + c));
+      StoreSelected(df, pick_pmf, picked, all_picked, a.pick_pmf + c);
+      StoreSelected(df, hn::GatherIndex(df, as_f(in.its), its_row), picked, all_picked,
+                    a.ref_x + c);
+      StoreSelected(df, hn::GatherIndex(df, as_f(in.its), hn::Add(its_row, hn::Set(di, 1))), picked,
+                    all_picked, a.ref_y + c);
+      StoreSelected(df, hn::GatherIndex(df, as_f(in.its), hn::Add(its_row, hn::Set(di, 2))), picked,
+                    all_picked, a.ref_z + c);
+      StoreSelected(df, wo_x, picked, all_picked, a.wo_x + c);
+      StoreSelected(df, wo_y, picked, all_picked, a.wo_y + c);
+      StoreSelected(df, wo_z, picked, all_picked, a.wo_z + c);
+      StoreSelected(df, u_x, picked, all_picked, a.u_x + c);
+      StoreSelected(df, u_y, picked, all_picked, a.u_y + c);
       out->area_rows = c + hn::CountTrue(df, picked);
       // The request's row: not traced (yet), its path, the throughput at the vertex.
       std::memset(out->request_traced + rules.first_request + r, 0, lanes);
@@ -161,19 +164,20 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
     const auto lobe = draw(bsdf_draw), dir_x = draw(bsdf_draw + 1), dir_y = draw(bsdf_draw + 2);
     const auto alive_i = hn::RebindMask(di, alive);
     const size_t c = out->bsdf_rows;
+    const bool all_alive = !rules.roulette || hn::AllTrue(df, alive);
     const auto material =
         hn::GatherIndex(di, as_i(in.its), hn::Add(its_row, hn::Set(di, kMaterialWord)));
-    hn::CompressBlendedStore(path, alive_i, di, reinterpret_cast<int32_t*>(b.path + c));
-    hn::CompressBlendedStore(entry, alive_i, di, reinterpret_cast<int32_t*>(b.entry + c));
-    hn::CompressBlendedStore(hn::And(material, index_bits), alive_i, di,
-                             reinterpret_cast<int32_t*>(b.material_index + c));
-    hn::CompressBlendedStore(hn::Set(df, 1.0f), alive, df, b.roulette_scale + c);
-    hn::CompressBlendedStore(wo_x, alive, df, b.wo_x + c);
-    hn::CompressBlendedStore(wo_y, alive, df, b.wo_y + c);
-    hn::CompressBlendedStore(wo_z, alive, df, b.wo_z + c);
-    hn::CompressBlendedStore(lobe, alive, df, b.u_lobe + c);
-    hn::CompressBlendedStore(dir_x, alive, df, b.u_x + c);
-    hn::CompressBlendedStore(dir_y, alive, df, b.u_y + c);
+    StoreSelected(di, path, alive_i, all_alive, reinterpret_cast<int32_t*>(b.path + c));
+    StoreSelected(di, entry, alive_i, all_alive, reinterpret_cast<int32_t*>(b.entry + c));
+    StoreSelected(di, hn::And(material, index_bits), alive_i, all_alive,
+                  reinterpret_cast<int32_t*>(b.material_index + c));
+    StoreSelected(df, hn::Set(df, 1.0f), alive, all_alive, b.roulette_scale + c);
+    StoreSelected(df, wo_x, alive, all_alive, b.wo_x + c);
+    StoreSelected(df, wo_y, alive, all_alive, b.wo_y + c);
+    StoreSelected(df, wo_z, alive, all_alive, b.wo_z + c);
+    StoreSelected(df, lobe, alive, all_alive, b.u_lobe + c);
+    StoreSelected(df, dir_x, alive, all_alive, b.u_x + c);
+    StoreSelected(df, dir_y, alive, all_alive, b.u_y + c);
     out->bsdf_rows = c + hn::CountTrue(df, alive);
     // The streams, past the BSDF's draws (or the roulette's, for the paths that end there).
     auto next = Pcg32Advance(d, state, inc, kDrawJumps[bsdf_draw + 3]);
