@@ -69,6 +69,9 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
   const auto index_bits = hn::Set(di, int32_t(0x0fffffff));  // EmitterRef / MaterialRef index
   const AreaPickColumns& a = out->area;
   const BsdfPickColumns& b = out->bsdf;
+  // The requests of the whole vectors' rows: not traced (yet); the oracle sets the tail's.
+  if (rules.emitter_sample)
+    std::memset(out->request_traced + rules.first_request, 0, n - n % lanes);
   size_t r = 0;
   for (; r + lanes <= n; r += lanes) {
     const auto entry = hn::LoadU(di, as_i(in.entries + r));
@@ -130,8 +133,7 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
       StoreSelected(df, u_x, picked, all_picked, a.u_x + c);
       StoreSelected(df, u_y, picked, all_picked, a.u_y + c);
       out->area_rows = c + hn::CountTrue(df, picked);
-      // The request's row: not traced (yet), its path, the throughput at the vertex.
-      std::memset(out->request_traced + rules.first_request + r, 0, lanes);
+      // The request's path and the throughput at the vertex.
       hn::StoreU(path, di, reinterpret_cast<int32_t*>(out->nee_paths + rules.first_request + r));
       hn::ScatterIndex(t_r, df, nee_throughput, path_row);
       hn::ScatterIndex(t_g, df, nee_throughput, hn::Add(path_row, hn::Set(di, 1)));

@@ -161,7 +161,7 @@ Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, PathSampler& sample
       L += throughput * direct * (1.0f / float(n));
     }
     if (depth >= 3) {
-      const float q = std::min(MaxComponent(throughput) * eta * eta, 0.99f);
+      const float q = NoriContinuation(throughput, eta);
       if (!(sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) < q)) break;
       throughput *= 1.0f / q;
     }

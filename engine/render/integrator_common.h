@@ -23,6 +23,13 @@ namespace ptlab::integrator {
 
 /// Nori's Whitted integrator continues specular chains with probability 0.95.
 inline constexpr float kWhittedContinuation = 0.95f;
+/// Nori's path_* Russian roulette (from depth 3): the probability that a path with this
+/// throughput and accumulated relative index of refraction η goes on, min(max component ·
+/// η², 0.99). One formula for the scalar integrators, the wavefront's per-row loop and the
+/// vertices slot's oracle (simd/vertex_batch8 repeats its operations in this order).
+inline float NoriContinuation(const Color3f& throughput, float eta) {
+  return std::min(MaxComponent(throughput) * eta * eta, 0.99f);
+}
 /// Recursion guard for the Whitted integrator (paths this long carry ~0.95^64 of the weight).
 inline constexpr int kWhittedMaxDepth = 64;
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();

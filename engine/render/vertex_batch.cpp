@@ -47,8 +47,7 @@ void DecideVertices(const Scene& scene, const VertexBatchRules& rules, size_t n,
       paths.nee_throughput[i] = paths.throughput[i];
     }
     if (rules.roulette) {
-      const float q_continue =
-          std::min(MaxComponent(paths.throughput[i]) * in.eta[i] * in.eta[i], 0.99f);
+      const float q_continue = integrator::NoriContinuation(paths.throughput[i], in.eta[i]);
       if (!(sampler.Get1D(DecisionDimension(depth, Decision::kRoulette)) < q_continue)) continue;
       paths.throughput[i] *= 1.0f / q_continue;
     }

@@ -28,10 +28,11 @@ using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
 using integrator::Escaped;
 using integrator::InfiniteEmitterSampleRequest;
-using integrator::MisWeight;
-using integrator::PrepareEmitterSampleFrom;
 using integrator::kWhittedContinuation;
 using integrator::kWhittedMaxDepth;
+using integrator::MisWeight;
+using integrator::NoriContinuation;
+using integrator::PrepareEmitterSampleFrom;
 using Type = IntegratorDesc::Type;
 using Clock = std::chrono::steady_clock;
 
@@ -592,7 +593,7 @@ class alignas(kColumnAlignment) Wavefront {
       };
       float roulette_scale = 1.0f;
       if (rules_.roulette == VertexRules::Roulette::kNori && depth >= 3) {
-        const float q_continue = std::min(MaxComponent(throughput_[i]) * eta_[i] * eta_[i], 0.99f);
+        const float q_continue = NoriContinuation(throughput_[i], eta_[i]);
         if (!(roulette() < q_continue)) continue;
         throughput_[i] *= 1.0f / q_continue;
       } else if (rules_.roulette == VertexRules::Roulette::kWhitted) {

@@ -19,15 +19,17 @@
 #include "engine/core/rng.h"
 #include "engine/render/continue_batch.h"
 #include "simd/targets.h"                // first: the same target policy as simd/
-#include "tests/simd/for_each_target.h"  // hwy/targets.h, after the policy
+#include "tests/simd/for_each_target.h"
+#include "tests/simd/row_checks.h"  // hwy/targets.h, after the policy
 
 namespace ptlab {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kGarbage = -7.25f;
-constexpr uint32_t kGarbageU = 0xdeadbeefu;
+using test::kGarbage;
+using test::kGarbageU;
+using test::kInf;
+using test::kNaN;
+using test::SameBytes;
 
 template <size_t N>
 float Pick(Pcg32& rng, const float (&values)[N]) {
@@ -105,11 +107,6 @@ struct Columns {
     out = {entry.data(), wi_x.data(), wi_y.data(), wi_z.data(), owner.data(), at};
   }
 };
-
-template <class T>
-bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
 
 /// Bit-identical, except that a NaN may be another NaN: when both factors of a multiply are
 /// NaN, IEEE 754 does not say whose payload the product carries, and x86 returns the first

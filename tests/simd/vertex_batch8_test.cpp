@@ -22,14 +22,16 @@
 #include "engine/sampling/guide_table.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
+#include "tests/simd/row_checks.h"
 
 namespace ptlab {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kGarbage = -7.25f;
-constexpr uint32_t kGarbageU = 0xdeadbeefu;
+using test::kGarbage;
+using test::kGarbageU;
+using test::kInf;
+using test::kNaN;
+using test::SameBytes;
 
 /// A scene with `n` area lights and the given selection (pmf per emitter; the CDF is their
 /// running sum with its last entry 1, as BuildEmitterSelection writes it).
@@ -142,14 +144,6 @@ struct Columns {
   }
 };
 
-bool SameBits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
-template <class T>
-bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
 void ExpectSameAsOracle(const Scene& scene, const VertexBatchRules& rules, const Wave& wave,
                         const char* what) {
   SCOPED_TRACE(what);
@@ -183,7 +177,7 @@ void ExpectSameAsOracle(const Scene& scene, const VertexBatchRules& rules, const
                  &Columns::a_wo_x, &Columns::a_wo_y, &Columns::a_wo_z, &Columns::a_u_x,
                  &Columns::a_u_y, &Columns::b_scale, &Columns::b_wo_x, &Columns::b_wo_y,
                  &Columns::b_wo_z, &Columns::b_lobe, &Columns::b_u_x, &Columns::b_u_y}) {
-    EXPECT_TRUE(SameBits(want_cols.*m, got_cols.*m));
+    EXPECT_TRUE(SameBytes(want_cols.*m, got_cols.*m));
   }
   EXPECT_TRUE(SameBytes(want_cols.b_path, got_cols.b_path));
   EXPECT_TRUE(SameBytes(want_cols.b_entry, got_cols.b_entry));
