@@ -1,11 +1,13 @@
 // simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/shade8,
 // simd/splat8, simd/emitter8, simd/area_request8, simd/environment8, simd/distant_disk8,
-// simd/interaction8, simd/spawn8, simd/vertex_batch8, simd/continue8, simd/shadow_rows8.
+// simd/interaction8, simd/spawn8, simd/vertex_batch8, simd/continue8, simd/shadow_rows8,
+// simd/emission8.
 #include "simd/wavefront_kernels.h"
 
 #include "simd/area_request8.h"
 #include "simd/continue8.h"
 #include "simd/distant_disk8.h"
+#include "simd/emission8.h"
 #include "simd/emitter8.h"
 #include "simd/environment8.h"
 #include "simd/interaction8.h"
@@ -49,6 +51,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .spawn = SpawnRayBatch,
           .vertices = DecideVertices,
           .continuation = ContinuePaths,
+          .emission = AddAreaEmissions,
           .name = Traverse8TargetName()};
 }
 

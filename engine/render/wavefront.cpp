@@ -347,31 +347,17 @@ class alignas(kColumnAlignment) Wavefront {
       }
     }
     // Only area lights emit at a surface (Emitted's test; EmitterRef::None's tag is not kArea).
-    for (uint32_t h = 0; h < lists.area_hits; ++h) {
-      const uint32_t q = area_hits_[h];
-      AddEmission(q, its_[q]);
+    if (lists.area_hits != 0) {
+      kernels_->emission(
+          *scene_, {.nee = rules_.nee, .mis = rules_.mis}, lists.area_hits,
+          {area_hits_.data(), rays_.packets.data(), rays_.owner.data(), its_.data()},
+          {throughput_.data(), specular_.data(), prev_pdf_.data(), prev_p_.data(), L_.data()});
     }
     // Past the last vertex that is shaded no hit goes on; otherwise every hit does.
     const bool goes_on = rules_.max_depth < 0 || depth < rules_.max_depth;
     n_goes_on_ = goes_on ? lists.hits : 0;
     for (int g = 0; g < kMaterialGroups; ++g) goes_on_tags_[g] = goes_on ? lists.group_hits[g] : 0;
     if (batch_escaped) ShadeEscaped();
-  }
-
-  // The light that the hit of entry q emits back along its ray, MIS-weighted against emitter
-  // sampling when that already counted this light from the previous vertex.
-  void AddEmission(size_t q, const SurfaceInteraction& its) {
-    const uint32_t i = rays_.owner[q];
-    const Vec3f d = rays_.Direction(q);
-    const Color3f Le = Emitted(*scene_, its, -d / Length(d));
-    if (IsBlack(Le)) return;
-    float w = 1.0f;
-    if (rules_.nee && !specular_[i]) {
-      w = rules_.mis ? MisWeight(prev_pdf_[i], EmitterPdf(*scene_, its, prev_p_[i]),
-                                 scene_->integrator.power_heuristic)
-                     : 0.0f;
-    }
-    L_[i] += throughput_[i] * Le * w;
   }
 
   // Whether the escaped rays take the environment_eval batch: when every infinite emitter is
@@ -1222,6 +1208,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .spawn = SpawnRayBatch,
           .vertices = DecideVertices,
           .continuation = ContinuePaths,
+          .emission = AddAreaEmissions,
           .name = "scalar-oracle"};
 }
 

@@ -15,6 +15,7 @@
 #include "engine/render/area_request_batch.h"
 #include "engine/render/camera.h"
 #include "engine/render/continue_batch.h"
+#include "engine/render/emission_batch.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
@@ -176,6 +177,15 @@ struct WavefrontKernels {
   // (simd/continue8.h).
   void (*continuation)(const ContinueBatchRules& rules, size_t n, const ContinueBatchInputs& in,
                        const ContinueBatchPaths& paths, ContinueBatchOutputs* out) = nullptr;
+
+  // Shading stage, the hits on area lights (HitLists' area entries, engine/render/
+  // emission_batch.h): each hit's emitted light toward its ray, MIS-weighted against the
+  // emitter sampling of the vertex before, added to its path, one call per wave. Oracle:
+  // ptlab::AddAreaEmissions (the scalar integrators' operations per row, so the oracle table
+  // keeps the scalar path's bits); SIMD: simd::AddAreaEmissions, bit-identical up to NaN
+  // payloads (simd/emission8.h).
+  void (*emission)(const Scene& scene, const EmissionBatchRules& rules, size_t n,
+                   const EmissionBatchInputs& in, const EmissionBatchPaths& paths) = nullptr;
 
   // Not in the table, row by row in the wavefront (PrepareEmitterSampleFrom): the delta lights
   // (point, and the CS184 directional and spot lights, engine/light/delta_light.h). Their
