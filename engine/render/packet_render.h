@@ -67,6 +67,9 @@ struct TileSampleStats {
   uint64_t nonfinite = 0;
   int first_x = -1, first_y = -1;  // first dropped sample, in splat order
   StageSeconds seconds;
+  /// Whether the wavefront times its stages into `seconds` (else they stay 0 and no clock is
+  /// read per stage: task-clock of table's packet render -0.6 %, veach unchanged).
+  bool time_stages = true;
   double wall_seconds = 0;  // the tile's wall time on its thread, set by the render driver
 };
 

@@ -145,6 +145,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         // stats of the tile another thread renders beside it share cache lines, and the
         // wavefront adds to them for every packet.
         TileStats tile_stats;
+        tile_stats.time_stages = options.time_stages;
         if (options.kernels != nullptr) {
           RenderTilePacket8(ctx, *options.kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1,
                             options.seed, &blocks[i], &tile_stats, pixels,

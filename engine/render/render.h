@@ -93,6 +93,9 @@ struct RenderOptions {
   /// Called from the coordinating thread after each completed pass (e.g. to measure the error
   /// of the image so far, or to accumulate passes into several films).
   std::function<void(const RenderPass&)> on_pass;
+  /// Time the wavefront's stages (RenderResult::stage_seconds, ptlab's --stats); off, they
+  /// stay 0 (TileSampleStats::time_stages).
+  bool time_stages = false;
 };
 
 /// Heap bytes a render held at its end (capacity × element size of the containers).

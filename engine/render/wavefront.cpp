@@ -196,7 +196,7 @@ class alignas(kColumnAlignment) Wavefront {
   // Pixels that `pixels` marks inactive get no paths (their slots stay unused).
   void Generate(const Camera& camera, int x0, int y0, int x1, int y1, uint32_t s_begin,
                 uint32_t s_end, uint64_t seed, const PixelSampling* pixels) {
-    const auto t0 = Clock::now();
+    const auto t0 = StageClock();
     const uint64_t width = uint64_t(camera.width());
     const size_t samples = s_end - s_begin, tile_w = size_t(x1 - x0);
     const size_t n = size_t(y1 - y0) * tile_w * samples;
@@ -261,22 +261,27 @@ class alignas(kColumnAlignment) Wavefront {
       const size_t i = k * kPacketWidth;
       camera.GenerateRay8(&gen_sx_[i], &gen_sy_[i], &lens_[i], &rays_.packets[k]);
     }
-    stats_->seconds.sampling += Seconds(t0, Clock::now());
+    stats_->seconds.sampling += Seconds(t0, StageClock());
+  }
+
+  // Now, for the stage times; the epoch when the tile's stats do not time its stages.
+  Clock::time_point StageClock() const {
+    return stats_->time_stages ? Clock::now() : Clock::time_point{};
   }
 
   void Bounce(int depth) {
-    const auto t0 = Clock::now();
+    const auto t0 = StageClock();
     Traverse();
-    const auto t1 = Clock::now();
+    const auto t1 = StageClock();
     Shade(depth);
-    const auto t2 = Clock::now();
+    const auto t2 = StageClock();
     Sample(depth);
-    const auto t3 = Clock::now();
+    const auto t3 = StageClock();
     TraceShadows();
-    const auto t4 = Clock::now();
+    const auto t4 = StageClock();
     AddEmitterSamples();
     std::swap(rays_, next_rays_);
-    const auto t5 = Clock::now();
+    const auto t5 = StageClock();
     stats_->seconds.traversal += Seconds(t0, t1) + Seconds(t3, t4);
     stats_->seconds.shading += Seconds(t1, t2) + Seconds(t4, t5);
     stats_->seconds.sampling += Seconds(t2, t3);
@@ -903,7 +908,7 @@ class alignas(kColumnAlignment) Wavefront {
   // table's splat slot; non-finite samples are dropped and counted.
   void Splat(const PixelFilter& filter, int x0, int y0, int x1, int y1, size_t samples,
              FilmBlock* block, const PixelSampling* pixels) {
-    const auto t0 = Clock::now();
+    const auto t0 = StageClock();
     splat_.Clear(path_of_slot_.size());
     const size_t tile_w = size_t(x1 - x0);
     for (int y = y0; y < y1; ++y) {
@@ -926,7 +931,7 @@ class alignas(kColumnAlignment) Wavefront {
       }
     }
     kernels_->splat(filter, splat_.View(), block);
-    stats_->seconds.film += Seconds(t0, Clock::now());
+    stats_->seconds.film += Seconds(t0, StageClock());
   }
 
   /// The BSDF stage's SoA columns, one row per entry that samples its BSDF at this vertex,

@@ -351,6 +351,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   RenderOptions options;
   options.spp = args.spp > 0 ? uint32_t(args.spp) : scene.sampler.sample_count;
   options.threads = args.threads > 0 ? args.threads : UsableCores();
+  options.time_stages = args.stats;
   if (mpi.root() && mpi.active() && options.threads > UsableCores())
     std::fprintf(stderr,
                  "warning: %d threads per rank, but mpirun bound rank 0 to %d core(s); start it "
