@@ -34,7 +34,8 @@ struct alignas(64) Bvh8Node {
   float hi_x[8], hi_y[8], hi_z[8];
   Bvh8Ref child[8];
   uint32_t num_children;
-  uint32_t pad_[7];
+  uint32_t leaf_children;  // bit c: child c is a leaf (its reference's leaf bit, as a mask)
+  uint32_t pad_[6];
 };
 static_assert(sizeof(Bvh8Node) == 256, "Bvh8Node must stay 4 cache lines");
 

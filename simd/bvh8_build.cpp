@@ -73,6 +73,7 @@ class Collapser {
     std::fill(std::begin(node.child), std::end(node.child), 0u);
     std::fill(std::begin(node.pad_), std::end(node.pad_), 0u);
     node.num_children = 0;
+    node.leaf_children = 0;
     return index;
   }
 
@@ -90,6 +91,7 @@ class Collapser {
     if (LeafLike(b)) {
       PTLAB_CHECK(count_[b] >= 1 && count_[b] <= kBvh8MaxLeafSize);
       node.child[slot] = MakeLeafRef(first_[b], count_[b]);
+      node.leaf_children |= 1u << slot;
       leaves_.push_back(node.child[slot]);
     }
   }

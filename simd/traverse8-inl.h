@@ -273,16 +273,7 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const int* k,
 }
 
 // The children of `node` that are leaves, as bits.
-HWY_INLINE uint32_t LeafChildren(DF d, const Bvh8Node& node) {
-  const DI di;
-  uint32_t bits = 0;
-  for (size_t i = 0; i < 8; i += hn::Lanes(d)) {
-    // The leaf bit is the sign bit of the reference.
-    const VI refs = hn::LoadU(di, reinterpret_cast<const int32_t*>(node.child) + i);
-    bits |= MaskBits(d, hn::RebindMask(d, hn::Lt(refs, hn::Zero(di)))) << i;
-  }
-  return bits;
-}
+HWY_INLINE uint32_t LeafChildren(DF /*d*/, const Bvh8Node& node) { return node.leaf_children; }
 
 // The children whose entry distance (dist, one per child) is within the closest hit at
 // best_t: the pop test of TraverseSingle's stack, for eight children at once.

@@ -659,6 +659,10 @@ TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
         EXPECT_EQ(node.lo_x[c], kInf);
         EXPECT_EQ(node.hi_x[c], -kInf);
       }
+      // The leaf mask is the children's leaf bits, and names no empty slot.
+      uint32_t leaves = 0;
+      for (uint32_t c = 0; c < node.num_children; ++c) leaves |= IsLeaf(node.child[c]) << c;
+      EXPECT_EQ(node.leaf_children, leaves);
       for (uint32_t c = 0; c < node.num_children; ++c) {
         const Bvh8Ref ref = node.child[c];
         if (!IsLeaf(ref)) {
