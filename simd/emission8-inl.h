@@ -98,6 +98,9 @@ inline void AddAreaEmissionsKernel(const Scene& scene, const EmissionBatchRules&
     const auto add =
         hn::Not(hn::And(hn::Eq(le_r, zero), hn::And(hn::Eq(le_g, zero), hn::Eq(le_b, zero))));
     if (hn::AllFalse(d, add)) continue;
+    // The path's rows of the Vec3f / Color3f columns (prev_p, throughput, L).
+    const auto path_row = hn::Mul(path, three_i);
+    const auto rows_g = hn::Add(path_row, one_i), rows_b = hn::Add(path_row, two_i);
     auto w = one;
     if (rules.nee) {
       const auto weighed =
@@ -115,14 +118,13 @@ inline void AddAreaEmissionsKernel(const Scene& scene, const EmissionBatchRules&
                                       hn::GatherIndex(di, as_i(selection.slot_area.data()), light));
         }
         const auto area = hn::GatherIndex(d, lights.area.data(), light);
-        const auto path_row = hn::Mul(path, three_i);
         const float* const prev_p = as_f(paths.prev_p);
         const auto ex = hn::Sub(InteractionField(d, in.its, first, kInteractionP),
                                 hn::GatherIndex(d, prev_p, path_row));
         const auto ey = hn::Sub(InteractionField(d, in.its, first, kInteractionP + 1),
-                                hn::GatherIndex(d, prev_p, hn::Add(path_row, one_i)));
+                                hn::GatherIndex(d, prev_p, rows_g));
         const auto ez = hn::Sub(InteractionField(d, in.its, first, kInteractionP + 2),
-                                hn::GatherIndex(d, prev_p, hn::Add(path_row, two_i)));
+                                hn::GatherIndex(d, prev_p, rows_b));
         const auto dist2 = hn::Add(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)), hn::Mul(ez, ez));
         const auto cos_l =
             hn::Div(hn::Neg(hn::Add(hn::Add(hn::Mul(nx, ex), hn::Mul(ny, ey)), hn::Mul(nz, ez))),
@@ -139,8 +141,6 @@ inline void AddAreaEmissionsKernel(const Scene& scene, const EmissionBatchRules&
       }
     }
     // L += throughput · Le · w, written back in every lane (each row's path is its own).
-    const auto path_row = hn::Mul(path, three_i);
-    const auto rows_g = hn::Add(path_row, one_i), rows_b = hn::Add(path_row, two_i);
     const auto l_r = hn::GatherIndex(d, L, path_row);
     const auto l_g = hn::GatherIndex(d, L, rows_g);
     const auto l_b = hn::GatherIndex(d, L, rows_b);

@@ -23,8 +23,6 @@ namespace ptlab {
 namespace {
 
 using integrator::DrawBsdfNumbers;
-using integrator::Emitted;
-using integrator::EmitterPdf;
 using integrator::EmitterSampleRequest;
 using integrator::Escaped;
 using integrator::InfiniteEmitterSampleRequest;

@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <numeric>
 #include <vector>
 
 #include "engine/core/rng.h"
@@ -74,9 +73,7 @@ Wave RandomWave(Pcg32& rng, size_t n, bool hard) {
     w.prev_pdf[i] = u() * 4, w.specular[i] = rng.NextUint() % 2;
     w.prev_p[i] = {u(), u(), u()};
   }
-  std::vector<uint32_t> perm(paths);
-  std::iota(perm.begin(), perm.end(), 0u);
-  for (size_t i = paths - 1; i > 0; --i) std::swap(perm[i], perm[rng.NextUint() % (i + 1)]);
+  const std::vector<uint32_t> perm = test::Shuffled(rng, paths);
   w.path.assign(perm.begin(), perm.begin() + long(n));
   for (size_t k = 0; k < n; ++k) {
     w.entry.push_back(rng.NextUint() % uint32_t(queue));

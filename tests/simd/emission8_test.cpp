@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <numeric>
 #include <vector>
 
 #include "engine/core/rng.h"
@@ -85,9 +84,7 @@ Wave RandomWave(Pcg32& rng, uint32_t lights, size_t queue, size_t n, bool hard) 
   const size_t paths = queue + 5;
   w.rays.resize((queue + kPacketWidth - 1) / kPacketWidth);
   w.owner.resize(queue), w.its.resize(queue);
-  std::vector<uint32_t> perm(paths);
-  std::iota(perm.begin(), perm.end(), 0u);
-  for (size_t i = paths - 1; i > 0; --i) std::swap(perm[i], perm[rng.NextUint() % (i + 1)]);
+  const std::vector<uint32_t> perm = test::Shuffled(rng, paths);
   for (size_t q = 0; q < queue; ++q) {
     RayPacket8& p = w.rays[q / kPacketWidth];
     const size_t j = q % kPacketWidth;
@@ -119,11 +116,7 @@ Wave RandomWave(Pcg32& rng, uint32_t lights, size_t queue, size_t n, bool hard) 
     w.prev_pdf[i] = value(rng.NextFloat() * 4);
     w.prev_p[i] = {rng.NextFloat() * 8 - 4, rng.NextFloat() * 8 - 4, rng.NextFloat() * 8 - 4};
   }
-  std::vector<uint32_t> all(queue);
-  std::iota(all.begin(), all.end(), 0u);
-  for (size_t i = 0; i < n; ++i) std::swap(all[i], all[i + rng.NextUint() % (queue - i)]);
-  all.resize(n);
-  w.entries = std::move(all);
+  w.entries = test::DistinctRows(rng, queue, n);
   if (hard) {
     // The vertex before at the hit point itself (dist² = 0) for some rows.
     for (size_t k = 0; k < n; k += 5) w.prev_p[w.owner[w.entries[k]]] = w.its[w.entries[k]].p;

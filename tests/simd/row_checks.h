@@ -5,7 +5,11 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <numeric>
+#include <utility>
 #include <vector>
+
+#include "engine/core/rng.h"
 
 namespace ptlab::test {
 
@@ -18,6 +22,28 @@ inline constexpr uint32_t kGarbageU = 0xdeadbeefu;
 template <class T>
 bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+/// A random permutation of 0, 1, ..., n - 1 (Fisher-Yates from the back): distinct path ids
+/// for a batch's rows.
+inline std::vector<uint32_t> Shuffled(Pcg32& rng, size_t n) {
+  std::vector<uint32_t> v(n);
+  std::iota(v.begin(), v.end(), 0u);
+  for (size_t i = n; i > 1;) {
+    --i;
+    std::swap(v[i], v[rng.NextUint() % (i + 1)]);
+  }
+  return v;
+}
+
+/// n distinct values of [0, m) in random order (a partial Fisher-Yates from the front): a
+/// batch's queue entries.
+inline std::vector<uint32_t> DistinctRows(Pcg32& rng, size_t m, size_t n) {
+  std::vector<uint32_t> v(m);
+  std::iota(v.begin(), v.end(), 0u);
+  for (size_t i = 0; i < n; ++i) std::swap(v[i], v[i + rng.NextUint() % (m - i)]);
+  v.resize(n);
+  return v;
 }
 
 }  // namespace ptlab::test

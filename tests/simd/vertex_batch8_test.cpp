@@ -74,9 +74,7 @@ Wave RandomWave(Pcg32& rng, size_t queue, size_t n, bool hard) {
   Wave w;
   const size_t paths = queue + 5;
   w.its.resize(queue), w.wo.resize(queue), w.owner.resize(queue);
-  std::vector<uint32_t> perm(paths);
-  std::iota(perm.begin(), perm.end(), 0u);
-  for (size_t i = paths - 1; i > 0; --i) std::swap(perm[i], perm[rng.NextUint() % (i + 1)]);
+  const std::vector<uint32_t> perm = test::Shuffled(rng, paths);
   for (size_t q = 0; q < queue; ++q) {
     SurfaceInteraction& s = w.its[q];
     s.p = {rng.NextFloat() * 8 - 4, rng.NextFloat() * 8 - 4, rng.NextFloat() * 8 - 4};
@@ -102,10 +100,7 @@ Wave RandomWave(Pcg32& rng, size_t queue, size_t n, bool hard) {
     w.eta[i] = hard ? etas[rng.NextUint() % 8] : etas[rng.NextUint() % 3];
   }
   // n distinct entries of [0, queue), in increasing order.
-  std::vector<uint32_t> all(queue);
-  std::iota(all.begin(), all.end(), 0u);
-  for (size_t i = 0; i < n; ++i) std::swap(all[i], all[i + rng.NextUint() % (queue - i)]);
-  w.entries.assign(all.begin(), all.begin() + long(n));
+  w.entries = test::DistinctRows(rng, queue, n);
   std::sort(w.entries.begin(), w.entries.end());
   return w;
 }
