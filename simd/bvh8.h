@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "engine/bvh/bvh.h"
@@ -48,15 +49,20 @@ struct Bvh8BuildOptions {
   uint32_t merge_leaf_size = 8;
 };
 
+/// Columns of a packed leaf: the nine vertex coordinates, then the triangles' scene rows.
+inline constexpr uint32_t kBvh8LeafColumns = 10;
+
 /// A BVH8 over the triangles of a binary Bvh, with its own copy of the positions packed leaf
-/// by leaf: the leaf [first, first + n) stores nine columns of n floats at
-/// tris[9 * first + c * n + j] (c = v0.x, v0.y, v0.z, v1.x, ..., v2.z; j < n), so a leaf is
-/// contiguous and an unaligned 8-float load at any column reads only this leaf's triangles in
-/// its first n lanes (the arrays are padded at the end). prim maps leaf order to scene rows.
+/// by leaf: the leaf [first, first + n) stores ten columns of n values at
+/// tris[10 * first + c * n + j] (c = v0.x, v0.y, v0.z, v1.x, ..., v2.z, then the scene row's
+/// bits; j < n), so a leaf is contiguous and an unaligned 8-float load at any column reads only
+/// this leaf's values in its first n lanes (the array is padded at the end). The scene rows sit
+/// beside the positions because a hit reads its row right after the test: from a separate
+/// array that was one more cache miss per hit (measured: a tenth of Bvh8Intersect1's time on
+/// terrain bounce rays).
 struct Bvh8 {
   AlignedVector<Bvh8Node> nodes;  // nodes[0] is the root (empty: nothing can be hit)
   AlignedVector<float> tris;
-  AlignedVector<uint32_t> prim;
   uint32_t num_triangles = 0;
   uint32_t depth = 0;  // nodes on the longest root-to-leaf path
   float extent = 0.0f;  // largest side of the triangles' bounding box
@@ -64,6 +70,15 @@ struct Bvh8 {
 
   /// No triangle can be hit (spheres may still be).
   bool empty() const { return nodes.empty(); }
+
+  /// The packed columns of the leaf whose first triangle (in leaf order) is `first`.
+  const float* Leaf(uint32_t first) const { return tris.data() + size_t{kBvh8LeafColumns} * first; }
+  /// Scene row of triangle j of the leaf [first, first + n).
+  uint32_t LeafPrim(uint32_t first, uint32_t n, uint32_t j) const {
+    uint32_t prim;
+    std::memcpy(&prim, Leaf(first) + (kBvh8LeafColumns - 1) * n + j, sizeof(prim));
+    return prim;
+  }
 };
 
 /// Collapses `bvh` into a BVH8: each node takes up to eight descendants of a binary node,
@@ -73,8 +88,8 @@ struct Bvh8 {
 /// would; its spheres are copied. O(nodes); keeps no reference to `bvh`.
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options = {});
 
-/// Heap bytes the BVH8 holds: capacity × element size of its nodes, packed triangles, prim ids
-/// and spheres (simd/bvh8_bytes.cpp).
+/// Heap bytes the BVH8 holds: capacity × element size of its nodes, packed leaves and spheres
+/// (simd/bvh8_bytes.cpp).
 size_t Bvh8Bytes(const Bvh8& bvh8);
 
 }  // namespace ptlab::simd

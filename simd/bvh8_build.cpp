@@ -1,6 +1,7 @@
 // BVH8 collapse of the oracle's binary SAH tree, and the leaf-packed triangle copy.
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -135,19 +136,18 @@ class Collapser {
     const uint32_t n = static_cast<uint32_t>(t.size());
     out_->num_triangles = n;
     // Padding: an 8-float load at the last column of the last leaf reads 7 floats past it.
-    out_->tris.assign(size_t{9} * n + 16, 0.0f);
-    out_->prim.assign(size_t{n} + 8, kNoHit);
-    std::copy(bvh_.prim_id.begin(), bvh_.prim_id.end(), out_->prim.begin());
+    out_->tris.assign(size_t{kBvh8LeafColumns} * n + 16, 0.0f);
     const float* cols[9] = {t.v0_x.data(), t.v0_y.data(), t.v0_z.data(),
                             t.v1_x.data(), t.v1_y.data(), t.v1_z.data(),
                             t.v2_x.data(), t.v2_y.data(), t.v2_z.data()};
     uint64_t covered = 0;
     for (const Bvh8Ref leaf : leaves_) {
       const uint32_t first = LeafFirst(leaf), count = LeafCount(leaf);
-      float* dst = out_->tris.data() + size_t{9} * first;
+      float* dst = out_->tris.data() + size_t{kBvh8LeafColumns} * first;
       for (int c = 0; c < 9; ++c) {
         for (uint32_t j = 0; j < count; ++j) dst[c * count + j] = cols[c][first + j];
       }
+      std::memcpy(dst + 9 * count, bvh_.prim_id.data() + first, count * sizeof(uint32_t));
       covered += count;
     }
     // The leaves partition the leaf order (each binary leaf lies in exactly one BVH8 leaf).

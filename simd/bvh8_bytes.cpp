@@ -7,13 +7,12 @@ namespace ptlab::simd {
 
 // The scalar members (num_triangles, depth, extent) are padded to the next 8 bytes.
 static_assert(sizeof(Bvh8) == sizeof(AlignedVector<Bvh8Node>) + sizeof(AlignedVector<float>) +
-                                  sizeof(AlignedVector<uint32_t>) +
                                   (2 * sizeof(uint32_t) + sizeof(float) + 7) / 8 * 8 +
                                   sizeof(SphereTable),
               "a member added to Bvh8 must be counted in Bvh8Bytes");
 
 size_t Bvh8Bytes(const Bvh8& bvh8) {
-  return VectorsBytes(bvh8.nodes, bvh8.tris, bvh8.prim) + TableBytes(bvh8.spheres);
+  return VectorsBytes(bvh8.nodes, bvh8.tris) + TableBytes(bvh8.spheres);
 }
 
 }  // namespace ptlab::simd

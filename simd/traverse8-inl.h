@@ -218,10 +218,10 @@ HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, 
 // Starts loading a child before it is visited: traversal of large scenes waits on memory.
 HWY_INLINE void PrefetchChild(const Bvh8& bvh, Bvh8Ref ref) {
   if (IsLeaf(ref)) {
-    const float* p = bvh.tris.data() + size_t{9} * LeafFirst(ref);
+    const float* p = bvh.Leaf(LeafFirst(ref));
     hwy::Prefetch(p);
     hwy::Prefetch(p + 16);
-    if (LeafCount(ref) > 3) hwy::Prefetch(p + 32), hwy::Prefetch(p + 48);
+    if (LeafCount(ref) > 3) hwy::Prefetch(p + 32), hwy::Prefetch(p + 48), hwy::Prefetch(p + 64);
   } else {
     const char* p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
     hwy::Prefetch(p), hwy::Prefetch(p + 64), hwy::Prefetch(p + 128), hwy::Prefetch(p + 192);
@@ -236,7 +236,7 @@ template <bool kAnyHit>
 HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const int* k,
                            const WatertightLanes& rv, size_t lane, LaneBest* best) {
   const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
-  const float* base = bvh.tris.data() + size_t{9} * first;
+  const float* base = bvh.Leaf(first);
   const float* ax = base + k[0] * n;
   const float* ay = base + k[1] * n;
   const float* az = base + k[2] * n;
@@ -262,7 +262,7 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const int* k,
       hn::Store(t, d, tt), hn::Store(b1, d, bb1), hn::Store(b2, d, bb2);
       for (; bits != 0; bits &= bits - 1) {
         const int j = std::countr_zero(bits);
-        const uint32_t prim = bvh.prim[first + i + j];
+        const uint32_t prim = bvh.LeafPrim(first, n, i + j);
         if (tt[j] < best->t || (tt[j] == best->t && prim < best->prim)) {
           *best = {tt[j], prim, bb1[j], bb2[j]};
         }
@@ -848,7 +848,7 @@ HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketSta
   const size_t lanes = hn::Lanes(d);
   const uint32_t half_mask = (1u << lanes) - 1;
   const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
-  const float* base = bvh.tris.data() + size_t{9} * first;
+  const float* base = bvh.Leaf(first);
   // The shared permutation's column offsets (unused with kMixedK).
   const uint32_t k_n[3] = {kMixedK ? 0 : s->uniform_k[0] * n, kMixedK ? 0 : s->uniform_k[1] * n,
                            kMixedK ? 0 : s->uniform_k[2] * n};
@@ -871,7 +871,7 @@ HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketSta
         hit_lanes |= bits << i;
         half &= ~bits;
       } else {
-        const VI prim = hn::Set(di, static_cast<int32_t>(bvh.prim[first + j]));
+        const VI prim = hn::Set(di, static_cast<int32_t>(bvh.LeafPrim(first, n, j)));
         const VF bt = hn::Load(d, s->best_t + i);
         const VI bp = hn::Load(di, s->best_prim + i);
         // Scene rows are below 2^28, so a signed compare orders them; kNoHit (-1) only

@@ -674,11 +674,11 @@ TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
         for (uint32_t j = 0; j < count && first + j < bvh8.num_triangles; ++j) {
           ++covered[first + j];
           // The packed copy holds the leaf's positions, column by column.
-          const float* base = bvh8.tris.data() + size_t{9} * first;
+          const float* base = bvh8.Leaf(first);
           EXPECT_EQ(base[0 * count + j], f.bvh.leaf_triangles.v0_x[first + j]);
           EXPECT_EQ(base[5 * count + j], f.bvh.leaf_triangles.v1_z[first + j]);
           EXPECT_EQ(base[7 * count + j], f.bvh.leaf_triangles.v2_y[first + j]);
-          EXPECT_EQ(bvh8.prim[first + j], f.bvh.prim_id[first + j]);
+          EXPECT_EQ(bvh8.LeafPrim(first, count, j), f.bvh.prim_id[first + j]);
           const Vec3f v = f.bvh.leaf_triangles.V1(first + j);
           EXPECT_TRUE(node.lo_x[c] <= v.x && v.x <= node.hi_x[c] && node.lo_y[c] <= v.y &&
                       v.y <= node.hi_y[c] && node.lo_z[c] <= v.z && v.z <= node.hi_z[c]);
