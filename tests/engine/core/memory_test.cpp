@@ -24,6 +24,23 @@ TEST(Memory, VectorBytesIsCapacityTimesElementSize) {
   EXPECT_EQ(VectorsBytes(), 0u);
 }
 
+// Columns are cache-line aligned; from kHugePageBytes on they start on a 2 MiB boundary, which
+// transparent huge pages need. Both keep their values through growth (the allocator frees with
+// the alignment it allocated with: a mismatch is undefined behaviour, which ASan reports).
+TEST(Memory, ColumnsAreAlignedAndLargeOnesToHugePages) {
+  for (const size_t n : {size_t{1}, size_t{15}, size_t{1000}, kHugePageBytes / 4 - 1,
+                         kHugePageBytes / 4, 3 * kHugePageBytes / 4 + 5}) {
+    AlignedVector<float> v(n, 1.5f);
+    const auto address = reinterpret_cast<uintptr_t>(v.data());
+    EXPECT_EQ(address % kColumnAlignment, 0u) << n;
+    if (n * sizeof(float) >= kHugePageBytes) EXPECT_EQ(address % kHugePageBytes, 0u) << n;
+    v.push_back(2.5f);  // grows past capacity: a new column, the old one freed
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(v.data()) % kColumnAlignment, 0u) << n;
+    EXPECT_EQ(v[n - 1], 1.5f) << n;
+    EXPECT_EQ(v[n], 2.5f) << n;
+  }
+}
+
 TEST(Memory, StringsBytesCountsHeapBuffersOfLongStrings) {
   const std::vector<std::string> short_names = {"a", "bc"};  // in the string objects
   EXPECT_EQ(StringsBytes(short_names), VectorBytes(short_names));
