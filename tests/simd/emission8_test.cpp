@@ -16,6 +16,7 @@
 #include <cstring>
 #include <vector>
 
+#include "engine/core/check.h"
 #include "engine/core/rng.h"
 #include "engine/render/emission_batch.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
@@ -80,6 +81,9 @@ Wave RandomWave(Pcg32& rng, uint32_t lights, size_t queue, size_t n, bool hard) 
   static const float kValues[] = {0.0f, -0.0f, 1e-40f, 0.5f, 1e30f, kInf, kNaN};
   const auto odd = [&rng, hard] { return hard && rng.NextUint() % 3 == 0; };
   const auto value = [&](float plain) { return odd() ? kValues[rng.NextUint() % 7] : plain; };
+  // Bounded for the compiler too: without it GCC 12 warns (-Walloc-size-larger-than) that
+  // queue + 5 could wrap.
+  PTLAB_CHECK(n <= queue && queue < (size_t{1} << 24));
   Wave w;
   const size_t paths = queue + 5;
   w.rays.resize((queue + kPacketWidth - 1) / kPacketWidth);
