@@ -175,7 +175,9 @@ Status ParseTransform(const Locator& at, const pugi::xml_node& node, Transform* 
       for (const auto& row : m->m)
         for (const float x : row)
           if (!(std::fabs(x) <= 1e30f))
-            return at.Error(step, "<" + std::string(tag) +
+            // Appended rather than "<" + std::string(tag): GCC 12 warns (-Wrestrict) on that
+            // insert at the front, a known false positive.
+            return at.Error(step, std::string("<").append(tag) +
                                       "> makes the transform (or its inverse) overflow; expected "
                                       "matrix entries of magnitude <= 1e30");
   }

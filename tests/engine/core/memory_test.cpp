@@ -33,7 +33,9 @@ TEST(Memory, ColumnsAreAlignedAndLargeOnesToHugePages) {
     AlignedVector<float> v(n, 1.5f);
     const auto address = reinterpret_cast<uintptr_t>(v.data());
     EXPECT_EQ(address % kColumnAlignment, 0u) << n;
-    if (n * sizeof(float) >= kHugePageBytes) EXPECT_EQ(address % kHugePageBytes, 0u) << n;
+    if (n * sizeof(float) >= kHugePageBytes) {
+      EXPECT_EQ(address % kHugePageBytes, 0u) << n;
+    }
     v.push_back(2.5f);  // grows past capacity: a new column, the old one freed
     EXPECT_EQ(reinterpret_cast<uintptr_t>(v.data()) % kColumnAlignment, 0u) << n;
     EXPECT_EQ(v[n - 1], 1.5f) << n;

@@ -125,7 +125,9 @@ TEST(LightSelection, RemappedNumberIsUniformOverEachEmittersInterval) {
       ASSERT_GT(r.size(), 100u) << rule << " emitter " << k;
       // Increasing, and the j-th of m lies near the middle of the j-th of m equal strata.
       for (size_t j = 0; j < r.size(); ++j) {
-        if (j > 0) ASSERT_GT(r[j], r[j - 1]) << rule << " emitter " << k << " j " << j;
+        if (j > 0) {
+          ASSERT_GT(r[j], r[j - 1]) << rule << " emitter " << k << " j " << j;
+        }
         ASSERT_NEAR(r[j], (float(j) + 0.5f) / float(r.size()), 2.0f / float(r.size()))
             << rule << " emitter " << k << " j " << j;
       }
