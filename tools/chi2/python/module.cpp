@@ -27,7 +27,10 @@ chi2::Domain ParseDomain(const std::string& text) {
 
 std::string Shape(const py::array& a) {
   std::string s = "(";
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) {
+    if (i > 0) s += ", ";
+    s += std::to_string(a.shape(i));
+  }
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
