@@ -19,6 +19,7 @@
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
+#include "simd/light_pdf8-inl.h"
 #include "simd/shade8-inl.h"
 #include "simd/shading_point8-inl.h"
 
@@ -150,13 +151,8 @@ HWY_INLINE void AreaRequestFinish(const Scene& scene, bool mis, bool power,
   const V8 zero = hn::Zero(d);
   const V8 fr = hn::Load(d, c.f_r + j), fg = hn::Load(d, c.f_g + j), fb = hn::Load(d, c.f_b + j);
   const V8 pdf_light = hn::Load(d, c.pdf_light + j);
-  V8 weight = hn::Set(d, 1.0f);
-  if (mis) {
-    V8 a = pdf_light, b = hn::Load(d, c.pdf_bsdf + j);
-    if (power) a = hn::Mul(a, a), b = hn::Mul(b, b);
-    const V8 sum = hn::Add(a, b);
-    weight = hn::IfThenElseZero(hn::Gt(sum, zero), hn::Div(a, sum));
-  }
+  const V8 weight =
+      mis ? MisWeight8(d, pdf_light, hn::Load(d, c.pdf_bsdf + j), power) : hn::Set(d, 1.0f);
   const V8 z = hn::Load(d, c.cos_z + j);
   const V8 abs_cos = hn::IfThenElse(hn::Lt(z, zero), hn::Neg(z), z);  // AbsCosTheta, -0 kept
   const V8 scale = hn::Div(hn::Mul(abs_cos, weight), pdf_light);

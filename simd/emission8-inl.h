@@ -13,6 +13,7 @@
 
 #include "engine/render/emission_batch.h"
 #include "hwy/highway.h"
+#include "simd/light_pdf8-inl.h"
 #include "simd/shading_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -125,19 +126,12 @@ inline void AddAreaEmissionsKernel(const Scene& scene, const EmissionBatchRules&
                                 hn::GatherIndex(d, prev_p, rows_g));
         const auto ez = hn::Sub(InteractionField(d, in.its, first, kInteractionP + 2),
                                 hn::GatherIndex(d, prev_p, rows_b));
-        const auto dist2 = hn::Add(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)), hn::Mul(ez, ez));
-        const auto cos_l =
-            hn::Div(hn::Neg(hn::Add(hn::Add(hn::Mul(nx, ex), hn::Mul(ny, ey)), hn::Mul(nz, ez))),
-                    hn::Sqrt(dist2));
-        const auto counts =
-            hn::And(hn::Gt(area, zero), hn::And(hn::Gt(dist2, zero), hn::Gt(cos_l, zero)));
-        const auto area_pdf =
-            hn::IfThenElseZero(counts, hn::Div(hn::Mul(hn::Div(one, area), dist2), cos_l));
-        // MisWeight(prev_pdf, pmf · area_pdf, power).
-        auto a = hn::GatherIndex(d, paths.prev_pdf, path), b = hn::Mul(pmf, area_pdf);
-        if (power) a = hn::Mul(a, a), b = hn::Mul(b, b);
-        const auto sum = hn::Add(a, b);
-        w = hn::IfThenElse(weighed, hn::IfThenElseZero(hn::Gt(sum, zero), hn::Div(a, sum)), one);
+        auto solid = hn::Gt(zero, zero);
+        const auto to_solid =
+            AreaToSolidAngle8(d, hn::Div(one, area), ex, ey, ez, nx, ny, nz, &solid);
+        const auto area_pdf = hn::IfThenElseZero(hn::And(hn::Gt(area, zero), solid), to_solid);
+        const auto prev_pdf = hn::GatherIndex(d, paths.prev_pdf, path);
+        w = hn::IfThenElse(weighed, MisWeight8(d, prev_pdf, hn::Mul(pmf, area_pdf), power), one);
       }
     }
     // L += throughput · Le · w, written back in every lane (each row's path is its own).

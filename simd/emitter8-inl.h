@@ -17,6 +17,7 @@
 #include "engine/light/area_light.h"
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
+#include "simd/light_pdf8-inl.h"
 #include "simd/triangle_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -261,11 +262,9 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
         const auto dx = hn::Sub(px, hn::LoadU(d, in.ref_x + i));
         const auto dy = hn::Sub(py, hn::LoadU(d, in.ref_y + i));
         const auto dz = hn::Sub(pz, hn::LoadU(d, in.ref_z + i));
-        const auto dist2 = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
-        const auto n_dot_d = hn::Add(hn::Add(hn::Mul(nx, dx), hn::Mul(ny, dy)), hn::Mul(nz, dz));
-        const auto cos_l = hn::Div(hn::Neg(n_dot_d), hn::Sqrt(dist2));
-        const auto solid = hn::And(hn::Gt(dist2, zero), hn::Gt(cos_l, zero));
-        const auto pdf = hn::Div(hn::Mul(hn::Load(d, l.inv_area), dist2), cos_l);
+        auto solid = hn::Gt(zero, zero);
+        const auto pdf =
+            AreaToSolidAngle8(d, hn::Load(d, l.inv_area), dx, dy, dz, nx, ny, nz, &solid);
         // Lanes of zero-area lights: AreaLightSample{} (all zero).
         const auto valid = hn::Gt(hn::Load(d, l.valid), zero);
         hn::StoreU(hn::IfThenElseZero(valid, px), d, out.p_x + i);

@@ -218,10 +218,10 @@ HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, 
 // Starts loading a child before it is visited: traversal of large scenes waits on memory.
 HWY_INLINE void PrefetchChild(const Bvh8& bvh, Bvh8Ref ref) {
   if (IsLeaf(ref)) {
+    // The leaf's cache lines (kBvh8LeafColumns floats a triangle), and no line past it.
     const float* p = bvh.Leaf(LeafFirst(ref));
-    hwy::Prefetch(p);
-    hwy::Prefetch(p + 16);
-    if (LeafCount(ref) > 3) hwy::Prefetch(p + 32), hwy::Prefetch(p + 48), hwy::Prefetch(p + 64);
+    const uint32_t floats = kBvh8LeafColumns * LeafCount(ref);
+    for (uint32_t f = 0; f < floats; f += 16) hwy::Prefetch(p + f);
   } else {
     const char* p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
     hwy::Prefetch(p), hwy::Prefetch(p + 64), hwy::Prefetch(p + 128), hwy::Prefetch(p + 192);
