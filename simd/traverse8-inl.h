@@ -597,6 +597,18 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   const VF zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   Mask8 live = 0;
   uint32_t kz0_bits = 0, kz1_bits = 0, swap_bits = 0, finite_bits = 0;
+  // The packet's lines requested at once, in address order, before the loads below (which
+  // start at t_min, the packet's last line but one): a caller streaming packets from memory
+  // otherwise waits on them one by one, and out of order they did not train the hardware
+  // prefetcher. Measured (traverse_bench, AMD EPYC Zen 5, two alternated runs): Intersect8
+  // camera rays veach 41-47 -> 72-74 M rays/s, table 25 -> 30-31 M; shadow rays table 15-16
+  // -> 19 M; Occluded8 bounce rays table 25 -> 28-29 M; the rest within the runs' noise.
+  // (A packet is 32-byte aligned: it may span five lines.)
+  const uintptr_t first_byte = reinterpret_cast<uintptr_t>(&rays);
+  for (uintptr_t line = first_byte & ~uintptr_t{63}; line < first_byte + sizeof(RayPacket8);
+       line += 64) {
+    hwy::Prefetch(reinterpret_cast<const char*>(line));
+  }
   s->neg_bits[0] = s->neg_bits[1] = s->neg_bits[2] = 0;
   for (size_t i = 0; i < 8; i += lanes) {
     const VF t_min = hn::Load(d, rays.t_min + i), t_max = hn::Load(d, rays.t_max + i);
