@@ -599,11 +599,12 @@ HWY_INLINE Mask8 SetupPacket(const RayPacket8& rays, Mask8 active, PacketState* 
   uint32_t kz0_bits = 0, kz1_bits = 0, swap_bits = 0, finite_bits = 0;
   // The packet's lines requested at once, in address order, before the loads below (which
   // start at t_min, the packet's last line but one): a caller streaming packets from memory
-  // otherwise waits on them one by one, and out of order they did not train the hardware
-  // prefetcher. Measured (traverse_bench, AMD EPYC Zen 5, two alternated runs): Intersect8
-  // camera rays veach 41-47 -> 72-74 M rays/s, table 25 -> 30-31 M; shadow rays table 15-16
-  // -> 19 M; Occluded8 bounce rays table 25 -> 28-29 M; the rest within the runs' noise.
-  // (A packet is 32-byte aligned: it may span five lines.)
+  // otherwise stalled on the first load (perf: 58 % of Intersect8Impl's samples there; read
+  // out of address order, the lines perhaps also escaped the hardware prefetcher). Measured
+  // (traverse_bench, AMD EPYC Zen 5, two alternated runs): Intersect8 camera rays veach 41-47
+  // -> 72-74 M rays/s, table 25 -> 30-31 M; shadow rays table 15-16 -> 19 M; Occluded8 bounce
+  // rays table 25 -> 28-29 M; the rest within the runs' noise. (A packet is 32-byte aligned:
+  // it may span five lines.)
   const uintptr_t first_byte = reinterpret_cast<uintptr_t>(&rays);
   for (uintptr_t line = first_byte & ~uintptr_t{63}; line < first_byte + sizeof(RayPacket8);
        line += 64) {
