@@ -3,14 +3,17 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "benchmarks/fractal_terrain.h"
@@ -20,6 +23,7 @@
 #include "engine/core/frame.h"
 #include "engine/core/ray.h"
 #include "engine/core/rng.h"
+#include "engine/io/xml_loader.h"
 #include "engine/light/area_light.h"
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
@@ -29,7 +33,6 @@
 #include "engine/render/wavefront.h"
 #include "engine/sampling/warp.h"
 #include "engine/scene/scene.h"
-#include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8.h"
 #include "simd/wavefront_kernels.h"
@@ -97,7 +100,7 @@ struct BenchScene {
   const TriangleTable* triangles = nullptr;
   Bvh bvh;
   simd::Bvh8 bvh8;
-  std::map<uint32_t, simd::Bvh8> merged;  // BVH8 variants by merge_leaf_size (tuning)
+  std::map<std::pair<uint32_t, float>, simd::Bvh8> merged;  // BVH8 variants (tuning)
   RaySet coherent, incoherent, shadow;
 #ifdef PTLAB_HAVE_EMBREE
   RTCDevice device = nullptr;
@@ -284,8 +287,60 @@ void Finish(benchmark::State& state, size_t rays, int64_t hits) {
   state.SetLabel(simd::Traverse8TargetName());
 }
 
+// One pass of Intersect8 or Occluded8 over a set's packets; the number of hits.
+int64_t PacketPass(const simd::Bvh8& bvh8, const RaySet& set, bool occluded) {
+  int64_t hits = 0;
+  for (size_t k = 0; k < set.packets.size(); ++k) {
+    if (occluded) {
+      hits += std::popcount(
+          simd::Occluded8(bvh8, set.packets[k], set.masks[k], simd::kOccluded8Options));
+    } else {
+      HitPacket8 h;
+      hits += std::popcount(simd::Intersect8(bvh8, set.packets[k], set.masks[k], &h));
+      benchmark::DoNotOptimize(h);
+    }
+  }
+  return hits;
+}
+
+// The SAH collapse at `leaf_cost` against the greedy one (merge_leaf_size 8) on the same rays,
+// paired: every iteration times one pass through each tree (in alternating order), and
+// `speedup` is the median over iterations of greedy time / SAH time. On a VM whose speed
+// drifts between runs, pairs that close in time compare the trees where separate runs did not.
+void RunCollapsePaired(benchmark::State& state, const std::string& scene_name,
+                       const std::string& set_name, bool occluded, float leaf_cost) {
+  BenchScene* s = GetScene(scene_name);
+  if (!s->error.empty()) {
+    state.SkipWithError(s->error.c_str());
+    return;
+  }
+  const simd::Bvh8 greedy = simd::BuildBvh8(s->bvh, {.merge_leaf_size = 8, .sah_leaf_cost = 0});
+  const simd::Bvh8 sah = simd::BuildBvh8(s->bvh, {.sah_leaf_cost = leaf_cost});
+  const RaySet& set = GetRays(*s, set_name);
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> ratios;
+  int64_t hits_greedy = 0, hits_sah = 0;
+  bool greedy_first = true;
+  for (auto _ : state) {
+    double seconds[2] = {};  // greedy, SAH
+    for (int turn = 0; turn < 2; ++turn) {
+      const bool run_greedy = (turn == 0) == greedy_first;
+      const auto t0 = Clock::now();
+      (run_greedy ? hits_greedy : hits_sah) += PacketPass(run_greedy ? greedy : sah, set, occluded);
+      seconds[run_greedy ? 0 : 1] = std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+    ratios.push_back(seconds[0] / seconds[1]);
+    greedy_first = !greedy_first;
+  }
+  if (hits_greedy != hits_sah) state.SkipWithError("the two trees' hit counts differ");
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  state.counters["speedup"] = ratios.empty() ? 0.0 : ratios[ratios.size() / 2];
+  state.SetLabel(simd::Traverse8TargetName());
+}
+
 void RunCase(benchmark::State& state, const std::string& scene_name, const std::string& set_name,
-             Case c, std::optional<simd::Traverse8Options> tuning, int merge_leaf_size = -1) {
+             Case c, std::optional<simd::Traverse8Options> tuning, int merge_leaf_size = -1,
+             float sah_leaf_cost = 0.0f) {
   BenchScene* s = GetScene(scene_name);
   if (!s->error.empty()) {
     state.SkipWithError(s->error.c_str());
@@ -294,9 +349,10 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
   const simd::Bvh8* bvh8 = &s->bvh8;
   if (merge_leaf_size >= 0) {
     const uint32_t merge = static_cast<uint32_t>(merge_leaf_size);
-    auto it = s->merged.find(merge);
+    const std::pair<uint32_t, float> key{merge, sah_leaf_cost};
+    auto it = s->merged.find(key);
     if (it == s->merged.end())
-      it = s->merged.emplace(merge, simd::BuildBvh8(s->bvh, {merge})).first;
+      it = s->merged.emplace(key, simd::BuildBvh8(s->bvh, {merge, sah_leaf_cost})).first;
     bvh8 = &it->second;
   }
   // Without a tuning, each kernel runs with its defaults.
@@ -603,6 +659,37 @@ int RegisterAll() {
                                        [sc, st_name, c, merge](benchmark::State& st) {
                                          RunCase(st, sc, st_name, c, {}, merge);
                                        })
+              ->Unit(benchmark::kMillisecond);
+        }
+      }
+      // The SAH collapse's leaf cost (0: the greedy collapse), for the same kernels.
+      for (const float cost : {0.0f, 1.0f, 1.25f, 1.5f, 1.75f, 2.0f}) {
+        for (const Case c : {Case::kIntersect8, Case::kBvh8Intersect1, Case::kOccluded8}) {
+          const char* cname = c == Case::kIntersect8  ? "Intersect8"
+                              : c == Case::kOccluded8 ? "Occluded8"
+                                                      : "Bvh8Intersect1";
+          char label[16];
+          std::snprintf(label, sizeof label, "%.2f", double(cost));
+          benchmark::RegisterBenchmark(
+              ("BM_Tune_Collapse/" + sc + "/" + st_name + "/" + cname + "/leaf_cost:" + label)
+                  .c_str(),
+              [sc, st_name, c, cost](benchmark::State& st) {
+                RunCase(st, sc, st_name, c, {}, 8, cost);
+              })
+              ->Unit(benchmark::kMillisecond);
+        }
+      }
+      for (const float cost : {1.0f, 1.5f, 2.0f}) {
+        for (const bool occluded : {false, true}) {
+          char label[16];
+          std::snprintf(label, sizeof label, "%.2f", double(cost));
+          benchmark::RegisterBenchmark(
+              ("BM_Tune_CollapsePaired/" + sc + "/" + st_name +
+               (occluded ? "/Occluded8" : "/Intersect8") + "/leaf_cost:" + label)
+                  .c_str(),
+              [sc, st_name, occluded, cost](benchmark::State& st) {
+                RunCollapsePaired(st, sc, st_name, occluded, cost);
+              })
               ->Unit(benchmark::kMillisecond);
         }
       }

@@ -42,11 +42,21 @@ static_assert(sizeof(Bvh8Node) == 256, "Bvh8Node must stay 4 cache lines");
 
 /// Options of the collapse.
 struct Bvh8BuildOptions {
-  /// A binary subtree with at most this many triangles becomes one leaf (≤ kBvh8MaxLeafSize),
-  /// so that one 8-wide triangle test replaces the box tests below it. 0 keeps the binary
-  /// tree's leaves as they are. Measured (benchmarks/traverse_bench.cpp, BM_Tune_Merge): 8 is
-  /// as fast or faster than 0 and 4 for every ray kind and scene.
+  /// Greedy collapse only (sah_leaf_cost 0): a binary subtree with at most this many triangles
+  /// becomes one leaf (≤ kBvh8MaxLeafSize), so that one 8-wide triangle test replaces the box
+  /// tests below it. 0 keeps the binary tree's leaves as they are. Measured
+  /// (benchmarks/traverse_bench.cpp, BM_Tune_Merge): 8 is as fast or faster than 0 and 4 for
+  /// every ray kind and scene.
   uint32_t merge_leaf_size = 8;
+  /// Above 0: the collapse that minimizes the SAH cost, with a leaf costing this many times an
+  /// inner node of the same area (see bvh8_build.cpp), choosing which subtrees become leaves
+  /// and how each node's eight slots are shared. 0: the greedy collapse (each node opens its
+  /// largest inner child until it has eight). Measured (traverse_bench, BM_Tune_CollapsePaired:
+  /// both trees timed in alternation on the same rays, AMD EPYC Zen 5): 1.5 against greedy,
+  /// Intersect8 / Occluded8 table +3 % / +3 to 4 %, veach +1 % (camera and bounce rays) and
+  /// +5 % (shadow rays), terrain +2 to 3 %, bounce rays +8 % / +9 %; no row slower. Leaf costs
+  /// 1.0 and 2.0 were as fast or slower (terrain bounce rays +3 % and +4 %).
+  float sah_leaf_cost = 1.5f;
 };
 
 /// Columns of a packed leaf: the nine vertex coordinates, then the triangles' scene rows.

@@ -1,5 +1,6 @@
 // BVH8 collapse of the oracle's binary SAH tree, and the leaf-packed triangle copy.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -40,6 +41,7 @@ class Collapser {
       }
     }
     out_->nodes.reserve(n / 4 + 1);
+    if (Sah()) Costs();
     if (LeafLike(0)) {
       // A tree that is a single leaf still gets an inner root, so traversal starts at a node.
       const uint32_t root = NewNode();
@@ -49,6 +51,8 @@ class Collapser {
     } else {
       Collapse(0, 1);
     }
+    // The programme's tables are done with: give them back before the packed copy is made.
+    slot_cost_ = {}, slot_split_ = {}, as_leaf_ = {}, inner_split_ = {};
     PackTriangles();
     // The reserve above bounds the node count from above: give back what is unused (1 M-triangle
     // terrain: 152 k slots for 46 k nodes).
@@ -56,7 +60,65 @@ class Collapser {
   }
 
  private:
+  bool Sah() const { return options_.sah_leaf_cost > 0; }
+
+  // The SAH-optimal collapse (the dynamic programme of Ylitie, Karras and Laine 2017, "Efficient
+  // incoherent ray traversal on GPUs through compressed wide BVHs"), bottom-up over the binary
+  // tree. Cost model: an inner node costs its box's half area (one test of eight boxes), a leaf
+  // sah_leaf_cost times its half area (one 8-wide triangle test, whatever its count up to
+  // kBvh8MaxLeafSize). slot_cost_[b][j - 1]: the least cost of binary subtree b as at most j
+  // child slots of its parent; slot_split_[b][j - 1]: how many of them its left child takes
+  // (0: b is one slot); as_leaf_[b]: b's one slot is a leaf; inner_split_[b]: the left child's
+  // share of the eight slots when b is an inner node.
+  void Costs() {
+    const size_t n = bvh_.nodes.size();
+    slot_cost_.assign(n, {});
+    slot_split_.assign(n, {});
+    as_leaf_.assign(n, 0);
+    inner_split_.assign(n, 0);
+    for (size_t i = n; i-- > 0;) {  // children after their parent: both are done first
+      const BvhNode& node = bvh_.nodes[i];
+      const float area = HalfArea(node);
+      float one_slot = kInf;
+      if (count_[i] <= kBvh8MaxLeafSize) one_slot = area * options_.sah_leaf_cost, as_leaf_[i] = 1;
+      if (node.IsLeaf()) {
+        slot_cost_[i].fill(one_slot);
+        continue;
+      }
+      const auto& left = slot_cost_[i + 1];
+      const auto& right = slot_cost_[node.offset];
+      float inner = kInf;
+      for (uint32_t k = 1; k < 8; ++k) {
+        const float c = left[k - 1] + right[8 - k - 1];
+        if (c < inner) inner = c, inner_split_[i] = uint8_t(k);
+      }
+      inner += area;
+      if (inner < one_slot) one_slot = inner, as_leaf_[i] = 0;
+      for (uint32_t j = 1; j <= 8; ++j) {
+        float best = one_slot;
+        uint8_t split = 0;
+        for (uint32_t k = 1; k < j; ++k) {
+          const float c = left[k - 1] + right[j - k - 1];
+          if (c < best) best = c, split = uint8_t(k);
+        }
+        slot_cost_[i][j - 1] = best, slot_split_[i][j - 1] = split;
+      }
+    }
+  }
+
+  // The slots of binary subtree b given at most j of them (Costs' choice), appended to kids.
+  void ExpandSlots(uint32_t b, uint32_t j, uint32_t* kids, uint32_t* num) const {
+    const uint8_t split = slot_split_[b][j - 1];
+    if (split == 0) {
+      kids[(*num)++] = b;
+      return;
+    }
+    ExpandSlots(b + 1, split, kids, num);
+    ExpandSlots(bvh_.nodes[b].offset, j - split, kids, num);
+  }
+
   bool LeafLike(uint32_t b) const {
+    if (Sah()) return as_leaf_[b] != 0;
     return bvh_.nodes[b].IsLeaf() ||
            (options_.merge_leaf_size > 0 &&
             count_[b] <= std::min(options_.merge_leaf_size, kBvh8MaxLeafSize));
@@ -103,7 +165,13 @@ class Collapser {
     out_->depth = std::max(out_->depth, depth);
     uint32_t kids[8] = {b + 1, bvh_.nodes[b].offset};
     uint32_t num = 2;
-    while (num < 8) {
+    if (Sah()) {
+      num = 0;
+      const uint32_t k = inner_split_[b];
+      ExpandSlots(b + 1, k, kids, &num);
+      ExpandSlots(bvh_.nodes[b].offset, 8 - k, kids, &num);
+    }
+    while (!Sah() && num < 8) {
       // Open the inner child with the largest surface area: it is the one most rays reach.
       int best = -1;
       float best_area = -1.0f;
@@ -158,6 +226,9 @@ class Collapser {
   const Bvh8BuildOptions& options_;
   Bvh8* out_;
   std::vector<uint32_t> first_, count_;
+  std::vector<std::array<float, 8>> slot_cost_;
+  std::vector<std::array<uint8_t, 8>> slot_split_;
+  std::vector<uint8_t> as_leaf_, inner_split_;
   std::vector<Bvh8Ref> leaves_;
 };
 

@@ -605,17 +605,68 @@ TEST(Traverse8, ShadowSegmentsMatchOracle) {
   });
 }
 
-TEST(Traverse8, BinaryLeavesMatchOracle) {
+// The collapses other than the default (whose trees every other test traverses): the greedy
+// one with the binary leaves and with merged leaves, and the SAH one with other leaf costs.
+TEST(Traverse8, OtherCollapsesMatchOracle) {
   const Fixture& f = AdversarialFixture();
-  const Bvh8 bvh8 = BuildBvh8(f.bvh, {.merge_leaf_size = 0});
   const std::vector<Ray> rays = MakeRays(f.table, f.bvh, size_t{1} << 16, 2);
   const std::vector<Expected> expected = Oracle(f.bvh, rays);
-  ForEachTarget([&] {
-    Mismatches mm;
-    CompareAll(bvh8, rays, expected, {"binary leaves", {}}, true, &mm);
-    CompareAll(bvh8, rays, expected, {"binary leaves, packet", {0, true, false}}, false, &mm);
-    EXPECT_EQ(mm.count, 0);
-  });
+  const struct {
+    const char* name;
+    Bvh8BuildOptions options;
+  } collapses[] = {{"greedy, binary leaves", {.merge_leaf_size = 0, .sah_leaf_cost = 0}},
+                   {"greedy, merged leaves", {.merge_leaf_size = 8, .sah_leaf_cost = 0}},
+                   {"sah, leaf cost 0.5", {.sah_leaf_cost = 0.5f}},
+                   {"sah, leaf cost 4", {.sah_leaf_cost = 4.0f}}};
+  for (const auto& collapse : collapses) {
+    SCOPED_TRACE(collapse.name);
+    const Bvh8 bvh8 = BuildBvh8(f.bvh, collapse.options);
+    ForEachTarget([&] {
+      Mismatches mm;
+      CompareAll(bvh8, rays, expected, {"single ray", {}}, true, &mm);
+      CompareAll(bvh8, rays, expected, {"packet", {0, true, false}}, false, &mm);
+      EXPECT_EQ(mm.count, 0);
+    });
+  }
+}
+
+// The cost the SAH collapse minimizes (bvh8_build.cpp): the root's half area, an inner child's
+// half area, sah_leaf_cost times a leaf child's.
+double SahCost(const Bvh8& bvh8, const Bvh& bvh, float leaf_cost) {
+  const auto half_area = [](float lx, float ly, float lz, float hx, float hy, float hz) {
+    const double x = double(hx) - lx, y = double(hy) - ly, z = double(hz) - lz;
+    return x * y + y * z + z * x;
+  };
+  const BvhNode& root = bvh.nodes[0];
+  double cost = half_area(root.bounds_min.x, root.bounds_min.y, root.bounds_min.z,
+                          root.bounds_max.x, root.bounds_max.y, root.bounds_max.z);
+  for (const Bvh8Node& node : bvh8.nodes) {
+    for (uint32_t c = 0; c < node.num_children; ++c) {
+      const double a = half_area(node.lo_x[c], node.lo_y[c], node.lo_z[c], node.hi_x[c],
+                                 node.hi_y[c], node.hi_z[c]);
+      cost += IsLeaf(node.child[c]) ? a * leaf_cost : a;
+    }
+  }
+  return cost;
+}
+
+// Every greedy collapse is one of the trees the SAH collapse chooses among (a leaf per subtree
+// of at most eight triangles, at most eight slots a node), so its cost is at least the SAH
+// collapse's; on the adversarial fixture the SAH collapse is strictly cheaper.
+TEST(Traverse8, SahCollapseCostsNoMoreThanGreedy) {
+  const Fixture& f = AdversarialFixture();
+  for (const float leaf_cost : {0.5f, 1.0f, 1.5f, 4.0f}) {
+    SCOPED_TRACE(leaf_cost);
+    const double sah = SahCost(BuildBvh8(f.bvh, {.sah_leaf_cost = leaf_cost}), f.bvh, leaf_cost);
+    double least_greedy = std::numeric_limits<double>::infinity();
+    for (const uint32_t merge : {0u, 2u, 4u, 8u}) {
+      const Bvh8 greedy = BuildBvh8(f.bvh, {.merge_leaf_size = merge, .sah_leaf_cost = 0});
+      const double g = SahCost(greedy, f.bvh, leaf_cost);
+      EXPECT_LE(sah, g * (1 + 1e-5)) << "merge_leaf_size " << merge;
+      least_greedy = std::min(least_greedy, g);
+    }
+    EXPECT_LT(sah, least_greedy * (1 - 1e-3));
+  }
 }
 
 TEST(Traverse8, IntersectStreamMatchesOracle) {
@@ -645,8 +696,16 @@ TEST(Traverse8, IntersectStreamMatchesOracle) {
 
 TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
   const Fixture& f = AdversarialFixture();
-  for (const uint32_t merge : {0u, 4u, 8u}) {
-    const Bvh8 bvh8 = BuildBvh8(f.bvh, {.merge_leaf_size = merge});
+  const Bvh8BuildOptions collapses[] = {{.merge_leaf_size = 0, .sah_leaf_cost = 0},
+                                        {.merge_leaf_size = 4, .sah_leaf_cost = 0},
+                                        {.merge_leaf_size = 8, .sah_leaf_cost = 0},
+                                        {.sah_leaf_cost = 0.5f},
+                                        {.sah_leaf_cost = 1.5f},
+                                        {.sah_leaf_cost = 4.0f}};
+  for (const Bvh8BuildOptions& options : collapses) {
+    SCOPED_TRACE(testing::Message() << "merge " << options.merge_leaf_size << ", sah leaf cost "
+                                    << options.sah_leaf_cost);
+    const Bvh8 bvh8 = BuildBvh8(f.bvh, options);
     ASSERT_FALSE(bvh8.empty());
     EXPECT_EQ(bvh8.num_triangles, f.bvh.leaf_triangles.size());
     EXPECT_LE(bvh8.depth, static_cast<uint32_t>(kBvhMaxDepth));
