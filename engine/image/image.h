@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "engine/core/aligned.h"
 #include "engine/core/vec.h"
 
 namespace ptlab {
@@ -11,7 +12,7 @@ namespace ptlab {
 /// width x height pixels, RGB interleaved, row 0 at the top.
 struct Image {
   int width = 0, height = 0;
-  std::vector<float> rgb;
+  AlignedVector<float> rgb;  // huge pages from 2 MiB on (engine/core/aligned.h)
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgb(size_t(w) * size_t(h) * 3, 0.0f) {}

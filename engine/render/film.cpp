@@ -4,11 +4,41 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/core/check.h"
+
 namespace ptlab {
+
+FilmBlock& FilmBlock::operator=(const FilmBlock& other) {
+  if (this == &other) return *this;
+  x0_ = other.x0_, y0_ = other.y0_, width_ = other.width_, height_ = other.height_;
+  own_.assign(other.sum_.begin(), other.sum_.end());
+  sum_ = own_;
+  return *this;
+}
+
+FilmBlock& FilmBlock::operator=(FilmBlock&& other) noexcept {
+  if (this == &other) return *this;
+  x0_ = other.x0_, y0_ = other.y0_, width_ = other.width_, height_ = other.height_;
+  const bool owned = other.sum_.data() == other.own_.data();
+  own_ = std::move(other.own_);  // the buffer moves with it: an own sum_ stays valid
+  sum_ = owned ? std::span<float>(own_) : other.sum_;
+  other.sum_ = {}, other.own_.clear();
+  other.x0_ = other.y0_ = other.width_ = other.height_ = 0;
+  return *this;
+}
 
 void FilmBlock::Reset(int x0, int y0, int width, int height) {
   x0_ = x0, y0_ = y0, width_ = width, height_ = height;
-  sum_.assign(size_t(width) * size_t(height) * 4, 0.0f);
+  own_.assign(size_t(width) * size_t(height) * 4, 0.0f);
+  sum_ = own_;
+}
+
+void FilmBlock::Reset(int x0, int y0, int width, int height, std::span<float> storage) {
+  PTLAB_CHECK(storage.size() == size_t(width) * size_t(height) * 4);
+  x0_ = x0, y0_ = y0, width_ = width, height_ = height;
+  own_ = {};
+  sum_ = storage;
+  std::fill(sum_.begin(), sum_.end(), 0.0f);
 }
 
 void FilmBlock::Clear() { std::fill(sum_.begin(), sum_.end(), 0.0f); }

@@ -4,6 +4,7 @@
 #include <mpi.h>
 
 #include <mutex>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -85,7 +86,7 @@ RenderShare::RenderShare(const Session& session, uint32_t passes)
                kTagStats, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       size_t at = 0;
       for (size_t k = 0; k < tiles.size(); ++k) {
-        std::vector<float>& dst = (*blocks)[tiles[k]].sums();
+        const std::span<float> dst = (*blocks)[tiles[k]].sums();
         std::copy(sums.begin() + long(at), sums.begin() + long(at + dst.size()), dst.begin());
         at += dst.size();
         (*stats)[tiles[k]] = tile_stats[k];

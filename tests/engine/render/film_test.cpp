@@ -1,12 +1,14 @@
 // Film and pixel filters: splat weights, Nori's filter shapes, block merging.
 #include "engine/render/film.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace ptlab {
 namespace {
@@ -105,6 +107,36 @@ TEST(FilmBlock, MergeAddsOverlapOnly) {
   whole.Merge(b);
   const Image x = whole.Resolve(), y = direct.Resolve();
   EXPECT_EQ(x.rgb, y.rgb);
+}
+
+// A block in outside storage (the render's arena) splats there, starts zeroed, owns no bytes;
+// a copy owns its accumulators; a move keeps the storage.
+TEST(FilmBlock, OutsideStorageCopiesAndMoves) {
+  const PixelFilter box(FilterDesc{FilterDesc::Type::kBox, 0.5f, 0});
+  std::vector<float> arena(2 * 3 * 4 + 4, 7.0f);
+  FilmBlock block;
+  block.Reset(10, 20, 2, 3, std::span<float>(arena).subspan(2, 2 * 3 * 4));
+  EXPECT_EQ(block.Bytes(), 0u);
+  EXPECT_EQ(block.sums().data(), arena.data() + 2);
+  EXPECT_TRUE(std::all_of(arena.begin() + 2, arena.end() - 2, [](float v) { return v == 0; }));
+  EXPECT_EQ(arena[1], 7.0f);  // nothing outside its span
+  EXPECT_EQ(arena[arena.size() - 2], 7.0f);
+  block.Splat(box, 11.5f, 21.5f, {1.0f, 2.0f, 3.0f});
+  EXPECT_EQ(arena[2 + (1 * 2 + 1) * 4 + 1], 2.0f);
+
+  const FilmBlock copy = block;
+  EXPECT_NE(copy.sums().data(), block.sums().data());
+  EXPECT_TRUE(std::equal(copy.sums().begin(), copy.sums().end(), block.sums().begin()));
+  EXPECT_GT(copy.Bytes(), 0u);
+
+  FilmBlock moved = std::move(block);
+  EXPECT_EQ(moved.sums().data(), arena.data() + 2);
+  EXPECT_EQ(moved.Resolve().At(1, 1).g, 2.0f);
+  FilmBlock own(0, 0, 2, 2);
+  const float* own_data = own.sums().data();
+  FilmBlock moved_own = std::move(own);
+  EXPECT_EQ(moved_own.sums().data(), own_data);  // its buffer moved with it
+  EXPECT_TRUE(own.sums().empty());
 }
 
 }  // namespace
