@@ -41,7 +41,10 @@ class Collapser {
       }
     }
     out_->nodes.reserve(n / 4 + 1);
-    if (Sah()) Costs();
+    if (Sah()) {
+      choice_.resize(n);
+      SlotCosts(0);
+    }
     if (LeafLike(0)) {
       // A tree that is a single leaf still gets an inner root, so traversal starts at a node.
       const uint32_t root = NewNode();
@@ -52,7 +55,7 @@ class Collapser {
       Collapse(0, 1);
     }
     // The programme's tables are done with: give them back before the packed copy is made.
-    slot_cost_ = {}, slot_split_ = {}, as_leaf_ = {}, inner_split_ = {};
+    choice_ = {};
     PackTriangles();
     // The reserve above bounds the node count from above: give back what is unused (1 M-triangle
     // terrain: 152 k slots for 46 k nodes).
@@ -66,49 +69,47 @@ class Collapser {
   // incoherent ray traversal on GPUs through compressed wide BVHs"), bottom-up over the binary
   // tree. Cost model: an inner node costs its box's half area (one test of eight boxes), a leaf
   // sah_leaf_cost times its half area (one 8-wide triangle test, whatever its count up to
-  // kBvh8MaxLeafSize). slot_cost_[b][j - 1]: the least cost of binary subtree b as at most j
-  // child slots of its parent; slot_split_[b][j - 1]: how many of them its left child takes
-  // (0: b is one slot); as_leaf_[b]: b's one slot is a leaf; inner_split_[b]: the left child's
-  // share of the eight slots when b is an inner node.
-  void Costs() {
-    const size_t n = bvh_.nodes.size();
-    slot_cost_.assign(n, {});
-    slot_split_.assign(n, {});
-    as_leaf_.assign(n, 0);
-    inner_split_.assign(n, 0);
-    for (size_t i = n; i-- > 0;) {  // children after their parent: both are done first
-      const BvhNode& node = bvh_.nodes[i];
-      const float area = HalfArea(node);
-      float one_slot = kInf;
-      if (count_[i] <= kBvh8MaxLeafSize) one_slot = area * options_.sah_leaf_cost, as_leaf_[i] = 1;
-      if (node.IsLeaf()) {
-        slot_cost_[i].fill(one_slot);
-        continue;
-      }
-      const auto& left = slot_cost_[i + 1];
-      const auto& right = slot_cost_[node.offset];
-      float inner = kInf;
-      for (uint32_t k = 1; k < 8; ++k) {
-        const float c = left[k - 1] + right[8 - k - 1];
-        if (c < inner) inner = c, inner_split_[i] = uint8_t(k);
-      }
-      inner += area;
-      if (inner < one_slot) one_slot = inner, as_leaf_[i] = 0;
-      for (uint32_t j = 1; j <= 8; ++j) {
-        float best = one_slot;
-        uint8_t split = 0;
-        for (uint32_t k = 1; k < j; ++k) {
-          const float c = left[k - 1] + right[j - k - 1];
-          if (c < best) best = c, split = uint8_t(k);
-        }
-        slot_cost_[i][j - 1] = best, slot_split_[i][j - 1] = split;
-      }
+  // kBvh8MaxLeafSize). Returns cost[j - 1], the least cost of binary subtree b as at most j
+  // child slots of its parent, and records the choices behind it in choice_[b] (SlotChoice).
+  // Recursive (depth ≤ kBvhMaxDepth), so that the costs live on the stack and only the choices
+  // in memory.
+  std::array<float, 8> SlotCosts(uint32_t b) {
+    const BvhNode& node = bvh_.nodes[b];
+    SlotChoice& c = choice_[b];
+    const float area = HalfArea(node);
+    float one_slot = kInf;
+    c.as_leaf = count_[b] <= kBvh8MaxLeafSize;
+    if (c.as_leaf) one_slot = area * options_.sah_leaf_cost;
+    std::array<float, 8> cost;
+    if (node.IsLeaf()) {
+      cost.fill(one_slot);
+      std::fill(std::begin(c.split), std::end(c.split), uint8_t{0});
+      return cost;
     }
+    const std::array<float, 8> left = SlotCosts(b + 1);
+    const std::array<float, 8> right = SlotCosts(node.offset);
+    float inner = kInf;
+    for (uint32_t k = 1; k < 8; ++k) {
+      const float sum = left[k - 1] + right[8 - k - 1];
+      if (sum < inner) inner = sum, c.inner_split = uint8_t(k);
+    }
+    inner += area;
+    if (inner < one_slot) one_slot = inner, c.as_leaf = 0;
+    for (uint32_t j = 1; j <= 8; ++j) {
+      float best = one_slot;
+      uint8_t split = 0;
+      for (uint32_t k = 1; k < j; ++k) {
+        const float sum = left[k - 1] + right[j - k - 1];
+        if (sum < best) best = sum, split = uint8_t(k);
+      }
+      cost[j - 1] = best, c.split[j - 1] = split;
+    }
+    return cost;
   }
 
   // The slots of binary subtree b given at most j of them (Costs' choice), appended to kids.
   void ExpandSlots(uint32_t b, uint32_t j, uint32_t* kids, uint32_t* num) const {
-    const uint8_t split = slot_split_[b][j - 1];
+    const uint8_t split = choice_[b].split[j - 1];
     if (split == 0) {
       kids[(*num)++] = b;
       return;
@@ -118,7 +119,7 @@ class Collapser {
   }
 
   bool LeafLike(uint32_t b) const {
-    if (Sah()) return as_leaf_[b] != 0;
+    if (Sah()) return choice_[b].as_leaf != 0;
     return bvh_.nodes[b].IsLeaf() ||
            (options_.merge_leaf_size > 0 &&
             count_[b] <= std::min(options_.merge_leaf_size, kBvh8MaxLeafSize));
@@ -167,7 +168,7 @@ class Collapser {
     uint32_t num = 2;
     if (Sah()) {
       num = 0;
-      const uint32_t k = inner_split_[b];
+      const uint32_t k = choice_[b].inner_split;
       ExpandSlots(b + 1, k, kids, &num);
       ExpandSlots(bvh_.nodes[b].offset, 8 - k, kids, &num);
     }
@@ -226,9 +227,14 @@ class Collapser {
   const Bvh8BuildOptions& options_;
   Bvh8* out_;
   std::vector<uint32_t> first_, count_;
-  std::vector<std::array<float, 8>> slot_cost_;
-  std::vector<std::array<uint8_t, 8>> slot_split_;
-  std::vector<uint8_t> as_leaf_, inner_split_;
+  // The SAH collapse's choice for a binary subtree: split[j - 1], how many of its at most j
+  // slots its left child takes (0: the subtree is one slot); as_leaf, whether that one slot is a
+  // leaf; inner_split, the left child's share of the eight slots when it is an inner node.
+  struct SlotChoice {
+    uint8_t split[8];
+    uint8_t as_leaf = 0, inner_split = 0;
+  };
+  AlignedVector<SlotChoice> choice_;
   std::vector<Bvh8Ref> leaves_;
 };
 
