@@ -303,10 +303,93 @@ int64_t PacketPass(const simd::Bvh8& bvh8, const RaySet& set, bool occluded) {
   return hits;
 }
 
+// Times run_a and run_b once each per iteration, in alternating order, and returns the median
+// over iterations of b's time / a's (above 1: a is faster). On a VM whose speed drifts over
+// minutes, pairs this close in time compare where separate benchmarks did not.
+template <class RunA, class RunB>
+double PairedRatio(benchmark::State& state, RunA run_a, RunB run_b) {
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> ratios;
+  bool a_first = true;
+  for (auto _ : state) {
+    double seconds[2] = {};  // a, b
+    for (int turn = 0; turn < 2; ++turn) {
+      const bool a = (turn == 0) == a_first;
+      const auto t0 = Clock::now();
+      a ? run_a() : run_b();
+      seconds[a ? 0 : 1] = std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+    ratios.push_back(seconds[1] / seconds[0]);
+    a_first = !a_first;
+  }
+  if (ratios.empty()) return 0.0;
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  return ratios[ratios.size() / 2];
+}
+
+#ifdef PTLAB_HAVE_EMBREE
+// One pass of rtcIntersect8 or rtcOccluded8 over a set's packets (the same packets our
+// Intersect8 reads); the number of hits. Embree writes its results into the packet, so each call
+// starts from a fresh copy (288 bytes).
+int64_t EmbreePacketPass(const BenchScene& s, const RaySet& set, bool coherent, bool occluded) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  int64_t hits = 0;
+  for (size_t k = 0; k < set.packets.size(); ++k) {
+    const RayPacket8& p = set.packets[k];
+    alignas(32) int valid[8];
+    alignas(32) RTCRayHit8 rh;
+    for (int j = 0; j < 8; ++j) valid[j] = LaneActive(set.masks[k], j) ? -1 : 0;
+    std::memcpy(rh.ray.org_x, p.org_x, sizeof(float) * 8 * 3);
+    std::memcpy(rh.ray.dir_x, p.dir_x, sizeof(float) * 8 * 3);
+    std::memcpy(rh.ray.tnear, p.t_min, sizeof(float) * 8);
+    std::memcpy(rh.ray.tfar, p.t_max, sizeof(float) * 8);
+    for (int j = 0; j < 8; ++j) {
+      rh.ray.time[j] = 0.0f, rh.ray.mask[j] = 0xffffffffu, rh.ray.id[j] = 0;
+      rh.ray.flags[j] = 0, rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+    }
+    if (!occluded) {
+      rtcIntersect8(valid, s.rtc_scene, &ctx, &rh);
+      for (int j = 0; j < 8; ++j) hits += valid[j] && rh.hit.geomID[j] != RTC_INVALID_GEOMETRY_ID;
+    } else {
+      rtcOccluded8(valid, s.rtc_scene, &ctx, &rh.ray);
+      for (int j = 0; j < 8; ++j) hits += valid[j] && rh.ray.tfar[j] < 0.0f;
+    }
+    benchmark::DoNotOptimize(rh);
+  }
+  return hits;
+}
+
+// Intersect8 (or Occluded8) against rtcIntersect8 (rtcOccluded8) on the same packets, paired
+// (PairedRatio): `ratio` is Embree's time / ours (above 1: ours is faster). The report's main
+// table times ours and Embree minutes apart, and on a VM whose speed drifts that moved its rows
+// by up to ±0.15 between runs.
+void RunEmbreePaired(benchmark::State& state, const std::string& scene_name,
+                     const std::string& set_name, bool occluded) {
+  BenchScene* s = GetScene(scene_name);
+  if (!s->error.empty()) {
+    state.SkipWithError(s->error.c_str());
+    return;
+  }
+  const RaySet& set = GetRays(*s, set_name);
+  // One untimed pass of each first: the first timed pass would otherwise pay for the caches.
+  benchmark::DoNotOptimize(PacketPass(s->bvh8, set, occluded));
+  benchmark::DoNotOptimize(EmbreePacketPass(*s, set, set_name == "coherent", occluded));
+  int64_t hits_ours = 0, hits_embree = 0;
+  state.counters["ratio"] = PairedRatio(
+      state, [&] { hits_ours += PacketPass(s->bvh8, set, occluded); },
+      [&] { hits_embree += EmbreePacketPass(*s, set, set_name == "coherent", occluded); });
+  // Hit counts as a check that both ran the same rays: watertight tests may differ on edges.
+  state.counters["hits_ours"] = double(hits_ours) / double(state.iterations());
+  state.counters["hits_embree"] = double(hits_embree) / double(state.iterations());
+  state.SetLabel(simd::Traverse8TargetName());
+}
+#endif
+
 // The SAH collapse at `leaf_cost` against the greedy one (merge_leaf_size 8) on the same rays,
-// paired: every iteration times one pass through each tree (in alternating order), and
-// `speedup` is the median over iterations of greedy time / SAH time. On a VM whose speed
-// drifts between runs, pairs that close in time compare the trees where separate runs did not.
+// paired (PairedRatio): `speedup` is the greedy tree's time / the SAH tree's.
 void RunCollapsePaired(benchmark::State& state, const std::string& scene_name,
                        const std::string& set_name, bool occluded, float leaf_cost) {
   BenchScene* s = GetScene(scene_name);
@@ -317,24 +400,11 @@ void RunCollapsePaired(benchmark::State& state, const std::string& scene_name,
   const simd::Bvh8 greedy = simd::BuildBvh8(s->bvh, {.merge_leaf_size = 8, .sah_leaf_cost = 0});
   const simd::Bvh8 sah = simd::BuildBvh8(s->bvh, {.sah_leaf_cost = leaf_cost});
   const RaySet& set = GetRays(*s, set_name);
-  using Clock = std::chrono::steady_clock;
-  std::vector<double> ratios;
   int64_t hits_greedy = 0, hits_sah = 0;
-  bool greedy_first = true;
-  for (auto _ : state) {
-    double seconds[2] = {};  // greedy, SAH
-    for (int turn = 0; turn < 2; ++turn) {
-      const bool run_greedy = (turn == 0) == greedy_first;
-      const auto t0 = Clock::now();
-      (run_greedy ? hits_greedy : hits_sah) += PacketPass(run_greedy ? greedy : sah, set, occluded);
-      seconds[run_greedy ? 0 : 1] = std::chrono::duration<double>(Clock::now() - t0).count();
-    }
-    ratios.push_back(seconds[0] / seconds[1]);
-    greedy_first = !greedy_first;
-  }
+  state.counters["speedup"] = PairedRatio(
+      state, [&] { hits_sah += PacketPass(sah, set, occluded); },
+      [&] { hits_greedy += PacketPass(greedy, set, occluded); });
   if (hits_greedy != hits_sah) state.SkipWithError("the two trees' hit counts differ");
-  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  state.counters["speedup"] = ratios.empty() ? 0.0 : ratios[ratios.size() / 2];
   state.SetLabel(simd::Traverse8TargetName());
 }
 
@@ -446,40 +516,11 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
       break;
     }
     case Case::kEmbreeIntersect8:
-    case Case::kEmbreeOccluded8: {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      ctx.flags = set_name == "coherent" ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                                         : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-      // Embree writes its results into the packet, so each call starts from a fresh copy
-      // (288 bytes; the same packets our Intersect8 reads).
+    case Case::kEmbreeOccluded8:
       for (auto _ : state) {
-        for (size_t k = 0; k < set.packets.size(); ++k) {
-          const RayPacket8& p = set.packets[k];
-          alignas(32) int valid[8];
-          alignas(32) RTCRayHit8 rh;
-          for (int j = 0; j < 8; ++j) valid[j] = LaneActive(set.masks[k], j) ? -1 : 0;
-          std::memcpy(rh.ray.org_x, p.org_x, sizeof(float) * 8 * 3);
-          std::memcpy(rh.ray.dir_x, p.dir_x, sizeof(float) * 8 * 3);
-          std::memcpy(rh.ray.tnear, p.t_min, sizeof(float) * 8);
-          std::memcpy(rh.ray.tfar, p.t_max, sizeof(float) * 8);
-          for (int j = 0; j < 8; ++j) {
-            rh.ray.time[j] = 0.0f, rh.ray.mask[j] = 0xffffffffu, rh.ray.id[j] = 0;
-            rh.ray.flags[j] = 0, rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
-          }
-          if (c == Case::kEmbreeIntersect8) {
-            rtcIntersect8(valid, s->rtc_scene, &ctx, &rh);
-            for (int j = 0; j < 8; ++j)
-              hits += valid[j] && rh.hit.geomID[j] != RTC_INVALID_GEOMETRY_ID;
-          } else {
-            rtcOccluded8(valid, s->rtc_scene, &ctx, &rh.ray);
-            for (int j = 0; j < 8; ++j) hits += valid[j] && rh.ray.tfar[j] < 0.0f;
-          }
-          benchmark::DoNotOptimize(rh);
-        }
+        hits += EmbreePacketPass(*s, set, set_name == "coherent", c == Case::kEmbreeOccluded8);
       }
       break;
-    }
 #else
     default:
       state.SkipWithError("built without Embree");
@@ -679,6 +720,18 @@ int RegisterAll() {
               ->Unit(benchmark::kMillisecond);
         }
       }
+#ifdef PTLAB_HAVE_EMBREE
+      for (const bool occluded : {false, true}) {
+        benchmark::RegisterBenchmark(
+            ("BM_Pair_Embree/" + sc + "/" + st_name + (occluded ? "/Occluded8" : "/Intersect8"))
+                .c_str(),
+            [sc, st_name, occluded](benchmark::State& st) {
+              RunEmbreePaired(st, sc, st_name, occluded);
+            })
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(1.0);  // enough pairs for a median, whatever --benchmark_min_time says
+      }
+#endif
       for (const float cost : {1.0f, 1.5f, 2.0f}) {
         for (const bool occluded : {false, true}) {
           char label[16];
