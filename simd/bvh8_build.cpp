@@ -107,7 +107,7 @@ class Collapser {
     return cost;
   }
 
-  // The slots of binary subtree b given at most j of them (Costs' choice), appended to kids.
+  // The slots of binary subtree b given at most j of them (SlotCosts' choice), appended to kids.
   void ExpandSlots(uint32_t b, uint32_t j, uint32_t* kids, uint32_t* num) const {
     const uint8_t split = choice_[b].split[j - 1];
     if (split == 0) {
