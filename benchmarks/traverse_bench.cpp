@@ -13,7 +13,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "benchmarks/fractal_terrain.h"
@@ -100,7 +99,7 @@ struct BenchScene {
   const TriangleTable* triangles = nullptr;
   Bvh bvh;
   simd::Bvh8 bvh8;
-  std::map<std::pair<uint32_t, float>, simd::Bvh8> merged;  // BVH8 variants (tuning)
+  std::map<uint32_t, simd::Bvh8> merged;  // greedy BVH8s by merge_leaf_size (tuning)
   RaySet coherent, incoherent, shadow;
 #ifdef PTLAB_HAVE_EMBREE
   RTCDevice device = nullptr;
@@ -287,16 +286,19 @@ void Finish(benchmark::State& state, size_t rays, int64_t hits) {
   state.SetLabel(simd::Traverse8TargetName());
 }
 
-// One pass of Intersect8 or Occluded8 over a set's packets; the number of hits.
-int64_t PacketPass(const simd::Bvh8& bvh8, const RaySet& set, bool occluded) {
+// One pass of Intersect8 or Occluded8 over a set's packets (with `options`, else each kernel's
+// defaults); the number of hits.
+int64_t PacketPass(const simd::Bvh8& bvh8, const RaySet& set, bool occluded,
+                   std::optional<simd::Traverse8Options> options = std::nullopt) {
   int64_t hits = 0;
   for (size_t k = 0; k < set.packets.size(); ++k) {
     if (occluded) {
-      hits += std::popcount(
-          simd::Occluded8(bvh8, set.packets[k], set.masks[k], simd::kOccluded8Options));
+      hits += std::popcount(simd::Occluded8(bvh8, set.packets[k], set.masks[k],
+                                            options.value_or(simd::kOccluded8Options)));
     } else {
       HitPacket8 h;
-      hits += std::popcount(simd::Intersect8(bvh8, set.packets[k], set.masks[k], &h));
+      hits += std::popcount(simd::Intersect8(bvh8, set.packets[k], set.masks[k], &h,
+                                             options.value_or(simd::Traverse8Options{})));
       benchmark::DoNotOptimize(h);
     }
   }
@@ -409,8 +411,7 @@ void RunCollapsePaired(benchmark::State& state, const std::string& scene_name,
 }
 
 void RunCase(benchmark::State& state, const std::string& scene_name, const std::string& set_name,
-             Case c, std::optional<simd::Traverse8Options> tuning, int merge_leaf_size = -1,
-             float sah_leaf_cost = 0.0f) {
+             Case c, std::optional<simd::Traverse8Options> tuning, int merge_leaf_size = -1) {
   BenchScene* s = GetScene(scene_name);
   if (!s->error.empty()) {
     state.SkipWithError(s->error.c_str());
@@ -419,10 +420,11 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
   const simd::Bvh8* bvh8 = &s->bvh8;
   if (merge_leaf_size >= 0) {
     const uint32_t merge = static_cast<uint32_t>(merge_leaf_size);
-    const std::pair<uint32_t, float> key{merge, sah_leaf_cost};
-    auto it = s->merged.find(key);
-    if (it == s->merged.end())
-      it = s->merged.emplace(key, simd::BuildBvh8(s->bvh, {merge, sah_leaf_cost})).first;
+    auto it = s->merged.find(merge);
+    if (it == s->merged.end()) {
+      const simd::Bvh8BuildOptions greedy{.merge_leaf_size = merge, .sah_leaf_cost = 0};
+      it = s->merged.emplace(merge, simd::BuildBvh8(s->bvh, greedy)).first;
+    }
     bvh8 = &it->second;
   }
   // Without a tuning, each kernel runs with its defaults.
@@ -462,20 +464,8 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
       }
       break;
     case Case::kIntersect8:
-      for (auto _ : state) {
-        for (size_t k = 0; k < set.packets.size(); ++k) {
-          HitPacket8 h;
-          hits += std::popcount(simd::Intersect8(*bvh8, set.packets[k], set.masks[k], &h, options));
-          benchmark::DoNotOptimize(h);
-        }
-      }
-      break;
     case Case::kOccluded8:
-      for (auto _ : state) {
-        for (size_t k = 0; k < set.packets.size(); ++k) {
-          hits += std::popcount(simd::Occluded8(*bvh8, set.packets[k], set.masks[k], options));
-        }
-      }
+      for (auto _ : state) hits += PacketPass(*bvh8, set, c == Case::kOccluded8, options);
       break;
     case Case::kIntersectStream: {
       std::vector<Hit> out(n);
@@ -688,7 +678,7 @@ int RegisterAll() {
             [sc, st_name, c](benchmark::State& st) { RunCase(st, sc, st_name, c, std::nullopt); })
             ->Unit(benchmark::kMillisecond);
       }
-      // Leaf merging in the collapse (merge_leaf_size), for Intersect8 and single rays.
+      // Leaf merging in the greedy collapse (merge_leaf_size), for Intersect8 and single rays.
       for (const int merge : {0, 4, 8}) {
         for (const Case c : {Case::kIntersect8, Case::kBvh8Intersect1, Case::kOccluded8}) {
           const char* cname = c == Case::kIntersect8  ? "Intersect8"
@@ -700,23 +690,6 @@ int RegisterAll() {
                                        [sc, st_name, c, merge](benchmark::State& st) {
                                          RunCase(st, sc, st_name, c, {}, merge);
                                        })
-              ->Unit(benchmark::kMillisecond);
-        }
-      }
-      // The SAH collapse's leaf cost (0: the greedy collapse), for the same kernels.
-      for (const float cost : {0.0f, 1.0f, 1.25f, 1.5f, 1.75f, 2.0f}) {
-        for (const Case c : {Case::kIntersect8, Case::kBvh8Intersect1, Case::kOccluded8}) {
-          const char* cname = c == Case::kIntersect8  ? "Intersect8"
-                              : c == Case::kOccluded8 ? "Occluded8"
-                                                      : "Bvh8Intersect1";
-          char label[16];
-          std::snprintf(label, sizeof label, "%.2f", double(cost));
-          benchmark::RegisterBenchmark(
-              ("BM_Tune_Collapse/" + sc + "/" + st_name + "/" + cname + "/leaf_cost:" + label)
-                  .c_str(),
-              [sc, st_name, c, cost](benchmark::State& st) {
-                RunCase(st, sc, st_name, c, {}, 8, cost);
-              })
               ->Unit(benchmark::kMillisecond);
         }
       }
