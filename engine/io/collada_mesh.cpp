@@ -200,6 +200,13 @@ class MeshReader {
                                   "\" is not an integer >= 0");
     // Polygon sizes and the index list, whatever the primitive kind.
     std::vector<uint32_t> sizes, indices;
+    const auto index_mismatch = [&](uint64_t corners) {
+      return doc_.Error(
+          prim, std::string("<") + std::string(kind) + "> has " + std::to_string(indices.size()) +
+                    " indices; its " + std::to_string(count) + " polygons of " +
+                    std::to_string(corners) + " corners with " + std::to_string(in.tuple_size) +
+                    " inputs need " + std::to_string(corners * in.tuple_size));
+    };
     if (kind == "polygons") {
       for (const pugi::xml_node p : prim.children("p")) {
         std::vector<uint32_t> one;
@@ -216,6 +223,10 @@ class MeshReader {
       if (!p && count > 0) return doc_.Error(prim, std::string("<") + std::string(kind) + "> has no <p>");
       if (p) PTLAB_RETURN_IF_ERROR(doc_.Indices(p, &indices));
       if (kind == "triangles") {
+        // The count is the file's: checked against the index list before it sizes anything (a
+        // count of 10^9 with a short <p> asked for 4 GiB of polygon sizes; found by fuzzing).
+        if (3 * uint64_t(count) * in.tuple_size != indices.size())
+          return index_mismatch(3 * uint64_t(count));
         sizes.assign(size_t(count), 3);
       } else {
         const pugi::xml_node vcount = prim.child("vcount");
@@ -229,13 +240,7 @@ class MeshReader {
                                   " polygons");
     uint64_t corners = 0;
     for (uint32_t s : sizes) corners += s;
-    if (corners * in.tuple_size != indices.size())
-      return doc_.Error(prim, std::string("<") + std::string(kind) + "> has " +
-                                  std::to_string(indices.size()) + " indices; its " +
-                                  std::to_string(count) + " polygons of " +
-                                  std::to_string(corners) + " corners with " +
-                                  std::to_string(in.tuple_size) + " inputs need " +
-                                  std::to_string(corners * in.tuple_size));
+    if (corners * in.tuple_size != indices.size()) return index_mismatch(corners);
     return Triangulate(prim, in, sizes, indices, mesh);
   }
 

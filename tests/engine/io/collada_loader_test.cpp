@@ -417,6 +417,12 @@ TEST(ColladaLoader, MalformedFilesNameFileAndLine) {
     ExpectError(p, "count=\"4\"", {"reaches past"});
   }
   {
+    // A triangle count far beyond its index list (fuzzing found one asking for 4 GiB).
+    Parts p;
+    p.geometries.replace(p.geometries.find("count=\"1\""), 9, "count=\"1101986441\"");
+    ExpectError(p, "<triangles", {"has 3 indices", "1101986441 polygons", "need 3305959323"});
+  }
+  {
     Parts p;
     p.geometries.replace(p.geometries.find("<p>0 1 2</p>"), 12, "<p>0 1 7</p>");
     ExpectError(p, "<triangles", {"index 7", "out of range"});
