@@ -26,6 +26,7 @@ const bool kContext = [] {
 
 struct Batch {
   Scene scene;
+  simd::TriangleRows rows = simd::BuildTriangleRows(scene);
   std::vector<RayPacket8> rays = std::vector<RayPacket8>(kPackets);
   std::vector<HitPacket8> hits = std::vector<HitPacket8>(kPackets);
   std::vector<Mask8> mask = std::vector<Mask8>(kPackets, kAllLanes);
@@ -67,8 +68,8 @@ void BM_Interaction_Rows(benchmark::State& state, const char* relative, bool sim
   HitLists lists{entries.data(), area.data()};
   for (auto _ : state) {
     if (simd) {
-      simd::MakeInteractionBatch(b->scene, b->rays.data(), b->hits.data(), b->mask.data(), kPackets,
-                                 out, &lists);
+      simd::MakeInteractionBatch(b->scene, b->rows, b->rays.data(), b->hits.data(), b->mask.data(),
+                                 kPackets, out, &lists);
     } else {
       MakeInteractionBatch(b->scene, b->rays.data(), b->hits.data(), b->mask.data(), kPackets, out,
                            &lists);

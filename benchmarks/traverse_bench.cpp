@@ -562,6 +562,7 @@ struct RenderBench {
   std::unique_ptr<Scene> scene;
   Bvh bvh;
   simd::Bvh8 bvh8;
+  simd::TriangleRows rows;
 };
 
 RenderBench* GetRenderScene(IntegratorDesc::Type type) {
@@ -582,6 +583,7 @@ RenderBench* GetRenderScene(IntegratorDesc::Type type) {
     r->scene->integrator.type = type;
     r->bvh = BuildBvh(r->scene->triangles, r->scene->spheres);
     r->bvh8 = simd::BuildBvh8(r->bvh);
+    r->rows = simd::BuildTriangleRows(*r->scene);
   }
   return cache.emplace(static_cast<int>(type), std::move(r)).first->second.get();
 }
@@ -596,7 +598,7 @@ void RunRender(benchmark::State& state, IntegratorDesc::Type type, bool packets)
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
   const RenderContext ctx{scene, r->bvh};
-  const WavefrontKernels kernels = simd::SimdWavefrontKernels(r->bvh8);
+  const WavefrontKernels kernels = simd::SimdWavefrontKernels(r->bvh8, r->rows);
   const int w = camera.width(), h = camera.height();
   constexpr uint32_t kSpp = 4;
   constexpr int kTile = 32;

@@ -20,6 +20,7 @@
 #include "simd/shading_point8-inl.h"
 #include "simd/transpose4-inl.h"
 #include "simd/triangle_point8-inl.h"
+#include "simd/triangle_rows.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -92,13 +93,14 @@ HWY_INLINE void ListHits(DI di, M hit, M tri, VI material, VI emitter, size_t fi
 }
 
 // ptlab::MakeInteractionBatch into rows, eight lanes at a time: every lane as a triangle hit
-// (row 0 and barycentrics 0 in the lanes of no triangle hit, so that they stay finite):
-// TrianglePoint8, Frame(n), wo = Frame::ToLocal(-d * (1 / |d|)) and the material and emitter
-// refs, stored into all the rows of the vector through 4x4 transposes; then the sphere lanes'
-// rows again with the scalar code. The hit lists from the lanes' refs (sphere lanes' material
-// gathered too) as each vector's rows are made.
-inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays,
-                                      const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+// (row 0 and barycentrics 0 in the lanes of no triangle hit, so that they stay finite): the
+// lanes' TriangleRows loaded and transposed, TrianglePointOf, ShadingNormalOf, Frame(n), wo =
+// Frame::ToLocal(-d * (1 / |d|)) and the material and emitter refs, stored into all the rows of the
+// vector through 4x4 transposes; then the sphere lanes' rows again with the scalar code. The hit
+// lists from the lanes' refs (sphere lanes' material gathered too) as each vector's rows are made.
+inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tri_rows,
+                                      const RayPacket8* rays, const HitPacket8* hits,
+                                      const Mask8* hit_mask, size_t packets,
                                       const InteractionRows& out, HitLists* lists) {
   const hn::CappedTag<float, 8> d;
   const hn::RebindToSigned<decltype(d)> di;
@@ -106,8 +108,7 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const auto zero_i = hn::Zero(di), sphere_bit = hn::Set(di, int32_t(kSphereHitBit));
   const auto no_vertex = hn::Set(di, int32_t(kNoVertex));
-  const TriangleShadingTable& sh = scene.shading;
-  const bool vertex_normals = !scene.vertices.n_x.empty();
+  const bool vertex_normals = !tri_rows.normals.empty();
   const auto as_i = [](const auto* p) { return reinterpret_cast<const int32_t*>(p); };
   const auto no_emitter = hn::Set(di, int32_t(EmitterRef::None().bits));
   alignas(32) static constexpr int32_t kLaneBits[8] = {1, 2, 4, 8, 16, 32, 64, 128};
@@ -129,10 +130,13 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays
       const auto ti = hn::IfThenElseZero(tri_i, prim);
       const bool any_tri = !hn::AllFalse(di, tri_i);
       auto material = zero_i, emitter = no_emitter;
+      // The hit triangles' rows (TriangleRows): v0, v1, v2, material, emitter, vertex rows.
+      hn::Vec<decltype(d)> row[kTriangleRowFloats];
       if (any_tri) {
-        material = hn::GatherIndex(di, as_i(sh.material.data()), ti);
-        const auto mesh = hn::GatherIndex(di, as_i(sh.mesh.data()), ti);
-        emitter = hn::GatherIndex(di, as_i(scene.meshes.emitter.data()), mesh);
+        LoadRowColumns<kTriangleRowFloats / 4>(d, tri_rows.triangles.data(), kTriangleRowFloats, ti,
+                                               row);
+        material = hn::BitCast(di, row[kRowMaterial]);
+        emitter = hn::BitCast(di, row[kRowEmitter]);
       }
       if (!hn::AllFalse(di, sphere_i)) {
         uint8_t bits[8] = {};
@@ -147,23 +151,28 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const RayPacket8* rays
       const auto b1 = hn::IfThenElseZero(tri, hn::Load(d, h.b1 + i));
       const auto b2 = hn::IfThenElseZero(tri, hn::Load(d, h.b2 + i));
       const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
+      auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
+      auto has_ng = hn::Gt(zero, zero);
+      const auto* v = row + kRowV0;
+      TrianglePointOf(d, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], b0, b1, b2, px, py,
+                      pz, gx, gy, gz, has_ng);
+      auto nx = gx, ny = gy, nz = gz;
       // ShadingNormalAt's test: the mesh has vertex normals (vertex rows 0 elsewhere).
-      auto vn_i = hn::Lt(zero_i, zero_i);
-      auto i0 = zero_i, i1 = zero_i, i2 = zero_i;
       if (vertex_normals) {
-        i0 = hn::GatherIndex(di, as_i(sh.vertex0.data()), ti);
-        vn_i = hn::And(tri_i, hn::Ne(i0, no_vertex));
+        const auto i0 = hn::BitCast(di, row[kRowVertex0]);
+        const auto vn_i = hn::And(tri_i, hn::Ne(i0, no_vertex));
         if (!hn::AllFalse(di, vn_i)) {
-          i0 = hn::IfThenElseZero(vn_i, i0);
-          i1 = hn::IfThenElseZero(vn_i, hn::GatherIndex(di, as_i(sh.vertex1.data()), ti));
-          i2 = hn::IfThenElseZero(vn_i, hn::GatherIndex(di, as_i(sh.vertex2.data()), ti));
+          hn::Vec<decltype(d)> n0[4], n1[4], n2[4];
+          const float* normals = tri_rows.normals.data();
+          LoadRowColumns<1>(d, normals, 4, hn::IfThenElseZero(vn_i, i0), n0);
+          LoadRowColumns<1>(d, normals, 4,
+                            hn::IfThenElseZero(vn_i, hn::BitCast(di, row[kRowVertex0 + 1])), n1);
+          LoadRowColumns<1>(d, normals, 4,
+                            hn::IfThenElseZero(vn_i, hn::BitCast(di, row[kRowVertex0 + 2])), n2);
+          ShadingNormalOf(d, hn::RebindMask(d, vn_i), b0, b1, b2, n0, n1, n2, gx, gy, gz, nx, ny,
+                          nz);
         }
       }
-      auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
-      auto nx = zero, ny = zero, nz = zero;
-      auto has_ng = hn::Gt(zero, zero);
-      TrianglePoint8(d, scene, ti, b0, b1, b2, hn::RebindMask(d, vn_i), i0, i1, i2, px, py, pz, gx,
-                     gy, gz, nx, ny, nz, has_ng);
       hn::Vec<decltype(d)> sx, sy, sz, b, ty, tz;
       FrameOfNormal(d, nx, ny, nz, sx, sy, sz, b, ty, tz);
       // wo = ToLocal(-d * (1 / |d|)); d = +z in the lanes of no triangle hit (the padding lanes

@@ -11,10 +11,11 @@ HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
-void MakeInteractionRowsTarget(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
+void MakeInteractionRowsTarget(const Scene& scene, const TriangleRows& tri_rows,
+                               const RayPacket8* rays, const HitPacket8* hits,
                                const Mask8* hit_mask, size_t packets, const InteractionRows& out,
                                HitLists* lists) {
-  MakeInteractionRowsKernel(scene, rays, hits, hit_mask, packets, out, lists);
+  MakeInteractionRowsKernel(scene, tri_rows, rays, hits, hit_mask, packets, out, lists);
 }
 const char* Interaction8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
@@ -30,10 +31,11 @@ namespace ptlab::simd {
 HWY_EXPORT(MakeInteractionRowsTarget);
 HWY_EXPORT(Interaction8TargetNameTarget);
 
-void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionRows& out,
-                          HitLists* lists) {
-  HWY_DYNAMIC_DISPATCH(MakeInteractionRowsTarget)(scene, rays, hits, hit_mask, packets, out, lists);
+void MakeInteractionBatch(const Scene& scene, const TriangleRows& tri_rows, const RayPacket8* rays,
+                          const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+                          const InteractionRows& out, HitLists* lists) {
+  HWY_DYNAMIC_DISPATCH(MakeInteractionRowsTarget)
+  (scene, tri_rows, rays, hits, hit_mask, packets, out, lists);
 }
 
 const char* Interaction8TargetName() { return HWY_DYNAMIC_DISPATCH(Interaction8TargetNameTarget)(); }

@@ -1,5 +1,6 @@
 // Per-target helper (re-included once per Highway target): four vectors of floats as quads of
-// rows, the 4x4 transpose within each 128-bit block (simd/interaction8, simd/continue8).
+// rows, the 4x4 transpose within each 128-bit block (simd/interaction8, simd/continue8), and
+// its way back: columns loaded from rows (simd/interaction8).
 
 #if defined(PTLAB_SIMD_TRANSPOSE4_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_TRANSPOSE4_INL_H_
@@ -7,6 +8,9 @@
 #else
 #define PTLAB_SIMD_TRANSPOSE4_INL_H_
 #endif
+
+#include <cstddef>
+#include <cstdint>
 
 #include "hwy/highway.h"
 
@@ -33,6 +37,40 @@ HWY_INLINE void TransposeQuads(D d, V f0, V f1, V f2, V f3, V* r0, V* r1, V* r2,
   *r3 = hn::BitCast(d, hn::InterleaveUpper(dd, hi01, hi23));
 }
 #endif
+
+// The first 4 * kQuads columns of the rows that the lanes of `row` index: lane j of col[c] is
+// base[row_j * stride + c] (stride floats a row, each row's quads 16-byte readable). Each
+// row is read as kQuads 16-byte loads and four rows' quads are transposed at once
+// (TransposeQuads; on 8-lane targets a vector holds the quads of lanes j and j + 4), so eight
+// rows of one cache line cost 4 * kQuads loads and 8 * kQuads shuffles where GatherIndex
+// would load 4 * kQuads * 8 lanes one by one.
+template <size_t kQuads, class D, class VI, class V = hn::Vec<D>>
+HWY_INLINE void LoadRowColumns(D d, const float* base, size_t stride, VI row, V* col) {
+#if HWY_TARGET == HWY_SCALAR
+  const float* r = base + size_t(uint32_t(hn::GetLane(row))) * stride;
+  for (size_t c = 0; c < 4 * kQuads; ++c) col[c] = hn::Set(d, r[c]);
+#else
+  constexpr size_t kLanes = hn::MaxLanes(d);
+  static_assert(kLanes == 4 || kLanes == 8);
+  const hn::RebindToSigned<D> di;
+  alignas(32) int32_t idx[kLanes];
+  hn::Store(row, di, idx);
+  const float* r[kLanes];
+  for (size_t j = 0; j < kLanes; ++j) r[j] = base + size_t(uint32_t(idx[j])) * stride;
+  for (size_t q = 0; q < kQuads; ++q) {
+    V l[4];
+    if constexpr (kLanes == 4) {
+      for (size_t j = 0; j < 4; ++j) l[j] = hn::LoadU(d, r[j] + 4 * q);
+    } else {
+      const hn::Half<D> dh;
+      for (size_t j = 0; j < 4; ++j)
+        l[j] = hn::Combine(d, hn::LoadU(dh, r[j + 4] + 4 * q), hn::LoadU(dh, r[j] + 4 * q));
+    }
+    TransposeQuads(d, l[0], l[1], l[2], l[3], &col[4 * q], &col[4 * q + 1], &col[4 * q + 2],
+                   &col[4 * q + 3]);
+  }
+#endif
+}
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd

@@ -1,7 +1,7 @@
 // Per-target helper (re-included once per Highway target): a point on a triangle from its
 // barycentrics with the triangle's geometric and shading normals, as MakeInteraction and
-// SampleAreaLight compute them, eight triangles per vector. Shared by simd/interaction8 and
-// simd/emitter8.
+// SampleAreaLight compute them, eight triangles per vector, from the scene's columns
+// (TrianglePoint8, simd/emitter8) or from vertices loaded otherwise (simd/interaction8).
 
 #if defined(PTLAB_SIMD_TRIANGLE_POINT8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_TRIANGLE_POINT8_INL_H_
@@ -25,27 +25,15 @@ HWY_INLINE V Barycentric3(V b0, V a, V b1, V b, V b2, V c) {
   return hn::Add(hn::Add(hn::Mul(a, b0), hn::Mul(b, b1)), hn::Mul(c, b2));
 }
 
-/// For triangle rows `tri` at barycentrics (b0, b1, b2), b0 = 1 - b1 - b2: p = V0 b0 + V1 b1 +
-/// V2 b2; g = Cross(V1 - V0, V2 - V0) normalized, +z where it has no length (has_ng false);
-/// n = ShadingNormalAt: the interpolated vertex normal (rows i0, i1, i2 of VertexTable, read
-/// only in `vertex_normal` lanes) where it has a length, else g. The scalar code's float
-/// operations in its order, so bit-identical to it without FMA contraction.
-template <class D, class VI, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE void TrianglePoint8(D d, const Scene& scene, VI tri, V b0, V b1, V b2,
-                               M vertex_normal, VI i0, VI i1, VI i2, V& px, V& py, V& pz, V& gx,
-                               V& gy, V& gz, V& nx, V& ny, V& nz, M& has_ng) {
-  const TriangleTable& t = scene.triangles;
-  const VertexTable& vt = scene.vertices;
+/// The point at barycentrics (b0, b1, b2), b0 = 1 - b1 - b2, of the triangles with vertices
+/// (v0, v1, v2) in lanes: p = V0 b0 + V1 b1 + V2 b2 and g = Cross(V1 - V0, V2 - V0)
+/// normalized, +z where it has no length (has_ng false). The scalar code's float operations
+/// in its order, so bit-identical to it without FMA contraction.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE void TrianglePointOf(D d, V v0x, V v0y, V v0z, V v1x, V v1y, V v1z, V v2x, V v2y, V v2z,
+                                V b0, V b1, V b2, V& px, V& py, V& pz, V& gx, V& gy, V& gz,
+                                M& has_ng) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-  const V v0x = hn::GatherIndex(d, t.v0_x.data(), tri);
-  const V v0y = hn::GatherIndex(d, t.v0_y.data(), tri);
-  const V v0z = hn::GatherIndex(d, t.v0_z.data(), tri);
-  const V v1x = hn::GatherIndex(d, t.v1_x.data(), tri);
-  const V v1y = hn::GatherIndex(d, t.v1_y.data(), tri);
-  const V v1z = hn::GatherIndex(d, t.v1_z.data(), tri);
-  const V v2x = hn::GatherIndex(d, t.v2_x.data(), tri);
-  const V v2y = hn::GatherIndex(d, t.v2_y.data(), tri);
-  const V v2z = hn::GatherIndex(d, t.v2_z.data(), tri);
   px = Barycentric3(b0, v0x, b1, v1x, b2, v2x);
   py = Barycentric3(b0, v0y, b1, v1y, b2, v2y);
   pz = Barycentric3(b0, v0z, b1, v1z, b2, v2z);
@@ -60,23 +48,50 @@ HWY_INLINE void TrianglePoint8(D d, const Scene& scene, VI tri, V b0, V b1, V b2
   gx = hn::IfThenElseZero(has_ng, hn::Mul(cx, ginv));
   gy = hn::IfThenElseZero(has_ng, hn::Mul(cy, ginv));
   gz = hn::IfThenElse(has_ng, hn::Mul(cz, ginv), one);
-  nx = gx, ny = gy, nz = gz;
-  if (hn::AllFalse(d, vertex_normal)) return;
-  const V sx = Barycentric3(b0, hn::GatherIndex(d, vt.n_x.data(), i0), b1,
-                            hn::GatherIndex(d, vt.n_x.data(), i1), b2,
-                            hn::GatherIndex(d, vt.n_x.data(), i2));
-  const V sy = Barycentric3(b0, hn::GatherIndex(d, vt.n_y.data(), i0), b1,
-                            hn::GatherIndex(d, vt.n_y.data(), i1), b2,
-                            hn::GatherIndex(d, vt.n_y.data(), i2));
-  const V sz = Barycentric3(b0, hn::GatherIndex(d, vt.n_z.data(), i0), b1,
-                            hn::GatherIndex(d, vt.n_z.data(), i1), b2,
-                            hn::GatherIndex(d, vt.n_z.data(), i2));
+}
+
+/// ShadingNormalAt from the three vertex normals (n0, n1, n2) of the lanes: their
+/// interpolation normalized where `vertex_normal` is set and it has a length, else the
+/// geometric normal g. The scalar code's operations in its order.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE void ShadingNormalOf(D d, M vertex_normal, V b0, V b1, V b2, const V* n0, const V* n1,
+                                const V* n2, V gx, V gy, V gz, V& nx, V& ny, V& nz) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const V sx = Barycentric3(b0, n0[0], b1, n1[0], b2, n2[0]);
+  const V sy = Barycentric3(b0, n0[1], b1, n1[1], b2, n2[1]);
+  const V sz = Barycentric3(b0, n0[2], b1, n1[2], b2, n2[2]);
   const V slen = hn::Sqrt(hn::Add(hn::Add(hn::Mul(sx, sx), hn::Mul(sy, sy)), hn::Mul(sz, sz)));
   const V sinv = hn::Div(one, slen);
   const M use = hn::And(vertex_normal, hn::Gt(slen, zero));
   nx = hn::IfThenElse(use, hn::Mul(sx, sinv), gx);
   ny = hn::IfThenElse(use, hn::Mul(sy, sinv), gy);
   nz = hn::IfThenElse(use, hn::Mul(sz, sinv), gz);
+}
+
+/// For triangle rows `tri` at barycentrics (b0, b1, b2): TrianglePointOf with the vertices
+/// gathered from TriangleTable, and n = ShadingNormalOf with the vertex normals (rows i0, i1,
+/// i2 of VertexTable, read only in `vertex_normal` lanes) gathered, n = g without them.
+template <class D, class VI, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE void TrianglePoint8(D d, const Scene& scene, VI tri, V b0, V b1, V b2, M vertex_normal,
+                               VI i0, VI i1, VI i2, V& px, V& py, V& pz, V& gx, V& gy, V& gz, V& nx,
+                               V& ny, V& nz, M& has_ng) {
+  const TriangleTable& t = scene.triangles;
+  const VertexTable& vt = scene.vertices;
+  TrianglePointOf(d, hn::GatherIndex(d, t.v0_x.data(), tri), hn::GatherIndex(d, t.v0_y.data(), tri),
+                  hn::GatherIndex(d, t.v0_z.data(), tri), hn::GatherIndex(d, t.v1_x.data(), tri),
+                  hn::GatherIndex(d, t.v1_y.data(), tri), hn::GatherIndex(d, t.v1_z.data(), tri),
+                  hn::GatherIndex(d, t.v2_x.data(), tri), hn::GatherIndex(d, t.v2_y.data(), tri),
+                  hn::GatherIndex(d, t.v2_z.data(), tri), b0, b1, b2, px, py, pz, gx, gy, gz,
+                  has_ng);
+  nx = gx, ny = gy, nz = gz;
+  if (hn::AllFalse(d, vertex_normal)) return;
+  const V n0[3] = {hn::GatherIndex(d, vt.n_x.data(), i0), hn::GatherIndex(d, vt.n_y.data(), i0),
+                   hn::GatherIndex(d, vt.n_z.data(), i0)};
+  const V n1[3] = {hn::GatherIndex(d, vt.n_x.data(), i1), hn::GatherIndex(d, vt.n_y.data(), i1),
+                   hn::GatherIndex(d, vt.n_z.data(), i1)};
+  const V n2[3] = {hn::GatherIndex(d, vt.n_x.data(), i2), hn::GatherIndex(d, vt.n_y.data(), i2),
+                   hn::GatherIndex(d, vt.n_z.data(), i2)};
+  ShadingNormalOf(d, vertex_normal, b0, b1, b2, n0, n1, n2, gx, gy, gz, nx, ny, nz);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -31,10 +31,16 @@ Mask8 SimdOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 a
   return Occluded8(*accel.bvh8, rays, active);
 }
 
+void SimdInteraction(const WavefrontAccel& accel, const Scene& scene, const RayPacket8* rays,
+                     const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+                     const InteractionRows& out, HitLists* lists) {
+  MakeInteractionBatch(scene, *accel.rows, rays, hits, hit_mask, packets, out, lists);
+}
+
 }  // namespace
 
-WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
-  return {.accel = {.bvh8 = &bvh8},
+WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8, const TriangleRows& rows) {
+  return {.accel = {.bvh8 = &bvh8, .rows = &rows},
           .intersect8 = SimdIntersect8,
           .occluded8 = SimdOccluded8,
           .sobol2d = ScrambledSobol2DBatch,
@@ -47,7 +53,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8) {
           .environment = SampleEnvironmentBatch,
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,
-          .interaction = MakeInteractionBatch,
+          .interaction = SimdInteraction,
           .spawn = SpawnRayBatch,
           .vertices = DecideVertices,
           .continuation = ContinuePaths,

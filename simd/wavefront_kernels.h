@@ -3,6 +3,7 @@
 
 #include "engine/render/wavefront.h"
 #include "simd/bvh8.h"
+#include "simd/triangle_rows.h"
 
 namespace ptlab::simd {
 
@@ -11,9 +12,10 @@ namespace ptlab::simd {
 /// bsdf simd::ShadeBatch (simd/shade8.h), splat simd::SplatSamples (simd/splat8.h),
 /// area_light simd::SampleAreaLightBatch (simd/emitter8.h), area_request
 /// simd::AreaEmitterRequestBatch (simd/area_request8.h), interaction
-/// simd::MakeInteractionBatch (simd/interaction8.h), spawn simd::SpawnRayBatch (simd/spawn8.h).
-/// `bvh8` must outlive the table; `name` is the Highway target (Traverse8TargetName).
+/// simd::MakeInteractionBatch (simd/interaction8.h) on `rows`, spawn simd::SpawnRayBatch
+/// (simd/spawn8.h). `bvh8` and `rows` (BuildTriangleRows of the scene rendered) must outlive
+/// the table; `name` is the Highway target (Traverse8TargetName).
 /// Its oracle: OracleWavefrontKernels on the binary Bvh that `bvh8` was collapsed from.
-WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8);
+WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8, const TriangleRows& rows);
 
 }  // namespace ptlab::simd

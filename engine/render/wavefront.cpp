@@ -314,8 +314,8 @@ class alignas(kColumnAlignment) Wavefront {
     const bool batch_escaped = EscapedRaysBatch();
     escaped_.Clear();
     HitLists lists{goes_on_.data(), area_hits_.data()};
-    kernels_->interaction(*scene_, rays_.packets.data(), hits_.data(), hit_mask_.data(), packets,
-                          {its_.data(), wo_.data()}, &lists);
+    kernels_->interaction(kernels_->accel, *scene_, rays_.packets.data(), hits_.data(),
+                          hit_mask_.data(), packets, {its_.data(), wo_.data()}, &lists);
     if (rules_.normals) {
       // The first hit's |n|, nothing else: no path goes on.
       for (uint32_t h = 0; h < lists.hits; ++h) {
@@ -1191,6 +1191,12 @@ Mask8 OracleOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8
   return got;
 }
 
+void OracleInteraction(const WavefrontAccel&, const Scene& scene, const RayPacket8* rays,
+                       const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+                       const InteractionRows& out, HitLists* lists) {
+  MakeInteractionBatch(scene, rays, hits, hit_mask, packets, out, lists);
+}
+
 }  // namespace
 
 WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
@@ -1207,7 +1213,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .environment = SampleEnvironmentBatch,
           .environment_eval = EvalEnvironmentBatch,
           .distant_disk = SampleDistantDiskBatch,
-          .interaction = MakeInteractionBatch,
+          .interaction = OracleInteraction,
           .spawn = SpawnRayBatch,
           .vertices = DecideVertices,
           .continuation = ContinuePaths,

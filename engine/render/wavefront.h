@@ -28,15 +28,18 @@
 namespace ptlab {
 
 namespace simd {
-struct Bvh8;  // simd/bvh8.h; engine/ only hands it to the SIMD table's kernels
+struct Bvh8;          // simd/bvh8.h; engine/ only hands them to the SIMD table's kernels
+struct TriangleRows;  // simd/triangle_rows.h
 }  // namespace simd
 
-/// The acceleration structures the traversal kernels read, world space. The oracle's kernels
-/// read `bvh`, simd/'s read `bvh8` (a BVH8 collapsed from it); a table leaves the other null.
-/// Both must outlive the table.
+/// What the kernels read beside the scene's tables, world space. The oracle's traversal
+/// kernels read `bvh`, simd/'s read `bvh8` (a BVH8 collapsed from it) and simd/'s interaction
+/// kernel `rows` (the scene's triangles as 64-byte rows); a table leaves the others null. All
+/// must outlive the table.
 struct WavefrontAccel {
   const Bvh* bvh = nullptr;
   const simd::Bvh8* bvh8 = nullptr;
+  const simd::TriangleRows* rows = nullptr;
 };
 
 /// The stage kernels of the wavefront, one table per implementation: OracleWavefrontKernels
@@ -144,9 +147,9 @@ struct WavefrontKernels {
   // simd::MakeInteractionBatch, bit-identical on the hit rows and in the lists' counts and
   // entries, and may write the other rows of a packet with a hit and the lists' room past their
   // counts (simd/interaction8.h).
-  void (*interaction)(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                      const Mask8* hit_mask, size_t packets, const InteractionRows& out,
-                      HitLists* lists) = nullptr;
+  void (*interaction)(const WavefrontAccel& accel, const Scene& scene, const RayPacket8* rays,
+                      const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+                      const InteractionRows& out, HitLists* lists) = nullptr;
 
   // Spawn stage: the next rays of the paths that go on after the BSDF stage, one row per path
   // in next-queue order (the wavefront writes each row's shading-point entry and local wi as it

@@ -263,11 +263,12 @@ void ExpectRowsMatchOracle(const std::string& path) {
                        &want_lists.lists);
   ExpectListsOfRows(p, want.its, want_lists);
   EXPECT_GT(want_lists.lists.area_hits, 0u);  // both scenes have area lights
+  const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
   test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
     Rows got(rows);
     Lists got_lists(rows);
-    simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
-                               got.Out(), &got_lists.lists);
+    simd::MakeInteractionBatch(scene, tri_rows, p.rays.data(), p.hits.data(), p.mask.data(),
+                               packets, got.Out(), &got_lists.lists);
     ExpectListsMatch(got_lists, want_lists);
     size_t differ = 0, nonfinite = 0, oracle_wrote = 0, first = rows;
     for (size_t q = 0; q < rows; ++q) {
@@ -331,11 +332,12 @@ void ExpectListsMatchOracleOnMasks(const std::string& path) {
   ExpectListsOfRows(p, want.its, want_lists);
   for (int g = 0; g < kMaterialGroups; ++g) EXPECT_GT(want_lists.lists.group_hits[g], 0u) << g;
   EXPECT_GT(want_lists.lists.area_hits, 0u);
+  const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
   test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
     Rows got(rows);
     Lists got_lists(rows);
-    simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), packets,
-                               got.Out(), &got_lists.lists);
+    simd::MakeInteractionBatch(scene, tri_rows, p.rays.data(), p.hits.data(), p.mask.data(),
+                               packets, got.Out(), &got_lists.lists);
     ExpectListsMatch(got_lists, want_lists);
     // Every prefix of packets (down to none) and single packets: the counts restart per call.
     for (const size_t n : {size_t(0), size_t(1), size_t(2), size_t(33)}) {
@@ -343,7 +345,7 @@ void ExpectListsMatchOracleOnMasks(const std::string& path) {
       Rows scratch(rows);
       MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), n, scratch.Out(),
                            &w.lists);
-      simd::MakeInteractionBatch(scene, p.rays.data(), p.hits.data(), p.mask.data(), n,
+      simd::MakeInteractionBatch(scene, tri_rows, p.rays.data(), p.hits.data(), p.mask.data(), n,
                                  scratch.Out(), &g.lists);
       SCOPED_TRACE(n);
       ExpectListsMatch(g, w);

@@ -923,7 +923,8 @@ void ExpectPacketRenderMatchesOracle(const std::string& path, int width) {
   scene.camera.height = int(std::lround(width / aspect));
   const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   const Bvh8 bvh8 = BuildBvh8(bvh);
-  const WavefrontKernels packets = SimdWavefrontKernels(bvh8);
+  const TriangleRows rows = BuildTriangleRows(scene);
+  const WavefrontKernels packets = SimdWavefrontKernels(bvh8, rows);
   const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
   using Type = IntegratorDesc::Type;
   const Type own = scene.integrator.type;
@@ -1004,7 +1005,8 @@ TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
   ASSERT_EQ(scene.integrator.type, IntegratorDesc::Type::kPathMis);
   const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   const Bvh8 bvh8 = BuildBvh8(bvh);
-  const WavefrontKernels packets = SimdWavefrontKernels(bvh8);
+  const TriangleRows rows = BuildTriangleRows(scene);
+  const WavefrontKernels packets = SimdWavefrontKernels(bvh8, rows);
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
   const RenderContext ctx{scene, bvh};

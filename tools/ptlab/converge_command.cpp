@@ -35,6 +35,7 @@ struct LoadedScene {
   Scene scene;
   Bvh bvh;
   simd::Bvh8 bvh8;
+  simd::TriangleRows rows;
   WavefrontKernels simd_kernels, oracle_kernels;
 
   // path=scalar or PTLAB_FORCE_SCALAR=1: the oracle's table (as `ptlab render --scalar`).
@@ -200,7 +201,8 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     }
     ls->bvh = BuildBvh(ls->scene.triangles, ls->scene.spheres);
     ls->bvh8 = simd::BuildBvh8(ls->bvh);
-    ls->simd_kernels = simd::SimdWavefrontKernels(ls->bvh8);
+    ls->rows = simd::BuildTriangleRows(ls->scene);
+    ls->simd_kernels = simd::SimdWavefrontKernels(ls->bvh8, ls->rows);
     ls->oracle_kernels = OracleWavefrontKernels(ls->bvh);
     if (!auto_ref) {
       StatusOr<Image> ref = ReadImage(args.refs[i]);

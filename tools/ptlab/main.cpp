@@ -192,21 +192,25 @@ struct PeakRss {
   uint64_t loaded = 0, bvh = 0, bvh8 = 0;
 };
 
-void PrintMemory(const Scene& scene, const Bvh& bvh, const simd::Bvh8& bvh8, const RenderResult& r,
-                 int threads, const PeakRss& peak) {
+void PrintMemory(const Scene& scene, const Bvh& bvh, const simd::Bvh8& bvh8,
+                 const simd::TriangleRows& rows, const RenderResult& r, int threads,
+                 const PeakRss& peak) {
   const SceneBytes s = SceneTableBytes(scene);
   const auto mib = [](uint64_t bytes) { return double(bytes) / double(1 << 20); };
   const uint64_t bvh_bytes = BvhBytes(bvh), bvh8_bytes = simd::Bvh8Bytes(bvh8);
-  const uint64_t counted = s.total() + bvh_bytes + bvh8_bytes + r.memory.wavefront + r.memory.film;
+  const uint64_t rows_bytes = simd::TriangleRowsBytes(rows);
+  const uint64_t counted =
+      s.total() + bvh_bytes + bvh8_bytes + rows_bytes + r.memory.wavefront + r.memory.film;
   std::fprintf(stderr,
                "stats: memory (MiB): scene %.1f (triangles %.1f, shading %.1f, vertices %.1f, "
-               "other %.1f), BVH %.1f, BVH8 %.1f, wavefronts %.1f (%d threads), film %.1f; "
-               "sum %.1f; peak RSS %.1f (after loading %.1f, BVH %.1f, BVH8 %.1f)\n",
+               "other %.1f), BVH %.1f, BVH8 %.1f, triangle rows %.1f, wavefronts %.1f (%d "
+               "threads), film %.1f; sum %.1f; peak RSS %.1f (after loading %.1f, BVH %.1f, "
+               "BVH8 %.1f)\n",
                mib(s.total()), mib(s.triangles), mib(s.shading), mib(s.vertices),
                mib(s.spheres + s.materials + s.emitters + s.meshes), mib(bvh_bytes),
-               mib(bvh8_bytes), mib(r.memory.wavefront), threads, mib(r.memory.film),
-               mib(counted), mib(PeakResidentBytes()), mib(peak.loaded), mib(peak.bvh),
-               mib(peak.bvh8));
+               mib(bvh8_bytes), mib(rows_bytes), mib(r.memory.wavefront), threads,
+               mib(r.memory.film), mib(counted), mib(PeakResidentBytes()), mib(peak.loaded),
+               mib(peak.bvh), mib(peak.bvh8));
 }
 
 // The CS184 flags that change the scene: -l, -m, -b, -d and -e (an environment-map light,
@@ -387,10 +391,12 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   // oracle's, which renders the same bits one ray at a time.
   const bool packets = !args.scalar && !ForceScalar();
   simd::Bvh8 bvh8;
+  simd::TriangleRows rows;
   WavefrontKernels kernels = OracleWavefrontKernels(bvh);
   if (packets) {
     bvh8 = simd::BuildBvh8(bvh);
-    kernels = simd::SimdWavefrontKernels(bvh8);
+    rows = simd::BuildTriangleRows(scene);
+    kernels = simd::SimdWavefrontKernels(bvh8, rows);
   }
   peak.bvh8 = PeakResidentBytes();
   options.kernels = &kernels;
@@ -415,7 +421,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (!mpi.root()) return result.interrupted ? interrupted_code : 0;  // rank 0 writes the film
   if (args.stats) {
     PrintStats(result, options.threads * mpi.size());
-    PrintMemory(scene, bvh, bvh8, result, options.threads, peak);
+    PrintMemory(scene, bvh, bvh8, rows, result, options.threads, peak);
   }
 
   if (result.nonfinite_samples > 0)

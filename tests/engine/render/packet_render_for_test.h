@@ -14,7 +14,8 @@ namespace ptlab {
 inline RenderResult RenderWithPackets(const Scene& scene, RenderOptions options) {
   const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
-  const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8);
+  const simd::TriangleRows rows = simd::BuildTriangleRows(scene);
+  const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8, rows);
   options.kernels = &kernels;
   return Render(scene, bvh, options);
 }

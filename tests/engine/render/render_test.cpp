@@ -274,7 +274,8 @@ TEST(Render, MemoryOfFilmBlocksAndWavefronts) {
   }
 
   const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
-  const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8);
+  const simd::TriangleRows rows = simd::BuildTriangleRows(scene);
+  const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8, rows);
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
   const RenderContext ctx{scene, bvh};
