@@ -29,6 +29,7 @@ const bool kContext = [] {
 // A scene's lights with fixed rows: random light, reference point in the scene's box, u.
 struct Batch {
   Scene scene;
+  simd::TriangleRows rows = simd::BuildTriangleRows(scene);
   std::vector<uint32_t> light;
   std::vector<float> ref_x, ref_y, ref_z, u_x, u_y;
   std::vector<std::vector<float>> col = std::vector<std::vector<float>>(10);
@@ -71,7 +72,7 @@ void BM_Emitter_AreaLight(benchmark::State& state, const char* relative, bool si
   const AreaLightBatchOutputs o = b->Out();
   for (auto _ : state) {
     if (simd) {
-      simd::SampleAreaLightBatch(b->scene, TriangleSampling::kArea, kBatch, b->In(), o);
+      simd::SampleAreaLightBatch(b->scene, b->rows, TriangleSampling::kArea, kBatch, b->In(), o);
     } else {
       SampleAreaLightBatch(b->scene, TriangleSampling::kArea, kBatch, b->In(), o);
     }

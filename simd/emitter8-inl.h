@@ -18,6 +18,7 @@
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
 #include "simd/light_pdf8-inl.h"
+#include "simd/transpose4-inl.h"
 #include "simd/triangle_point8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -26,12 +27,11 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Per lane of one vector of rows: the picked triangle and the vertex rows of its normals (0
-/// where unused), the rescaled u_x, 1 / light area, and which lanes are valid (area > 0) and
-/// interpolate vertex normals (1.0f) — what the vector part gathers and masks with.
+/// Per lane of one vector of rows: the picked triangle, the rescaled u_x, 1 / light area, and
+/// which lanes are valid (area > 0, 1.0f) — what the vector part loads and masks with.
 struct AreaLightLanes {
-  alignas(64) int32_t tri[8], i0[8], i1[8], i2[8];
-  alignas(64) float u_x[8], inv_area[8], valid[8], vertex_normal[8];
+  alignas(64) int32_t tri[8];
+  alignas(64) float u_x[8], inv_area[8], valid[8];
 };
 
 /// Lights a scene may have for the kernel to hold their per-light values in vectors (one or
@@ -178,36 +178,8 @@ HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightRegisterTable*
   return true;
 }
 
-/// Fills the vertex rows of `l`'s triangles' normals (0 where the mesh has none) and
-/// vertex_normal, once PickLanes has filled the rest.
-template <class D>
-HWY_INLINE void VertexRowLanes(D d, const Scene& scene, AreaLightLanes* l) {
-  const hn::RebindToSigned<D> di;
-  const TriangleShadingTable& sh = scene.shading;
-  const auto zero = hn::Zero(d);
-  const auto zero_i = hn::Zero(di);
-  const auto as_i = [](const uint32_t* p) { return reinterpret_cast<const int32_t*>(p); };
-  const auto valid_i = hn::RebindMask(di, hn::Gt(hn::Load(d, l->valid), zero));
-  // The vertex rows of the triangles' normals where the mesh has them.
-  const auto t = hn::Load(di, l->tri);
-  const auto v0 = hn::GatherIndex(di, as_i(sh.vertex0.data()), t);
-  const auto vertex_normal = hn::And(
-      valid_i, hn::Ne(v0, hn::Set(di, int32_t(kNoVertex))));
-  if (scene.vertices.n_x.empty() || hn::AllFalse(di, vertex_normal)) {
-    hn::Store(zero_i, di, l->i0), hn::Store(zero_i, di, l->i1), hn::Store(zero_i, di, l->i2);
-    hn::Store(zero, d, l->vertex_normal);
-    return;
-  }
-  hn::Store(hn::IfThenElseZero(vertex_normal, v0), di, l->i0);
-  hn::Store(hn::IfThenElseZero(vertex_normal, hn::GatherIndex(di, as_i(sh.vertex1.data()), t)), di,
-            l->i1);
-  hn::Store(hn::IfThenElseZero(vertex_normal, hn::GatherIndex(di, as_i(sh.vertex2.data()), t)), di,
-            l->i2);
-  hn::Store(hn::IfThenElseZero(hn::RebindMask(d, vertex_normal), hn::Set(d, 1.0f)), d,
-            l->vertex_normal);
-}
-
-HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling mode, size_t n,
+HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, const TriangleRows& tri_rows,
+                                           TriangleSampling mode, size_t n,
                                            const AreaLightBatchInputs& in,
                                            const AreaLightBatchOutputs& out) {
   const hn::CappedTag<float, 8> d;
@@ -220,19 +192,15 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
     std::optional<AreaLightRegisterTable> table;
     if (scene.area_lights.size() <= std::min(kRegisterLights, 2 * lanes)) table.emplace(scene);
     const AreaLightRegisterTable* registers = table ? &*table : nullptr;
-    // Picks for a chunk of vectors, then their vertex rows, then their points: short loops
-    // whose iterations the core overlaps better than one long one with a chain of dependent
-    // gathers.
+    // Picks for a chunk of vectors, then their points: short loops whose iterations the core
+    // overlaps better than one long one with a chain of dependent gathers.
     constexpr size_t kChunk = 8;
     AreaLightLanes chunk[kChunk];
     bool picked[kChunk];
     while (i + lanes <= n) {
       const size_t m = std::min(kChunk, (n - i) / lanes);
       for (size_t j = 0; j < m; ++j)
-        picked[j] =
-            PickLanes(d, scene, registers, in, i + j * lanes, &chunk[j]);
-      for (size_t j = 0; j < m; ++j)
-        if (picked[j]) VertexRowLanes(d, scene, &chunk[j]);
+        picked[j] = PickLanes(d, scene, registers, in, i + j * lanes, &chunk[j]);
       for (size_t j = 0; j < m; ++j, i += lanes) {
         const AreaLightLanes& l = chunk[j];
         if (!picked[j]) {
@@ -246,14 +214,18 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
         const auto su = hn::Sqrt(hn::Load(d, l.u_x));
         const auto b1 = hn::Sub(one, su), b2 = hn::Mul(hn::LoadU(d, in.u_y + i), su);
         const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
-        const auto vertex_normal = hn::Gt(hn::Load(d, l.vertex_normal), zero);
-        const auto i0 = hn::Load(di, l.i0), i1 = hn::Load(di, l.i1), i2 = hn::Load(di, l.i2);
-        // p, the geometric normal g (+z where degenerate) and ShadingNormalAt's n.
+        const auto valid = hn::Gt(hn::Load(d, l.valid), zero);
+        // The triangles' rows (TriangleRows), then p, the geometric normal g (+z where
+        // degenerate) and ShadingNormalAt's n: the interpolated vertex normals where the mesh
+        // has them.
+        hn::Vec<decltype(d)> row[kTriangleRowFloats];
+        LoadRowColumns<kTriangleRowFloats / 4>(d, tri_rows.triangles.data(), kTriangleRowFloats,
+                                               tri, row);
         auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
         auto nx = zero, ny = zero, nz = zero;
         auto has_ng = hn::Gt(zero, zero);
-        TrianglePoint8(d, scene, tri, b0, b1, b2, vertex_normal, i0, i1, i2, px, py, pz, gx, gy, gz,
-                       nx, ny, nz, has_ng);
+        PointOfRows(d, tri_rows, row, valid, b0, b1, b2, px, py, pz, gx, gy, gz, nx, ny, nz,
+                    has_ng);
         // ng: the unit geometric normal, or n for a degenerate triangle.
         const auto ngx = hn::IfThenElse(has_ng, gx, nx);
         const auto ngy = hn::IfThenElse(has_ng, gy, ny);
@@ -266,7 +238,6 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, TriangleSampling 
         const auto pdf =
             AreaToSolidAngle8(d, hn::Load(d, l.inv_area), dx, dy, dz, nx, ny, nz, &solid);
         // Lanes of zero-area lights: AreaLightSample{} (all zero).
-        const auto valid = hn::Gt(hn::Load(d, l.valid), zero);
         hn::StoreU(hn::IfThenElseZero(valid, px), d, out.p_x + i);
         hn::StoreU(hn::IfThenElseZero(valid, py), d, out.p_y + i);
         hn::StoreU(hn::IfThenElseZero(valid, pz), d, out.p_z + i);

@@ -11,9 +11,10 @@ HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
-void SampleAreaLightBatchTarget(const Scene& scene, TriangleSampling mode, size_t n,
-                                const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) {
-  SampleAreaLightBatchKernel(scene, mode, n, in, out);
+void SampleAreaLightBatchTarget(const Scene& scene, const TriangleRows& tri_rows,
+                                TriangleSampling mode, size_t n, const AreaLightBatchInputs& in,
+                                const AreaLightBatchOutputs& out) {
+  SampleAreaLightBatchKernel(scene, tri_rows, mode, n, in, out);
 }
 const char* Emitter8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
@@ -29,10 +30,11 @@ namespace ptlab::simd {
 HWY_EXPORT(SampleAreaLightBatchTarget);
 HWY_EXPORT(Emitter8TargetNameTarget);
 
-void SampleAreaLightBatch(const Scene& scene, TriangleSampling mode, size_t n,
-                          const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) {
+void SampleAreaLightBatch(const Scene& scene, const TriangleRows& tri_rows, TriangleSampling mode,
+                          size_t n, const AreaLightBatchInputs& in,
+                          const AreaLightBatchOutputs& out) {
   if (n == 0) return;
-  HWY_DYNAMIC_DISPATCH(SampleAreaLightBatchTarget)(scene, mode, n, in, out);
+  HWY_DYNAMIC_DISPATCH(SampleAreaLightBatchTarget)(scene, tri_rows, mode, n, in, out);
 }
 
 const char* Emitter8TargetName() { return HWY_DYNAMIC_DISPATCH(Emitter8TargetNameTarget)(); }

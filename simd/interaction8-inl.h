@@ -107,8 +107,6 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
   const size_t lanes = hn::Lanes(d);
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const auto zero_i = hn::Zero(di), sphere_bit = hn::Set(di, int32_t(kSphereHitBit));
-  const auto no_vertex = hn::Set(di, int32_t(kNoVertex));
-  const bool vertex_normals = !tri_rows.normals.empty();
   const auto as_i = [](const auto* p) { return reinterpret_cast<const int32_t*>(p); };
   const auto no_emitter = hn::Set(di, int32_t(EmitterRef::None().bits));
   alignas(32) static constexpr int32_t kLaneBits[8] = {1, 2, 4, 8, 16, 32, 64, 128};
@@ -152,27 +150,9 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
       const auto b2 = hn::IfThenElseZero(tri, hn::Load(d, h.b2 + i));
       const auto b0 = hn::Sub(hn::Sub(one, b1), b2);
       auto px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
+      auto nx = zero, ny = zero, nz = zero;
       auto has_ng = hn::Gt(zero, zero);
-      const auto* v = row + kRowV0;
-      TrianglePointOf(d, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], b0, b1, b2, px, py,
-                      pz, gx, gy, gz, has_ng);
-      auto nx = gx, ny = gy, nz = gz;
-      // ShadingNormalAt's test: the mesh has vertex normals (vertex rows 0 elsewhere).
-      if (vertex_normals) {
-        const auto i0 = hn::BitCast(di, row[kRowVertex0]);
-        const auto vn_i = hn::And(tri_i, hn::Ne(i0, no_vertex));
-        if (!hn::AllFalse(di, vn_i)) {
-          hn::Vec<decltype(d)> n0[4], n1[4], n2[4];
-          const float* normals = tri_rows.normals.data();
-          LoadRowColumns<1>(d, normals, 4, hn::IfThenElseZero(vn_i, i0), n0);
-          LoadRowColumns<1>(d, normals, 4,
-                            hn::IfThenElseZero(vn_i, hn::BitCast(di, row[kRowVertex0 + 1])), n1);
-          LoadRowColumns<1>(d, normals, 4,
-                            hn::IfThenElseZero(vn_i, hn::BitCast(di, row[kRowVertex0 + 2])), n2);
-          ShadingNormalOf(d, hn::RebindMask(d, vn_i), b0, b1, b2, n0, n1, n2, gx, gy, gz, nx, ny,
-                          nz);
-        }
-      }
+      PointOfRows(d, tri_rows, row, tri, b0, b1, b2, px, py, pz, gx, gy, gz, nx, ny, nz, has_ng);
       hn::Vec<decltype(d)> sx, sy, sz, b, ty, tz;
       FrameOfNormal(d, nx, ny, nz, sx, sy, sz, b, ty, tz);
       // wo = ToLocal(-d * (1 / |d|)); d = +z in the lanes of no triangle hit (the padding lanes

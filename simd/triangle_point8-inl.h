@@ -1,7 +1,7 @@
 // Per-target helper (re-included once per Highway target): a point on a triangle from its
 // barycentrics with the triangle's geometric and shading normals, as MakeInteraction and
-// SampleAreaLight compute them, eight triangles per vector, from the scene's columns
-// (TrianglePoint8, simd/emitter8) or from vertices loaded otherwise (simd/interaction8).
+// SampleAreaLight compute them, eight triangles per vector, from vertices and vertex normals
+// already loaded (simd/interaction8 and simd/emitter8 load them from TriangleRows).
 
 #if defined(PTLAB_SIMD_TRIANGLE_POINT8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_TRIANGLE_POINT8_INL_H_
@@ -10,8 +10,9 @@
 #define PTLAB_SIMD_TRIANGLE_POINT8_INL_H_
 #endif
 
-#include "engine/scene/scene.h"
 #include "hwy/highway.h"
+#include "simd/transpose4-inl.h"
+#include "simd/triangle_rows.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -68,30 +69,30 @@ HWY_INLINE void ShadingNormalOf(D d, M vertex_normal, V b0, V b1, V b2, const V*
   nz = hn::IfThenElse(use, hn::Mul(sz, sinv), gz);
 }
 
-/// For triangle rows `tri` at barycentrics (b0, b1, b2): TrianglePointOf with the vertices
-/// gathered from TriangleTable, and n = ShadingNormalOf with the vertex normals (rows i0, i1,
-/// i2 of VertexTable, read only in `vertex_normal` lanes) gathered, n = g without them.
-template <class D, class VI, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE void TrianglePoint8(D d, const Scene& scene, VI tri, V b0, V b1, V b2, M vertex_normal,
-                               VI i0, VI i1, VI i2, V& px, V& py, V& pz, V& gx, V& gy, V& gz, V& nx,
-                               V& ny, V& nz, M& has_ng) {
-  const TriangleTable& t = scene.triangles;
-  const VertexTable& vt = scene.vertices;
-  TrianglePointOf(d, hn::GatherIndex(d, t.v0_x.data(), tri), hn::GatherIndex(d, t.v0_y.data(), tri),
-                  hn::GatherIndex(d, t.v0_z.data(), tri), hn::GatherIndex(d, t.v1_x.data(), tri),
-                  hn::GatherIndex(d, t.v1_y.data(), tri), hn::GatherIndex(d, t.v1_z.data(), tri),
-                  hn::GatherIndex(d, t.v2_x.data(), tri), hn::GatherIndex(d, t.v2_y.data(), tri),
-                  hn::GatherIndex(d, t.v2_z.data(), tri), b0, b1, b2, px, py, pz, gx, gy, gz,
-                  has_ng);
+/// The point, geometric normal and shading normal (TrianglePointOf, ShadingNormalOf) of the
+/// triangles whose TriangleRows columns are row[0, kTriangleRowFloats) (LoadRowColumns): the
+/// vertex normal rows of tri_rows are read in the lanes of `on` whose triangle has vertex rows.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE void PointOfRows(D d, const TriangleRows& tri_rows, const V* row, M on, V b0, V b1, V b2,
+                            V& px, V& py, V& pz, V& gx, V& gy, V& gz, V& nx, V& ny, V& nz,
+                            M& has_ng) {
+  const V* v = row + kRowV0;
+  TrianglePointOf(d, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], b0, b1, b2, px, py, pz,
+                  gx, gy, gz, has_ng);
   nx = gx, ny = gy, nz = gz;
-  if (hn::AllFalse(d, vertex_normal)) return;
-  const V n0[3] = {hn::GatherIndex(d, vt.n_x.data(), i0), hn::GatherIndex(d, vt.n_y.data(), i0),
-                   hn::GatherIndex(d, vt.n_z.data(), i0)};
-  const V n1[3] = {hn::GatherIndex(d, vt.n_x.data(), i1), hn::GatherIndex(d, vt.n_y.data(), i1),
-                   hn::GatherIndex(d, vt.n_z.data(), i1)};
-  const V n2[3] = {hn::GatherIndex(d, vt.n_x.data(), i2), hn::GatherIndex(d, vt.n_y.data(), i2),
-                   hn::GatherIndex(d, vt.n_z.data(), i2)};
-  ShadingNormalOf(d, vertex_normal, b0, b1, b2, n0, n1, n2, gx, gy, gz, nx, ny, nz);
+  if (tri_rows.normals.empty()) return;
+  const hn::RebindToSigned<D> di;
+  const auto i0 = hn::BitCast(di, row[kRowVertex0]);
+  const auto vn = hn::And(hn::RebindMask(di, on), hn::Ne(i0, hn::Set(di, int32_t(kNoVertex))));
+  if (hn::AllFalse(di, vn)) return;
+  V n0[4], n1[4], n2[4];
+  const float* normals = tri_rows.normals.data();
+  LoadRowColumns<1>(d, normals, 4, hn::IfThenElseZero(vn, i0), n0);
+  LoadRowColumns<1>(d, normals, 4, hn::IfThenElseZero(vn, hn::BitCast(di, row[kRowVertex0 + 1])),
+                    n1);
+  LoadRowColumns<1>(d, normals, 4, hn::IfThenElseZero(vn, hn::BitCast(di, row[kRowVertex0 + 2])),
+                    n2);
+  ShadingNormalOf(d, hn::RebindMask(d, vn), b0, b1, b2, n0, n1, n2, gx, gy, gz, nx, ny, nz);
 }
 
 }  // namespace HWY_NAMESPACE

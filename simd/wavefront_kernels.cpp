@@ -31,6 +31,11 @@ Mask8 SimdOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 a
   return Occluded8(*accel.bvh8, rays, active);
 }
 
+void SimdAreaLight(const WavefrontAccel& accel, const Scene& scene, TriangleSampling mode, size_t n,
+                   const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) {
+  SampleAreaLightBatch(scene, *accel.rows, mode, n, in, out);
+}
+
 void SimdInteraction(const WavefrontAccel& accel, const Scene& scene, const RayPacket8* rays,
                      const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
                      const InteractionRows& out, HitLists* lists) {
@@ -47,7 +52,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8, const TriangleRows& rows
           .sobol1d = ScrambledSobol1DBatch,
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
-          .area_light = SampleAreaLightBatch,
+          .area_light = SimdAreaLight,
           .area_request = AreaEmitterRequestBatch,
           .shadow_rows = CompactShadowRows,
           .environment = SampleEnvironmentBatch,

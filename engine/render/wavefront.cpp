@@ -635,7 +635,8 @@ class alignas(kColumnAlignment) Wavefront {
                                       a.n_x.data() + b,  a.n_y.data() + b,  a.n_z.data() + b,
                                       a.ng_x.data() + b, a.ng_y.data() + b, a.ng_z.data() + b,
                                       a.pdf.data() + b};
-      kernels_->area_light(*scene_, scene_->integrator.triangle_sampling, count, in, out);
+      kernels_->area_light(kernels_->accel, *scene_, scene_->integrator.triangle_sampling, count,
+                           in, out);
       const AreaRequestInputs request_in{
           its_.data(),        a.entry.data() + b,    a.ref_x.data() + b, a.ref_y.data() + b,
           a.ref_z.data() + b, a.wo_x.data() + b,     a.wo_y.data() + b,  a.wo_z.data() + b,
@@ -1191,6 +1192,11 @@ Mask8 OracleOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8
   return got;
 }
 
+void OracleAreaLight(const WavefrontAccel&, const Scene& scene, TriangleSampling mode, size_t n,
+                     const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) {
+  SampleAreaLightBatch(scene, mode, n, in, out);
+}
+
 void OracleInteraction(const WavefrontAccel&, const Scene& scene, const RayPacket8* rays,
                        const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
                        const InteractionRows& out, HitLists* lists) {
@@ -1207,7 +1213,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .sobol1d = ScrambledSobol1DBatch,
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
-          .area_light = SampleAreaLightBatch,
+          .area_light = OracleAreaLight,
           .area_request = AreaEmitterRequestBatch,
           .shadow_rows = CompactShadowRows,
           .environment = SampleEnvironmentBatch,

@@ -33,9 +33,9 @@ struct TriangleRows;  // simd/triangle_rows.h
 }  // namespace simd
 
 /// What the kernels read beside the scene's tables, world space. The oracle's traversal
-/// kernels read `bvh`, simd/'s read `bvh8` (a BVH8 collapsed from it) and simd/'s interaction
-/// kernel `rows` (the scene's triangles as 64-byte rows); a table leaves the others null. All
-/// must outlive the table.
+/// kernels read `bvh`, simd/'s read `bvh8` (a BVH8 collapsed from it), and simd/'s interaction
+/// and area-light kernels `rows` (the scene's triangles as 64-byte rows); a table leaves the
+/// others null. All must outlive the table.
 struct WavefrontAccel {
   const Bvh* bvh = nullptr;
   const simd::Bvh8* bvh8 = nullptr;
@@ -83,8 +83,9 @@ struct WavefrontKernels {
   // of area_request below (the kernel does not care which rows it gets); the area_request slot
   // finishes them. Oracle: ptlab::SampleAreaLightBatch (SampleAreaLight per row); SIMD:
   // simd::SampleAreaLightBatch, bit-identical (simd/emitter8.h).
-  void (*area_light)(const Scene& scene, TriangleSampling mode, size_t n,
-                     const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) = nullptr;
+  void (*area_light)(const WavefrontAccel& accel, const Scene& scene, TriangleSampling mode,
+                     size_t n, const AreaLightBatchInputs& in,
+                     const AreaLightBatchOutputs& out) = nullptr;
 
   // Emitter stage, the area-light samples' finish: shadow ray, BSDF evaluation, MIS weight
   // (when `mis`) and contribution of each sample (engine/render/area_request_batch.h), one

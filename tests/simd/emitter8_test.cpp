@@ -136,12 +136,13 @@ void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0) {
     size_t valid = 0;
     for (size_t i = 0; i < n; ++i) valid += want.col[9][i] > 0;
     EXPECT_GT(valid, n / 4);  // the inputs are not all degenerate
+    const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
     test::ForEachTarget(simd::Emitter8TargetName, [&](const char*) {
       // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
       for (size_t cut = 0; cut < 8; ++cut) {
         const size_t m = n - cut;
         Outputs got(m);
-        simd::SampleAreaLightBatch(scene, mode, m, rows.In(), got.Out());
+        simd::SampleAreaLightBatch(scene, tri_rows, mode, m, rows.In(), got.Out());
         size_t differ = 0, nonfinite = 0, first = m;
         for (size_t c = 0; c < 10; ++c) {
           for (size_t i = 0; i < m; ++i) {

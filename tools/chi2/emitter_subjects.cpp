@@ -225,8 +225,9 @@ Chi2Subject SimdAreaLightSubject(std::string name, std::shared_ptr<const Scene> 
   s.params = std::to_string(lights) + " light(s), uniform pick, triangles=" +
              (mode == TriangleSampling::kSolidAngle ? "solidAngle" : "area") +
              " target=" + simd::Emitter8TargetName();
-  s.sample_batch = [scene, mode, lights](const float* u1, const Vec2f* u2, int n, Chi2Point* p,
-                                         uint8_t* ok) {
+  auto rows = std::make_shared<const simd::TriangleRows>(simd::BuildTriangleRows(*scene));
+  s.sample_batch = [scene, rows, mode, lights](const float* u1, const Vec2f* u2, int n,
+                                               Chi2Point* p, uint8_t* ok) {
     uint32_t light[kBatchRows];
     float zero[kBatchRows] = {}, u_x[kBatchRows], u_y[kBatchRows];
     float p_x[kBatchRows], p_y[kBatchRows], p_z[kBatchRows], n_x[kBatchRows], n_y[kBatchRows],
@@ -241,7 +242,7 @@ Chi2Subject SimdAreaLightSubject(std::string name, std::shared_ptr<const Scene> 
       in.light = light, in.ref_x = zero, in.ref_y = zero, in.ref_z = zero;
       in.u_x = u_x, in.u_y = u_y;
       const AreaLightBatchOutputs out{p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf};
-      simd::SampleAreaLightBatch(*scene, mode, size_t(count), in, out);
+      simd::SampleAreaLightBatch(*scene, *rows, mode, size_t(count), in, out);
       for (int i = 0; i < count; ++i) {
         ok[begin + i] = pdf[i] > 0 ? 1 : 0;
         p[begin + i] = Direction({p_x[i], p_y[i], p_z[i]});
