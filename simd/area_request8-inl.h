@@ -58,24 +58,22 @@ struct AreaRequestChunk {
 };
 
 /// Pass 1 for rows [i, i + Lanes(d)) of the batch into rows [j, j + Lanes(d)) of the chunk: the
-/// shading point's ng, n and material gathered by queue entry, wi and its validity, wi in the local
-/// frame, the shadow ray's endpoints and the light pdf; f and pdf 0; the valid rows appended to the
-/// compacted rows (a BSDF evaluation for the others would be thrown away: on sphere lights,
-/// sampled uniformly by area, half the points face away).
+/// shading point's ng and n loaded (InteractionPoints) and material gathered by queue entry, wi and
+/// its validity, wi in the local frame, the shadow ray's endpoints and the light pdf; f and pdf 0;
+/// the valid rows appended to the compacted rows (a BSDF evaluation for the others would be thrown
+/// away: on sphere lights, sampled uniformly by area, half the points face away).
 HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_t j,
                                     AreaRequestChunk* c) {
   const D8 d;
   const hn::RebindToSigned<D8> di;
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-  const auto row =
-      InteractionFirst(hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + i)));
-  const auto field = [&](int32_t offset) HWY_ATTR {
-    return InteractionField(d, in.its, row, offset);
-  };
+  const auto entry = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + i));
+  V8 its_p[3], its_ng[3], its_n[3];
+  InteractionPoints(d, in.its, entry, its_p, its_ng, its_n);
 
   const V8 px = hn::LoadU(d, in.ref_x + i), py = hn::LoadU(d, in.ref_y + i),
            pz = hn::LoadU(d, in.ref_z + i);
-  const V8 ngx = field(kInteractionNg), ngy = field(kInteractionNg + 1), ngz = field(kInteractionNg + 2);
+  const V8 ngx = its_ng[0], ngy = its_ng[1], ngz = its_ng[2];
   // wi = (ls.p - its.p) / |ls.p - its.p| (Vec3f's operator/: times the reciprocal).
   const V8 lx = hn::LoadU(d, in.p_x + i), ly = hn::LoadU(d, in.p_y + i),
            lz = hn::LoadU(d, in.p_z + i);
@@ -95,7 +93,7 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
   // wi_local = frame.ToLocal(wi): Dot(wi, s), Dot(wi, t), Dot(wi, n), the frame's s and t
   // rebuilt from n as Frame(n) builds them (every SurfaceInteraction's frame is Frame(n)):
   // fewer gathers than reading them.
-  const V8 nx = field(kInteractionN), ny = field(kInteractionN + 1), nz = field(kInteractionN + 2);
+  const V8 nx = its_n[0], ny = its_n[1], nz = its_n[2];
   V8 sx, sy, sz, b, ty, tz;
   FrameOfNormal(d, nx, ny, nz, sx, sy, sz, b, ty, tz);
   const V8 local_x = hn::Add(hn::Add(hn::Mul(wx, sx), hn::Mul(wy, sy)), hn::Mul(wz, sz));
@@ -107,8 +105,9 @@ HWY_INLINE void AreaRequestGeometry(const AreaRequestInputs& in, size_t i, size_
   if (!hn::AllFalse(d, valid)) {
     const auto valid_i = hn::RebindMask(di, valid);
     const size_t k = c->rows;
-    const auto material = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(in.its),
-                                          hn::Add(row, hn::Set(di, kInteractionMaterial)));
+    const auto material =
+        hn::GatherIndex(di, reinterpret_cast<const int32_t*>(in.its),
+                        hn::Add(InteractionFirst(entry), hn::Set(di, kInteractionMaterial)));
     hn::StoreU(hn::Compress(hn::And(material, hn::Set(di, 0x0fffffff)), valid_i), di,
                reinterpret_cast<int32_t*>(c->index + k));
     hn::StoreU(hn::Compress(hn::Add(hn::Iota(di, 0), hn::Set(di, int32_t(j))), valid_i), di,

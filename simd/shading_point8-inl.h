@@ -15,6 +15,7 @@
 
 #include "engine/render/interaction.h"
 #include "hwy/highway.h"
+#include "simd/transpose4-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -70,6 +71,21 @@ HWY_INLINE hn::Vec<D> InteractionField(D d, const SurfaceInteraction* rows, VI f
   const hn::RebindToSigned<D> di;
   return hn::GatherIndex(d, reinterpret_cast<const float*>(rows),
                          hn::Add(first, hn::Set(di, offset)));
+}
+
+/// The shading points p, ng and n (xyz each) of the rows `entry`: the rows' quads at floats 0,
+/// 4 and 12 loaded and transposed (LoadRowQuads), where nine InteractionField gathers would
+/// read them lane by lane.
+template <class D, class VI, class V = hn::Vec<D>>
+HWY_INLINE void InteractionPoints(D d, const SurfaceInteraction* rows, VI entry, V* p, V* ng,
+                                  V* n) {
+  static_assert(kInteractionP == 0 && kInteractionNg == 3 && kInteractionN == 12);
+  V q[12];
+  LoadRowQuads(d, reinterpret_cast<const float*>(rows), size_t(kInteractionFloats), entry,
+               {0, 4, 12}, q);
+  p[0] = q[0], p[1] = q[1], p[2] = q[2];
+  ng[0] = q[3], ng[1] = q[4], ng[2] = q[5];
+  n[0] = q[8], n[1] = q[9], n[2] = q[10];
 }
 
 /// The float index of each row's first field: entry · kInteractionFloats.

@@ -36,13 +36,10 @@ inline void SpawnRayBatchKernel(const SurfaceInteraction* its, size_t n, const S
     RayPacket8& ray = out[k];
     for (size_t j = 0; j < kPacketWidth; j += lanes) {
       const size_t row = k * kPacketWidth + j;
-      const auto first =
-          InteractionFirst(hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + row)));
-      const auto field = [&](int32_t offset) HWY_ATTR {
-        return InteractionField(d, its, first, offset);
-      };
-      const auto n_x = field(kInteractionN), n_y = field(kInteractionN + 1),
-                 n_z = field(kInteractionN + 2);
+      hn::Vec<decltype(d)> p[3], g[3], n[3];
+      InteractionPoints(d, its, hn::LoadU(di, reinterpret_cast<const int32_t*>(in.entry + row)), p,
+                        g, n);
+      const auto n_x = n[0], n_y = n[1], n_z = n[2];
       // The frame as the interaction slot built it (Frame(n)): fewer gathers than reading it.
       hn::Vec<decltype(d)> s_x, s_y, s_z, b, t_y, t_z;
       FrameOfNormal(d, n_x, n_y, n_z, s_x, s_y, s_z, b, t_y, t_z);
@@ -53,15 +50,13 @@ inline void SpawnRayBatchKernel(const SurfaceInteraction* its, size_t n, const S
       const auto w_y = hn::Add(hn::Add(hn::Mul(s_y, u_x), hn::Mul(t_y, u_y)), hn::Mul(n_y, u_z));
       const auto w_z = hn::Add(hn::Add(hn::Mul(s_z, u_x), hn::Mul(t_z, u_y)), hn::Mul(n_z, u_z));
       // SpawnOrigin: the geometric normal flipped to wi's side (Dot(ng, wi) >= 0 keeps it).
-      auto g_x = field(kInteractionNg), g_y = field(kInteractionNg + 1),
-           g_z = field(kInteractionNg + 2);
+      auto g_x = g[0], g_y = g[1], g_z = g[2];
       const auto side = hn::Add(hn::Add(hn::Mul(g_x, w_x), hn::Mul(g_y, w_y)), hn::Mul(g_z, w_z));
       const auto keep = hn::Ge(side, zero);
       g_x = hn::IfThenElse(keep, g_x, hn::Neg(g_x));
       g_y = hn::IfThenElse(keep, g_y, hn::Neg(g_y));
       g_z = hn::IfThenElse(keep, g_z, hn::Neg(g_z));
-      const auto p_x = field(kInteractionP), p_y = field(kInteractionP + 1),
-                 p_z = field(kInteractionP + 2);
+      const auto p_x = p[0], p_y = p[1], p_z = p[2];
       hn::Store(OffsetCoordinate(d, p_x, g_x), d, ray.org_x + j);
       hn::Store(OffsetCoordinate(d, p_y, g_y), d, ray.org_y + j);
       hn::Store(OffsetCoordinate(d, p_z, g_z), d, ray.org_z + j);

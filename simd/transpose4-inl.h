@@ -38,38 +38,54 @@ HWY_INLINE void TransposeQuads(D d, V f0, V f1, V f2, V f3, V* r0, V* r1, V* r2,
 }
 #endif
 
-// The first 4 * kQuads columns of the rows that the lanes of `row` index: lane j of col[c] is
-// base[row_j * stride + c] (stride floats a row, each row's quads 16-byte readable). Each
-// row is read as kQuads 16-byte loads and four rows' quads are transposed at once
-// (TransposeQuads; on 8-lane targets a vector holds the quads of lanes j and j + 4), so eight
-// rows of one cache line cost 4 * kQuads loads and 8 * kQuads shuffles where GatherIndex
-// would load 4 * kQuads * 8 lanes one by one.
+// Columns of the rows that the lanes of `row` index, four at a time: lane j of col[4 q + c] is
+// base[row_j * stride + first[q] + c] (stride floats a row, each quad 16-byte readable). Each
+// row's quads are 16-byte loads and four rows' quads are transposed at once (TransposeQuads;
+// on 8-lane targets a vector holds the quads of lanes j and j + 4), so eight rows' quad costs
+// 8 loads and 8 shuffles where GatherIndex would load 4 x 8 lanes one by one.
 template <size_t kQuads, class D, class VI, class V = hn::Vec<D>>
-HWY_INLINE void LoadRowColumns(D d, const float* base, size_t stride, VI row, V* col) {
+HWY_INLINE void LoadRowQuads(D d, const float* base, size_t stride, VI row,
+                             const size_t (&first)[kQuads], V* col) {
 #if HWY_TARGET == HWY_SCALAR
   const float* r = base + size_t(uint32_t(hn::GetLane(row))) * stride;
-  for (size_t c = 0; c < 4 * kQuads; ++c) col[c] = hn::Set(d, r[c]);
+  for (size_t q = 0; q < kQuads; ++q)
+    for (size_t c = 0; c < 4; ++c) col[4 * q + c] = hn::Set(d, r[first[q] + c]);
 #else
   constexpr size_t kLanes = hn::MaxLanes(d);
-  static_assert(kLanes == 4 || kLanes == 8);
   const hn::RebindToSigned<D> di;
+  if constexpr (kLanes != 4 && kLanes != 8) {
+    // Vectors of two lanes (a rebound tag on 128-bit targets): one gather a column.
+    const auto at = hn::Mul(row, hn::Set(di, int32_t(stride)));
+    for (size_t q = 0; q < kQuads; ++q)
+      for (size_t c = 0; c < 4; ++c) col[4 * q + c] = hn::GatherIndex(d, base + first[q] + c, at);
+    return;
+  }
   alignas(32) int32_t idx[kLanes];
   hn::Store(row, di, idx);
   const float* r[kLanes];
   for (size_t j = 0; j < kLanes; ++j) r[j] = base + size_t(uint32_t(idx[j])) * stride;
   for (size_t q = 0; q < kQuads; ++q) {
+    const size_t at = first[q];
     V l[4];
     if constexpr (kLanes == 4) {
-      for (size_t j = 0; j < 4; ++j) l[j] = hn::LoadU(d, r[j] + 4 * q);
+      for (size_t j = 0; j < 4; ++j) l[j] = hn::LoadU(d, r[j] + at);
     } else {
       const hn::Half<D> dh;
       for (size_t j = 0; j < 4; ++j)
-        l[j] = hn::Combine(d, hn::LoadU(dh, r[j + 4] + 4 * q), hn::LoadU(dh, r[j] + 4 * q));
+        l[j] = hn::Combine(d, hn::LoadU(dh, r[j + 4] + at), hn::LoadU(dh, r[j] + at));
     }
     TransposeQuads(d, l[0], l[1], l[2], l[3], &col[4 * q], &col[4 * q + 1], &col[4 * q + 2],
                    &col[4 * q + 3]);
   }
 #endif
+}
+
+// The first 4 * kQuads columns of the rows (LoadRowQuads of quads 0, 4, 8, ...).
+template <size_t kQuads, class D, class VI, class V = hn::Vec<D>>
+HWY_INLINE void LoadRowColumns(D d, const float* base, size_t stride, VI row, V* col) {
+  size_t first[kQuads];
+  for (size_t q = 0; q < kQuads; ++q) first[q] = 4 * q;
+  LoadRowQuads(d, base, stride, row, first, col);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -19,6 +19,7 @@
 #include "hwy/highway.h"
 #include "simd/pcg8-inl.h"
 #include "simd/store_selected-inl.h"
+#include "simd/transpose4-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -93,6 +94,16 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
       return Pcg32Float(d, Pcg32Advance(d, state, inc, kDrawJumps[j]));
     };
     const auto request = hn::Iota(du, rules.first_request + uint32_t(r));
+    // The shading point's p (for the emitter sample) and material: the row's quads at floats 0
+    // and 16 (LoadRowQuads), or the material alone.
+    hn::Vec<decltype(df)> its_q[8];
+    if (rules.emitter_sample) {
+      static_assert(kMaterialWord == 18);
+      LoadRowQuads(df, as_f(in.its), size_t(kItsWords), entry, {0, 16}, its_q);
+    } else {
+      its_q[6] = hn::BitCast(
+          df, hn::GatherIndex(di, as_i(in.its), hn::Add(its_row, hn::Set(di, kMaterialWord))));
+    }
     if (rules.emitter_sample) {
       const auto pick = draw(0), u_x = draw(1), u_y = draw(2);
       hn::Vec<decltype(di)> k;
@@ -121,12 +132,9 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
       StoreSelected(di, entry, picked_i, all_picked, reinterpret_cast<int32_t*>(a.entry + c));
       StoreSelected(di, light, picked_i, all_picked, reinterpret_cast<int32_t*>(a.light + c));
       StoreSelected(df, pick_pmf, picked, all_picked, a.pick_pmf + c);
-      StoreSelected(df, hn::GatherIndex(df, as_f(in.its), its_row), picked, all_picked,
-                    a.ref_x + c);
-      StoreSelected(df, hn::GatherIndex(df, as_f(in.its), hn::Add(its_row, hn::Set(di, 1))), picked,
-                    all_picked, a.ref_y + c);
-      StoreSelected(df, hn::GatherIndex(df, as_f(in.its), hn::Add(its_row, hn::Set(di, 2))), picked,
-                    all_picked, a.ref_z + c);
+      StoreSelected(df, its_q[0], picked, all_picked, a.ref_x + c);
+      StoreSelected(df, its_q[1], picked, all_picked, a.ref_y + c);
+      StoreSelected(df, its_q[2], picked, all_picked, a.ref_z + c);
       StoreSelected(df, wo_x, picked, all_picked, a.wo_x + c);
       StoreSelected(df, wo_y, picked, all_picked, a.wo_y + c);
       StoreSelected(df, wo_z, picked, all_picked, a.wo_z + c);
@@ -167,8 +175,7 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
     const auto alive_i = hn::RebindMask(di, alive);
     const size_t c = out->bsdf_rows;
     const bool all_alive = !rules.roulette || hn::AllTrue(df, alive);
-    const auto material =
-        hn::GatherIndex(di, as_i(in.its), hn::Add(its_row, hn::Set(di, kMaterialWord)));
+    const auto material = hn::BitCast(di, its_q[6]);
     StoreSelected(di, path, alive_i, all_alive, reinterpret_cast<int32_t*>(b.path + c));
     StoreSelected(di, entry, alive_i, all_alive, reinterpret_cast<int32_t*>(b.entry + c));
     StoreSelected(di, hn::And(material, index_bits), alive_i, all_alive,
