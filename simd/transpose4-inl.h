@@ -1,6 +1,7 @@
 // Per-target helper (re-included once per Highway target): four vectors of floats as quads of
 // rows, the 4x4 transpose within each 128-bit block (simd/interaction8, simd/continue8), and
-// its way back: columns loaded from rows (simd/interaction8).
+// its way back: columns loaded from rows (TriangleRows in simd/interaction8 and simd/emitter8,
+// interaction rows in simd/spawn8, simd/area_request8 and simd/vertex_batch8).
 
 #if defined(PTLAB_SIMD_TRANSPOSE4_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_TRANSPOSE4_INL_H_
@@ -54,7 +55,8 @@ HWY_INLINE void LoadRowQuads(D d, const float* base, size_t stride, VI row,
   constexpr size_t kLanes = hn::MaxLanes(d);
   const hn::RebindToSigned<D> di;
   if constexpr (kLanes != 4 && kLanes != 8) {
-    // Vectors of two lanes (a rebound tag on 128-bit targets): one gather a column.
+    // Other widths (two lanes: a tag rebound from 64-bit lanes on 128-bit targets): one
+    // gather a column.
     const auto at = hn::Mul(row, hn::Set(di, int32_t(stride)));
     for (size_t q = 0; q < kQuads; ++q)
       for (size_t c = 0; c < 4; ++c) col[4 * q + c] = hn::GatherIndex(d, base + first[q] + c, at);
