@@ -86,10 +86,17 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
     const auto t_r = hn::GatherIndex(df, throughput, path_row);
     const auto t_g = hn::GatherIndex(df, throughput, hn::Add(path_row, hn::Set(di, 1)));
     const auto t_b = hn::GatherIndex(df, throughput, hn::Add(path_row, hn::Set(di, 2)));
-    // The path's stream (PathSampler's words 0 and 1) and each draw's number.
+    // The path's stream (PathSampler's words 0 and 1, one quad of 32-bit halves: state low,
+    // high, increment low, high) and each draw's number.
     const auto sampler_row = hn::ShiftLeft<2>(hn::PromoteTo(di64, path));
-    const auto state = hn::GatherIndex(d, rng, sampler_row);
-    const auto inc = hn::GatherIndex(d, rng, hn::Add(sampler_row, hn::Set(di64, 1)));
+    hn::Vec<decltype(df)> words[4];
+    LoadRowQuads(df, reinterpret_cast<const float*>(rng), sizeof(PathSampler) / sizeof(float), path,
+                 {0}, words);
+    const auto word64 = [&](hn::Vec<decltype(df)> lo, hn::Vec<decltype(df)> hi) {
+      return hn::Or(hn::PromoteTo(d, hn::BitCast(du, lo)),
+                    hn::ShiftLeft<32>(hn::PromoteTo(d, hn::BitCast(du, hi))));
+    };
+    const auto state = word64(words[0], words[1]), inc = word64(words[2], words[3]);
     const auto draw = [&](size_t j) {
       return Pcg32Float(d, Pcg32Advance(d, state, inc, kDrawJumps[j]));
     };
