@@ -75,13 +75,13 @@ HWY_INLINE hn::Vec<D> LookupLight(D d, const hn::TFromD<D>* table, VI light) {
                         first);
 }
 
-/// Fills `l` for rows [row, row + lanes), all but the vertex rows (VertexRowLanes); returns
-/// whether any lane is valid. The per-light values come from `table` where the scene has one
-/// (few lights), else from gathers. The triangle pick (PickAreaLightTriangle) runs as vectors:
-/// the guide table's bucket of u, then a masked linear scan over the bucket for the first CDF
-/// entry above u (std::upper_bound over the bucket, without its unpredictable branches; its
-/// first two entries gathered together), and the same exactness check; a lane whose bucket
-/// does not bracket the answer takes the scalar pick (its full binary search).
+/// Fills `l` for rows [row, row + lanes); returns whether any lane is valid. The per-light values
+/// come from `table` where the scene has one (few lights), else from gathers. The triangle pick
+/// (PickAreaLightTriangle) runs as vectors: the guide table's bucket of u, then a masked linear
+/// scan over the bucket for the first CDF entry above u (std::upper_bound over the bucket, without
+/// its unpredictable branches; its first two entries gathered together), and the same exactness
+/// check; a lane whose bucket does not bracket the answer takes the scalar pick (its full binary
+/// search).
 template <class D>
 HWY_INLINE bool PickLanes(D d, const Scene& scene, const AreaLightRegisterTable* table,
                           const AreaLightBatchInputs& in, size_t row, AreaLightLanes* l) {

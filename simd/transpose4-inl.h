@@ -60,24 +60,24 @@ HWY_INLINE void LoadRowQuads(D d, const float* base, size_t stride, VI row,
     const auto at = hn::Mul(row, hn::Set(di, int32_t(stride)));
     for (size_t q = 0; q < kQuads; ++q)
       for (size_t c = 0; c < 4; ++c) col[4 * q + c] = hn::GatherIndex(d, base + first[q] + c, at);
-    return;
-  }
-  alignas(32) int32_t idx[kLanes];
-  hn::Store(row, di, idx);
-  const float* r[kLanes];
-  for (size_t j = 0; j < kLanes; ++j) r[j] = base + size_t(uint32_t(idx[j])) * stride;
-  for (size_t q = 0; q < kQuads; ++q) {
-    const size_t at = first[q];
-    V l[4];
-    if constexpr (kLanes == 4) {
-      for (size_t j = 0; j < 4; ++j) l[j] = hn::LoadU(d, r[j] + at);
-    } else {
-      const hn::Half<D> dh;
-      for (size_t j = 0; j < 4; ++j)
-        l[j] = hn::Combine(d, hn::LoadU(dh, r[j + 4] + at), hn::LoadU(dh, r[j] + at));
+  } else {
+    alignas(32) int32_t idx[kLanes];
+    hn::Store(row, di, idx);
+    const float* r[kLanes];
+    for (size_t j = 0; j < kLanes; ++j) r[j] = base + size_t(uint32_t(idx[j])) * stride;
+    for (size_t q = 0; q < kQuads; ++q) {
+      const size_t at = first[q];
+      V l[4];
+      if constexpr (kLanes == 4) {
+        for (size_t j = 0; j < 4; ++j) l[j] = hn::LoadU(d, r[j] + at);
+      } else {
+        const hn::Half<D> dh;
+        for (size_t j = 0; j < 4; ++j)
+          l[j] = hn::Combine(d, hn::LoadU(dh, r[j + 4] + at), hn::LoadU(dh, r[j] + at));
+      }
+      TransposeQuads(d, l[0], l[1], l[2], l[3], &col[4 * q], &col[4 * q + 1], &col[4 * q + 2],
+                     &col[4 * q + 3]);
     }
-    TransposeQuads(d, l[0], l[1], l[2], l[3], &col[4 * q], &col[4 * q + 1], &col[4 * q + 2],
-                   &col[4 * q + 3]);
   }
 #endif
 }

@@ -103,12 +103,13 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
     const auto request = hn::Iota(du, rules.first_request + uint32_t(r));
     // The shading point's p (for the emitter sample) and material: the row's quads at floats 0
     // and 16 (LoadRowQuads), or the material alone.
+    constexpr size_t kQuadOfMaterial = 16, kMaterialColumn = 4 + kMaterialWord - kQuadOfMaterial;
+    static_assert(kMaterialWord >= int32_t(kQuadOfMaterial) && kMaterialColumn < 8);
     hn::Vec<decltype(df)> its_q[8];
     if (rules.emitter_sample) {
-      static_assert(kMaterialWord == 18);
-      LoadRowQuads(df, as_f(in.its), size_t(kItsWords), entry, {0, 16}, its_q);
+      LoadRowQuads(df, as_f(in.its), size_t(kItsWords), entry, {0, kQuadOfMaterial}, its_q);
     } else {
-      its_q[6] = hn::BitCast(
+      its_q[kMaterialColumn] = hn::BitCast(
           df, hn::GatherIndex(di, as_i(in.its), hn::Add(its_row, hn::Set(di, kMaterialWord))));
     }
     if (rules.emitter_sample) {
@@ -182,7 +183,7 @@ inline void DecideVerticesKernel(const Scene& scene, const VertexBatchRules& rul
     const auto alive_i = hn::RebindMask(di, alive);
     const size_t c = out->bsdf_rows;
     const bool all_alive = !rules.roulette || hn::AllTrue(df, alive);
-    const auto material = hn::BitCast(di, its_q[6]);
+    const auto material = hn::BitCast(di, its_q[kMaterialColumn]);
     StoreSelected(di, path, alive_i, all_alive, reinterpret_cast<int32_t*>(b.path + c));
     StoreSelected(di, entry, alive_i, all_alive, reinterpret_cast<int32_t*>(b.entry + c));
     StoreSelected(di, hn::And(material, index_bits), alive_i, all_alive,

@@ -10,7 +10,7 @@ namespace ptlab::simd {
 /// The SIMD table: intersect8 / occluded8 run simd::Intersect8 / simd::Occluded8 on `bvh8`
 /// (each with its default options), sobol2d / sobol1d the 8-wide Sobol' batches (simd/sampler8.h),
 /// bsdf simd::ShadeBatch (simd/shade8.h), splat simd::SplatSamples (simd/splat8.h),
-/// area_light simd::SampleAreaLightBatch (simd/emitter8.h), area_request
+/// area_light simd::SampleAreaLightBatch (simd/emitter8.h) on `rows`, area_request
 /// simd::AreaEmitterRequestBatch (simd/area_request8.h), interaction
 /// simd::MakeInteractionBatch (simd/interaction8.h) on `rows`, spawn simd::SpawnRayBatch
 /// (simd/spawn8.h). `bvh8` and `rows` (BuildTriangleRows of the scene rendered) must outlive
