@@ -532,7 +532,7 @@ void RunBuild(benchmark::State& state, const std::string& scene_name, bool embre
     for (auto _ : state) {
       const Bvh bvh = BuildBvh(*s->triangles);
       const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
-      benchmark::DoNotOptimize(bvh8.nodes.data());
+      benchmark::DoNotOptimize(bvh8.lines.data());
     }
   } else {
 #ifdef PTLAB_HAVE_EMBREE

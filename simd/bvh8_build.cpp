@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <new>
 #include <vector>
 
 #include "engine/core/check.h"
@@ -40,26 +41,30 @@ class Collapser {
         count_[i] = count_[i + 1] + count_[node.offset];
       }
     }
-    out_->nodes.reserve(n / 4 + 1);
     if (Sah()) {
       choice_.resize(n);
       SlotCosts(0);
     }
+    // The lines are counted first, so that the array is allocated once at its final size.
+    // A line of padding at the end: an 8-float load at the last leaf's last column reads up
+    // to 7 floats past it.
+    const uint64_t lines =
+        1 + (LeafLike(0) ? kBvh8NodeLines + Bvh8LeafLines(count_[0]) : SubtreeLines(0));
+    PTLAB_CHECK(lines <= kBvh8MaxLines);
+    out_->lines.resize(lines);
     if (LeafLike(0)) {
       // A tree that is a single leaf still gets an inner root, so traversal starts at a node.
-      const uint32_t root = NewNode();
-      SetChild(root, 0, 0);
-      out_->nodes[root].num_children = 1;
+      Bvh8Node& root = NewNode();
+      root.num_children = 1;
+      SetChild(&root, 0, 0);
       out_->depth = 1;
     } else {
       Collapse(0, 1);
     }
-    // The programme's tables are done with: give them back before the packed copy is made.
-    choice_ = {};
-    PackTriangles();
-    // The reserve above bounds the node count from above: give back what is unused (1 M-triangle
-    // terrain: 152 k slots for 46 k nodes).
-    out_->nodes.shrink_to_fit();
+    // Every line but the padding is used, and the leaves partition the leaf order (each binary
+    // leaf lies in exactly one BVH8 leaf).
+    PTLAB_CHECK(cursor_ + 1 == out_->lines.size());
+    PTLAB_CHECK(covered_ == out_->num_triangles);
   }
 
  private:
@@ -125,54 +130,19 @@ class Collapser {
             count_[b] <= std::min(options_.merge_leaf_size, kBvh8MaxLeafSize));
   }
 
-  uint32_t NewNode() {
-    const uint32_t index = static_cast<uint32_t>(out_->nodes.size());
-    Bvh8Node& node = out_->nodes.emplace_back();
-    std::fill(std::begin(node.lo_x), std::end(node.lo_x), kInf);
-    std::fill(std::begin(node.lo_y), std::end(node.lo_y), kInf);
-    std::fill(std::begin(node.lo_z), std::end(node.lo_z), kInf);
-    std::fill(std::begin(node.hi_x), std::end(node.hi_x), -kInf);
-    std::fill(std::begin(node.hi_y), std::end(node.hi_y), -kInf);
-    std::fill(std::begin(node.hi_z), std::end(node.hi_z), -kInf);
-    std::fill(std::begin(node.child), std::end(node.child), 0u);
-    std::fill(std::begin(node.pad_), std::end(node.pad_), 0u);
-    node.num_children = 0;
-    node.leaf_children = 0;
-    return index;
-  }
-
-  // Slot `slot` of node `index` gets binary node b: its box and, for a leaf-like b, its
-  // triangle range. Inner children are filled in by Collapse.
-  void SetChild(uint32_t index, uint32_t slot, uint32_t b) {
-    Bvh8Node& node = out_->nodes[index];
-    const BvhNode& src = bvh_.nodes[b];
-    node.lo_x[slot] = src.bounds_min.x;
-    node.lo_y[slot] = src.bounds_min.y;
-    node.lo_z[slot] = src.bounds_min.z;
-    node.hi_x[slot] = src.bounds_max.x;
-    node.hi_y[slot] = src.bounds_max.y;
-    node.hi_z[slot] = src.bounds_max.z;
-    if (LeafLike(b)) {
-      PTLAB_CHECK(count_[b] >= 1 && count_[b] <= kBvh8MaxLeafSize);
-      node.child[slot] = MakeLeafRef(first_[b], count_[b]);
-      node.leaf_children |= 1u << slot;
-      leaves_.push_back(node.child[slot]);
-    }
-  }
-
-  // Emits the BVH8 node for inner binary node b (and, recursively, its subtree); returns its
-  // index.
-  uint32_t Collapse(uint32_t b, uint32_t depth) {
-    out_->depth = std::max(out_->depth, depth);
-    uint32_t kids[8] = {b + 1, bvh_.nodes[b].offset};
+  // The child slots of the BVH8 node made for inner binary node b, in *kids; returns their
+  // number (2 to 8).
+  uint32_t Kids(uint32_t b, uint32_t* kids) const {
+    kids[0] = b + 1, kids[1] = bvh_.nodes[b].offset;
     uint32_t num = 2;
     if (Sah()) {
       num = 0;
       const uint32_t k = choice_[b].inner_split;
       ExpandSlots(b + 1, k, kids, &num);
       ExpandSlots(bvh_.nodes[b].offset, 8 - k, kids, &num);
+      return num;
     }
-    while (!Sah() && num < 8) {
+    while (num < 8) {
       // Open the inner child with the largest surface area: it is the one most rays reach.
       int best = -1;
       float best_area = -1.0f;
@@ -188,39 +158,87 @@ class Collapser {
       kids[best + 1] = bvh_.nodes[k].offset;
       ++num;
     }
-    const uint32_t index = NewNode();
-    out_->nodes[index].num_children = num;
-    for (uint32_t i = 0; i < num; ++i) {
-      SetChild(index, i, kids[i]);
-      if (!LeafLike(kids[i])) {
-        const uint32_t child = Collapse(kids[i], depth + 1);
-        out_->nodes[index].child[i] = child;  // re-index: Collapse may reallocate nodes
-      }
-    }
-    return index;
+    return num;
   }
 
-  void PackTriangles() {
+  // Lines of the subtree Collapse(b) emits: its node, its leaves, its inner children's subtrees.
+  uint64_t SubtreeLines(uint32_t b) const {
+    uint32_t kids[8];
+    const uint32_t num = Kids(b, kids);
+    uint64_t lines = kBvh8NodeLines;
+    for (uint32_t i = 0; i < num; ++i) {
+      lines += LeafLike(kids[i]) ? Bvh8LeafLines(count_[kids[i]]) : SubtreeLines(kids[i]);
+    }
+    return lines;
+  }
+
+  // The next four lines as an empty node (every slot the empty box).
+  Bvh8Node& NewNode() {
+    Bvh8Node* node = new (out_->lines.data() + cursor_) Bvh8Node;
+    cursor_ += kBvh8NodeLines;
+    ++out_->num_nodes;
+    std::fill(std::begin(node->lo_x), std::end(node->lo_x), kInf);
+    std::fill(std::begin(node->lo_y), std::end(node->lo_y), kInf);
+    std::fill(std::begin(node->lo_z), std::end(node->lo_z), kInf);
+    std::fill(std::begin(node->hi_x), std::end(node->hi_x), -kInf);
+    std::fill(std::begin(node->hi_y), std::end(node->hi_y), -kInf);
+    std::fill(std::begin(node->hi_z), std::end(node->hi_z), -kInf);
+    std::fill(std::begin(node->child), std::end(node->child), 0u);
+    std::fill(std::begin(node->pad_), std::end(node->pad_), 0u);
+    node->num_children = 0;
+    node->leaf_children = 0;
+    return *node;
+  }
+
+  // Packs the triangles of leaf-like binary subtree b into the next lines; returns its reference.
+  Bvh8Ref PackLeaf(uint32_t b) {
+    const uint32_t first = first_[b], count = count_[b];
+    PTLAB_CHECK(count >= 1 && count <= kBvh8MaxLeafSize);
+    const Bvh8Ref ref = MakeLeafRef(static_cast<uint32_t>(cursor_), count);
+    float* dst = reinterpret_cast<float*>(out_->lines.data() + cursor_);
+    cursor_ += Bvh8LeafLines(count);
     const TriangleTable& t = bvh_.leaf_triangles;
-    const uint32_t n = static_cast<uint32_t>(t.size());
-    out_->num_triangles = n;
-    // Padding: an 8-float load at the last column of the last leaf reads 7 floats past it.
-    out_->tris.assign(size_t{kBvh8LeafColumns} * n + 16, 0.0f);
     const float* cols[9] = {t.v0_x.data(), t.v0_y.data(), t.v0_z.data(),
                             t.v1_x.data(), t.v1_y.data(), t.v1_z.data(),
                             t.v2_x.data(), t.v2_y.data(), t.v2_z.data()};
-    uint64_t covered = 0;
-    for (const Bvh8Ref leaf : leaves_) {
-      const uint32_t first = LeafFirst(leaf), count = LeafCount(leaf);
-      float* dst = out_->tris.data() + size_t{kBvh8LeafColumns} * first;
-      for (int c = 0; c < 9; ++c) {
-        for (uint32_t j = 0; j < count; ++j) dst[c * count + j] = cols[c][first + j];
-      }
-      std::memcpy(dst + 9 * count, bvh_.prim_id.data() + first, count * sizeof(uint32_t));
-      covered += count;
+    for (int c = 0; c < 9; ++c) {
+      for (uint32_t j = 0; j < count; ++j) dst[c * count + j] = cols[c][first + j];
     }
-    // The leaves partition the leaf order (each binary leaf lies in exactly one BVH8 leaf).
-    PTLAB_CHECK(covered == n);
+    std::memcpy(dst + 9 * count, bvh_.prim_id.data() + first, count * sizeof(uint32_t));
+    covered_ += count;
+    return ref;
+  }
+
+  // Slot `slot` of *node gets binary node b's box and, for a leaf-like b, its packed leaf.
+  // Inner children are filled in by Collapse.
+  void SetChild(Bvh8Node* node, uint32_t slot, uint32_t b) {
+    const BvhNode& src = bvh_.nodes[b];
+    node->lo_x[slot] = src.bounds_min.x;
+    node->lo_y[slot] = src.bounds_min.y;
+    node->lo_z[slot] = src.bounds_min.z;
+    node->hi_x[slot] = src.bounds_max.x;
+    node->hi_y[slot] = src.bounds_max.y;
+    node->hi_z[slot] = src.bounds_max.z;
+    if (LeafLike(b)) {
+      node->child[slot] = PackLeaf(b);
+      node->leaf_children |= 1u << slot;
+    }
+  }
+
+  // Emits the BVH8 node for inner binary node b, then its leaves, then its inner children's
+  // subtrees; returns the node's reference.
+  Bvh8Ref Collapse(uint32_t b, uint32_t depth) {
+    out_->depth = std::max(out_->depth, depth);
+    uint32_t kids[8];
+    const uint32_t num = Kids(b, kids);
+    const Bvh8Ref ref = static_cast<Bvh8Ref>(cursor_);
+    Bvh8Node& node = NewNode();  // the lines are allocated: the reference stays valid
+    node.num_children = num;
+    for (uint32_t i = 0; i < num; ++i) SetChild(&node, i, kids[i]);
+    for (uint32_t i = 0; i < num; ++i) {
+      if (!LeafLike(kids[i])) node.child[i] = Collapse(kids[i], depth + 1);
+    }
+    return ref;
   }
 
   const Bvh& bvh_;
@@ -235,7 +253,8 @@ class Collapser {
     uint8_t as_leaf = 0, inner_split = 0;
   };
   AlignedVector<SlotChoice> choice_;
-  std::vector<Bvh8Ref> leaves_;
+  uint64_t cursor_ = 0;   // the next free line
+  uint64_t covered_ = 0;  // triangles packed so far
 };
 
 }  // namespace
@@ -245,6 +264,7 @@ Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options) {
   out.spheres = bvh.spheres;
   if (bvh.empty()) return out;
   PTLAB_CHECK(bvh.leaf_triangles.size() < kBvh8MaxTriangles);
+  out.num_triangles = static_cast<uint32_t>(bvh.leaf_triangles.size());
   Collapser(bvh, options, &out).Run();
   const Vec3f side = bvh.nodes[0].bounds_max - bvh.nodes[0].bounds_min;
   out.extent = std::max(side.x, std::max(side.y, side.z));

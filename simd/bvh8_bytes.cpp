@@ -5,14 +5,12 @@
 
 namespace ptlab::simd {
 
-// The scalar members (num_triangles, depth, extent) are padded to the next 8 bytes.
-static_assert(sizeof(Bvh8) == sizeof(AlignedVector<Bvh8Node>) + sizeof(AlignedVector<float>) +
-                                  (2 * sizeof(uint32_t) + sizeof(float) + 7) / 8 * 8 +
+// The scalar members (num_triangles, num_nodes, depth, extent) are padded to the next 8 bytes.
+static_assert(sizeof(Bvh8) == sizeof(AlignedVector<Bvh8Line>) +
+                                  (3 * sizeof(uint32_t) + sizeof(float) + 7) / 8 * 8 +
                                   sizeof(SphereTable),
               "a member added to Bvh8 must be counted in Bvh8Bytes");
 
-size_t Bvh8Bytes(const Bvh8& bvh8) {
-  return VectorsBytes(bvh8.nodes, bvh8.tris) + TableBytes(bvh8.spheres);
-}
+size_t Bvh8Bytes(const Bvh8& bvh8) { return VectorsBytes(bvh8.lines) + TableBytes(bvh8.spheres); }
 
 }  // namespace ptlab::simd

@@ -219,11 +219,11 @@ HWY_INLINE SingleRay MakeSingleRay(const Vec3f& o, const Vec3f& d, float t_min, 
 HWY_INLINE void PrefetchChild(const Bvh8& bvh, Bvh8Ref ref) {
   if (IsLeaf(ref)) {
     // The leaf's cache lines (kBvh8LeafColumns floats a triangle), and no line past it.
-    const float* p = bvh.Leaf(LeafFirst(ref));
+    const float* p = bvh.Leaf(ref);
     const uint32_t floats = kBvh8LeafColumns * LeafCount(ref);
     for (uint32_t f = 0; f < floats; f += 16) hwy::Prefetch(p + f);
   } else {
-    const char* p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
+    const char* p = reinterpret_cast<const char*>(&bvh.Node(ref));
     hwy::Prefetch(p), hwy::Prefetch(p + 64), hwy::Prefetch(p + 128), hwy::Prefetch(p + 192);
   }
 }
@@ -235,8 +235,8 @@ HWY_INLINE void PrefetchChild(const Bvh8& bvh, Bvh8Ref ref) {
 template <bool kAnyHit>
 HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const int* k,
                            const WatertightLanes& rv, size_t lane, LaneBest* best) {
-  const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
-  const float* base = bvh.Leaf(first);
+  const uint32_t n = LeafCount(leaf);
+  const float* base = bvh.Leaf(leaf);
   const float* ax = base + k[0] * n;
   const float* ay = base + k[1] * n;
   const float* az = base + k[2] * n;
@@ -262,7 +262,7 @@ HWY_INLINE bool LeafSingle(DF d, const Bvh8& bvh, Bvh8Ref leaf, const int* k,
       hn::Store(t, d, tt), hn::Store(b1, d, bb1), hn::Store(b2, d, bb2);
       for (; bits != 0; bits &= bits - 1) {
         const int j = std::countr_zero(bits);
-        const uint32_t prim = bvh.LeafPrim(first, n, i + j);
+        const uint32_t prim = bvh.LeafPrim(leaf, i + j);
         if (tt[j] < best->t || (tt[j] == best->t && prim < best->prim)) {
           *best = {tt[j], prim, bb1[j], bb2[j]};
         }
@@ -325,7 +325,7 @@ HWY_INLINE bool TraverseSingle(const Bvh8& bvh, Bvh8Ref start, const SingleRay& 
   bool any = false;
   for (;;) {
     if (!IsLeaf(cur)) {
-      const Bvh8Node& node = bvh.nodes[cur];
+      const Bvh8Node& node = bvh.Node(cur);
       const float* planes = reinterpret_cast<const float*>(&node);
       const VF t_max = hn::Set(d, kAnyHit ? r.t_max : best.t);
       alignas(32) float dist[8];
@@ -860,8 +860,8 @@ HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketSta
   const DI di;
   const size_t lanes = hn::Lanes(d);
   const uint32_t half_mask = (1u << lanes) - 1;
-  const uint32_t first = LeafFirst(leaf), n = LeafCount(leaf);
-  const float* base = bvh.Leaf(first);
+  const uint32_t n = LeafCount(leaf);
+  const float* base = bvh.Leaf(leaf);
   // The shared permutation's column offsets (unused with kMixedK).
   const uint32_t k_n[3] = {kMixedK ? 0 : s->uniform_k[0] * n, kMixedK ? 0 : s->uniform_k[1] * n,
                            kMixedK ? 0 : s->uniform_k[2] * n};
@@ -884,7 +884,7 @@ HWY_INLINE uint32_t LeafBroadcast(DF d, const Bvh8& bvh, Bvh8Ref leaf, PacketSta
         hit_lanes |= bits << i;
         half &= ~bits;
       } else {
-        const VI prim = hn::Set(di, static_cast<int32_t>(bvh.LeafPrim(first, n, j)));
+        const VI prim = hn::Set(di, static_cast<int32_t>(bvh.LeafPrim(leaf, j)));
         const VF bt = hn::Load(d, s->best_t + i);
         const VI bp = hn::Load(di, s->best_prim + i);
         // Scene rows are below 2^28, so a signed compare orders them; kNoHit (-1) only
@@ -1049,7 +1049,7 @@ HWY_NOINLINE uint32_t TraversePacket(const Bvh8& bvh, PacketState* s, uint32_t l
       done |= LeafPacket<kAnyHit>(d, bvh, ref, s, m, options);
       if (kAnyHit && done == live) return done;
     } else {
-      const Bvh8Node& node = bvh.nodes[ref];
+      const Bvh8Node& node = bvh.Node(ref);
       uint32_t candidates = (1u << node.num_children) - 1;
       if (s->frustum) {
         candidates = FrustumChildren(d, *s, node, MaxBestT(d, *s, m));

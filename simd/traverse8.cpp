@@ -100,7 +100,7 @@ void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint
   std::fill(hit_mask, hit_mask + n, uint8_t{0});
   if (bvh.empty() || n == 0) return;
   // Scene box = union of the root's child boxes.
-  const Bvh8Node& root = bvh.nodes[0];
+  const Bvh8Node& root = bvh.Node(0);
   Vec3f lo = {root.lo_x[0], root.lo_y[0], root.lo_z[0]};
   Vec3f hi = {root.hi_x[0], root.hi_y[0], root.hi_z[0]};
   for (uint32_t c = 1; c < root.num_children; ++c) {

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -630,6 +631,22 @@ TEST(Traverse8, OtherCollapsesMatchOracle) {
   }
 }
 
+// The BVH8's nodes in the order its lines hold them (depth first: a node, its leaves, then its
+// inner children's subtrees in slot order).
+std::vector<const Bvh8Node*> NodesOf(const Bvh8& bvh8) {
+  std::vector<const Bvh8Node*> nodes;
+  std::vector<Bvh8Ref> todo{0};
+  while (!todo.empty()) {
+    const Bvh8Node& node = bvh8.Node(todo.back());
+    todo.pop_back();
+    nodes.push_back(&node);
+    for (uint32_t c = node.num_children; c-- > 0;) {
+      if (!IsLeaf(node.child[c])) todo.push_back(node.child[c]);
+    }
+  }
+  return nodes;
+}
+
 // The cost the SAH collapse minimizes (bvh8_build.cpp): the root's half area, an inner child's
 // half area, sah_leaf_cost times a leaf child's.
 double SahCost(const Bvh8& bvh8, const Bvh& bvh, float leaf_cost) {
@@ -640,7 +657,8 @@ double SahCost(const Bvh8& bvh8, const Bvh& bvh, float leaf_cost) {
   const BvhNode& root = bvh.nodes[0];
   double cost = half_area(root.bounds_min.x, root.bounds_min.y, root.bounds_min.z,
                           root.bounds_max.x, root.bounds_max.y, root.bounds_max.z);
-  for (const Bvh8Node& node : bvh8.nodes) {
+  for (const Bvh8Node* node_ptr : NodesOf(bvh8)) {
+    const Bvh8Node& node = *node_ptr;
     for (uint32_t c = 0; c < node.num_children; ++c) {
       const double a = half_area(node.lo_x[c], node.lo_y[c], node.lo_z[c], node.hi_x[c],
                                  node.hi_y[c], node.hi_z[c]);
@@ -710,8 +728,20 @@ TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
     EXPECT_EQ(bvh8.num_triangles, f.bvh.leaf_triangles.size());
     EXPECT_LE(bvh8.depth, static_cast<uint32_t>(kBvhMaxDepth));
     EXPECT_EQ(bvh8.extent, MaxComponent(f.bvh.nodes[0].bounds_max - f.bvh.nodes[0].bounds_min));
+    // Leaf order of each scene row, to find a packed triangle's binary-BVH copy.
+    std::vector<uint32_t> leaf_index(
+        *std::max_element(f.bvh.prim_id.begin(), f.bvh.prim_id.end()) + 1, ~0u);
+    for (uint32_t i = 0; i < f.bvh.prim_id.size(); ++i) leaf_index[f.bvh.prim_id[i]] = i;
     std::vector<int> covered(bvh8.num_triangles, 0);
-    for (const Bvh8Node& node : bvh8.nodes) {
+    const std::vector<const Bvh8Node*> nodes = NodesOf(bvh8);
+    EXPECT_EQ(nodes.size(), bvh8.num_nodes);
+    // The lines are laid out depth first with no gap: each node, then its leaves in slot order,
+    // then its inner children's subtrees; one line of padding ends them.
+    uint64_t line = 0;
+    for (const Bvh8Node* node_ptr : nodes) {
+      const Bvh8Node& node = *node_ptr;
+      EXPECT_EQ(reinterpret_cast<const Bvh8Line*>(&node), bvh8.lines.data() + line);
+      line += kBvh8NodeLines;
       EXPECT_GE(node.num_children, 1u);
       EXPECT_LE(node.num_children, 8u);
       for (uint32_t c = node.num_children; c < 8; ++c) {
@@ -725,25 +755,31 @@ TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
       for (uint32_t c = 0; c < node.num_children; ++c) {
         const Bvh8Ref ref = node.child[c];
         if (!IsLeaf(ref)) {
-          EXPECT_LT(ref, bvh8.nodes.size());
+          EXPECT_LT(ref + kBvh8NodeLines, bvh8.lines.size());
           continue;
         }
-        const uint32_t first = LeafFirst(ref), count = LeafCount(ref);
-        EXPECT_LE(first + count, bvh8.num_triangles);
-        for (uint32_t j = 0; j < count && first + j < bvh8.num_triangles; ++j) {
-          ++covered[first + j];
+        const uint32_t count = LeafCount(ref);
+        EXPECT_EQ(LeafLine(ref), line);
+        line += Bvh8LeafLines(count);
+        const float* base = bvh8.Leaf(ref);
+        for (uint32_t j = 0; j < count; ++j) {
+          const uint32_t prim = bvh8.LeafPrim(ref, j);
+          ASSERT_LT(prim, leaf_index.size());
+          const uint32_t i = leaf_index[prim];
+          ASSERT_NE(i, ~0u) << "scene row " << prim << " is in no binary leaf";
+          ++covered[i];
           // The packed copy holds the leaf's positions, column by column.
-          const float* base = bvh8.Leaf(first);
-          EXPECT_EQ(base[0 * count + j], f.bvh.leaf_triangles.v0_x[first + j]);
-          EXPECT_EQ(base[5 * count + j], f.bvh.leaf_triangles.v1_z[first + j]);
-          EXPECT_EQ(base[7 * count + j], f.bvh.leaf_triangles.v2_y[first + j]);
-          EXPECT_EQ(bvh8.LeafPrim(first, count, j), f.bvh.prim_id[first + j]);
-          const Vec3f v = f.bvh.leaf_triangles.V1(first + j);
+          EXPECT_EQ(base[0 * count + j], f.bvh.leaf_triangles.v0_x[i]);
+          EXPECT_EQ(base[5 * count + j], f.bvh.leaf_triangles.v1_z[i]);
+          EXPECT_EQ(base[7 * count + j], f.bvh.leaf_triangles.v2_y[i]);
+          EXPECT_EQ(base[8 * count + j], f.bvh.leaf_triangles.v2_z[i]);
+          const Vec3f v = f.bvh.leaf_triangles.V1(i);
           EXPECT_TRUE(node.lo_x[c] <= v.x && v.x <= node.hi_x[c] && node.lo_y[c] <= v.y &&
                       v.y <= node.hi_y[c] && node.lo_z[c] <= v.z && v.z <= node.hi_z[c]);
         }
       }
     }
+    EXPECT_EQ(line + 1, bvh8.lines.size());
     for (size_t i = 0; i < covered.size(); ++i) ASSERT_EQ(covered[i], 1) << "triangle " << i;
   }
 }
@@ -822,7 +858,9 @@ TEST(Traverse8, EmptyAndSingleTriangleScenes) {
   one.Append({-1, -1, 1}, {1, -1, 1}, {0, 1, 1});
   const Bvh bvh = BuildBvh(one);
   const Bvh8 bvh8 = BuildBvh8(bvh);
-  ASSERT_EQ(bvh8.nodes.size(), 1u);
+  ASSERT_EQ(bvh8.num_nodes, 1u);
+  // The root, its one-triangle leaf (one line) and the padding line.
+  EXPECT_EQ(bvh8.lines.size(), kBvh8NodeLines + 2u);
   RayPacket8 p;
   for (int j = 0; j < 8; ++j) {
     p.org_x[j] = 0.1f * static_cast<float>(j) - 0.4f, p.org_y[j] = 0, p.org_z[j] = 0;

@@ -68,8 +68,8 @@ TEST(SceneBytes, EqualElementSizeTimesRowsOfEveryColumn) {
 }
 
 // A BVH holds exactly its rows (nodes, the leaf-ordered triangle copy, the prim ids): the builds
-// leave no reserved slack; so does the BVH8 (nodes, packed leaves with their prim ids). Both grow
-// with the number of triangles.
+// leave no reserved slack; so does the BVH8 (its lines: nodes, packed leaves with their prim ids).
+// Both grow with the number of triangles.
 TEST(SceneBytes, BvhAndBvh8HoldTheirRowsOnlyAndGrowWithTriangles) {
   size_t last_bvh = 0, last_bvh8 = 0;
   for (int n : {4, 16, 64, 128}) {
@@ -78,10 +78,12 @@ TEST(SceneBytes, BvhAndBvh8HoldTheirRowsOnlyAndGrowWithTriangles) {
     const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
     const size_t tris = grid.size();
     EXPECT_EQ(BvhBytes(bvh), bvh.nodes.size() * sizeof(BvhNode) + tris * (9 + 1) * 4) << n;
-    EXPECT_GE(bvh8.tris.size(), simd::kBvh8LeafColumns * tris) << n;
-    EXPECT_EQ(simd::Bvh8Bytes(bvh8),
-              bvh8.nodes.size() * sizeof(simd::Bvh8Node) + bvh8.tris.size() * sizeof(float))
+    // The BVH8's lines hold its nodes and every triangle's ten packed columns, and are
+    // allocated at their final size.
+    EXPECT_GE(bvh8.lines.size() * sizeof(simd::Bvh8Line),
+              bvh8.num_nodes * sizeof(simd::Bvh8Node) + simd::kBvh8LeafColumns * 4 * tris)
         << n;
+    EXPECT_EQ(simd::Bvh8Bytes(bvh8), bvh8.lines.size() * sizeof(simd::Bvh8Line)) << n;
     EXPECT_GT(BvhBytes(bvh), last_bvh) << n;
     EXPECT_GT(simd::Bvh8Bytes(bvh8), last_bvh8) << n;
     last_bvh = BvhBytes(bvh), last_bvh8 = simd::Bvh8Bytes(bvh8);
