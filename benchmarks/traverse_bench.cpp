@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -234,7 +235,13 @@ std::unique_ptr<BenchScene> MakeScene(const std::string& name) {
   s->bvh8 = simd::BuildBvh8(s->bvh);
   MakeRays(camera, light, s.get());
 #ifdef PTLAB_HAVE_EMBREE
-  s->device = rtcNewDevice("threads=1,set_affinity=0");
+  // PTLAB_EMBREE_CONFIG is appended to the device's configuration: "verbose=3" prints
+  // Embree's statistics of each BVH it builds (nodes, leaves and their fill, bytes, SAH cost).
+  std::string config = "threads=1,set_affinity=0";
+  if (const char* extra = std::getenv("PTLAB_EMBREE_CONFIG"); extra != nullptr && *extra != 0) {
+    config += std::string(",") + extra;
+  }
+  s->device = rtcNewDevice(config.c_str());
   s->rtc_scene = MakeEmbreeScene(s->device, *s->triangles, /*commit=*/true);
 #endif
   return s;
