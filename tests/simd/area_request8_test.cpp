@@ -22,6 +22,7 @@
 #include "engine/io/scene_file.h"
 #include "tests/simd/area_request_rows.h"
 #include "tests/simd/for_each_target.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -74,7 +75,7 @@ double ExpectWithinContract(const test::AreaRequestColumns& want,
 }
 
 void ExpectBatchMatchesOracle(const std::string& path) {
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "scene not found: " << path;
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
@@ -140,7 +141,7 @@ TEST(AreaRequest8, ShortBatchesMatchOracle) {
   });
 }
 
-const std::string kSharedData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kSharedData = test_data::Dir();
 
 TEST(AreaRequest8, MatchesOracleOnCbox) {
   ExpectBatchMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");

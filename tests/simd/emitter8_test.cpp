@@ -17,6 +17,7 @@
 #include "engine/io/scene_file.h"
 #include "engine/light/area_light.h"
 #include "tests/simd/for_each_target.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -110,7 +111,7 @@ Rows MakeRows(const Scene& scene, size_t random, Pcg32& rng) {
 
 // `lights`: the scene's lights are copied up to that many first (0: as loaded).
 void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0) {
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
@@ -162,7 +163,7 @@ void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0) {
   }
 }
 
-const std::string kSharedData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kSharedData = test_data::Dir();
 
 TEST(Emitter8, AreaLightBatchMatchesOracleOnCbox) {
   ExpectBatchMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");

@@ -24,6 +24,7 @@
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/sample_columns.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -132,11 +133,11 @@ Frame RotatedFrame() {
   return f;
 }
 
-const std::string kEnvmaps = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/envmaps/";
+const std::string kEnvmaps = test_data::Path("envmaps/");
 
 void ExpectMatchesOnFile(const std::string& file) {
   const std::string path = kEnvmaps + file;
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  PTLAB_REQUIRE_DATA(path);
   const StatusOr<Image> image = ReadImage(path);
   ASSERT_TRUE(image.ok()) << image.status().message();
   ExpectBatchMatchesOracle(OneMap(*image), 0, 1000003);
@@ -286,7 +287,7 @@ void ExpectEvalMatchesOracle(const EnvironmentMapTable& table, uint32_t map, siz
 
 TEST(Environment8, EvalMatchesOracleOnVenice) {
   const std::string path = kEnvmaps + "venice_sunset_1k.exr";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  PTLAB_REQUIRE_DATA(path);
   const StatusOr<Image> image = ReadImage(path);
   ASSERT_TRUE(image.ok()) << image.status().message();
   ExpectEvalMatchesOracle(OneMap(*image), 0, 1000003);

@@ -29,6 +29,7 @@
 #include "engine/io/scene_file.h"
 #include "engine/render/interaction.h"
 #include "tests/simd/for_each_target.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -245,7 +246,7 @@ bool FiniteRow(const SurfaceInteraction& its, const Vec3f& wo) {
 }
 
 void ExpectRowsMatchOracle(const std::string& path) {
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
@@ -298,7 +299,7 @@ void ExpectRowsMatchOracle(const std::string& path) {
 // material and whose meshes' emitters cycle through an area light, another tag and none, and
 // spheres of every material group (a sphere never emits).
 void ExpectListsMatchOracleOnMasks(const std::string& path) {
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
@@ -353,7 +354,7 @@ void ExpectListsMatchOracleOnMasks(const std::string& path) {
   });
 }
 
-const std::string kSharedData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kSharedData = test_data::Dir();
 
 // The wavefront's rows (no vertex normals in cbox but on the frame-case quads).
 TEST(Interaction8, RowsMatchOracleOnCbox) {

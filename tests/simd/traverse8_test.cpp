@@ -34,6 +34,7 @@
 #include "simd/bvh8.h"
 #include "simd/wavefront_kernels.h"
 #include "tests/engine/bvh/test_meshes.h"
+#include "tests/test_data.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab::simd {
@@ -952,7 +953,7 @@ void ExpectWithinRenderContract(const Image& simd, const Image& oracle) {
 // `path`: a scene of ../shared/data (skipped when that is absent) or of scenes/.
 void ExpectPacketRenderMatchesOracle(const std::string& path, int width) {
   const char* rel_path = path.c_str();
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
@@ -1034,9 +1035,8 @@ void ExpectPacketRenderMatchesOracle(const std::string& path, int width) {
 // is full, so on a path-traced tile (paths dying at different depths) the lanes stay occupied.
 // Lane by lane, without compaction, the packets of deep bounces would be mostly empty.
 TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
-  const std::string path =
-      std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/epfl/scenes/pa5/table/table_mis.xml";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not found: " << path;
+  const std::string path = test_data::Path("nori/epfl/scenes/pa5/table/table_mis.xml");
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadScene(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   const Scene& scene = *loaded;
@@ -1071,7 +1071,7 @@ TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
   EXPECT_GT(stats.rays, stats.packets);  // traversal ran, packets counted above
 }
 
-const std::string kSharedData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kSharedData = test_data::Dir();
 
 TEST(Traverse8Render, PacketPathMatchesOracleOnTable) {
   ExpectPacketRenderMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml", 96);
@@ -1097,8 +1097,9 @@ TEST(Traverse8Render, PacketPathMatchesOracleOnOwnScenes) {
 TEST(Traverse8Render, PacketPathMatchesOracleOnDielectricAndEnvironmentMap) {
   ExpectPacketRenderMatchesOracle(kSharedData + "nori/epfl/scenes/pa4/motto/motto-dielectric.xml",
                                   64);
-  if (!std::filesystem::exists(kSharedData + "envmaps/venice_sunset_1k.exr"))
-    GTEST_SKIP() << "shared data not found: the Venice map";
+  // The demo names its map beside the checkout (scenes/demo.xml), whatever PTLAB_DATA says.
+  PTLAB_REQUIRE_DATA(std::string(PTLAB_SOURCE_DIR) +
+                     "/../shared/data/envmaps/venice_sunset_1k.hdr");
   ExpectPacketRenderMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/demo.xml", 64);
 }
 

@@ -190,7 +190,8 @@ std::vector<float> RandomWeights(int n, int zero_row_begin, int zero_row_end) {
 }  // namespace
 
 std::string DefaultLightDataDir() {
-  if (const char* env = std::getenv("PTLAB_DATA_DIR")) return env;
+  // The tests' rule (tests/test_data.h, docs/data.md): $PTLAB_DATA, else beside the checkout.
+  if (const char* env = std::getenv("PTLAB_DATA"); env != nullptr && *env != '\0') return env;
   // This file is <source>/tools/chi2/light_subjects.cpp.
   return (std::filesystem::path(__FILE__).parent_path() / "../../../shared/data")
       .lexically_normal()

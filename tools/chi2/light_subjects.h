@@ -9,8 +9,8 @@
 namespace ptlab {
 
 /// Where RegisterLightSubjects(registry) looks for envmaps/venice_sunset_1k.exr: the
-/// PTLAB_DATA_DIR environment variable if set, else <source tree>/../shared/data (from this
-/// file's compile-time path).
+/// PTLAB_DATA environment variable if set and not empty, else <source tree>/../shared/data (from
+/// this file's compile-time path).
 std::string DefaultLightDataDir();
 
 /// Registers, all expected to pass unless named "broken/...":

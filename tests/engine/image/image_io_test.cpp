@@ -16,6 +16,7 @@
 
 #include "engine/core/rng.h"
 #include "engine/image/srgb.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -351,8 +352,8 @@ TEST_F(ImageIo, FailedRenameRemovesTheTemporary) {
 }
 
 TEST(ImageIoNori, BunnyReference) {
-  const std::string path = PTLAB_SOURCE_DIR "/../shared/data/nori/epfl/references/bunny.exr";
-  if (!fs::exists(path)) GTEST_SKIP() << "reference data absent: " << path;
+  const std::string path = test_data::Path("nori/epfl/references/bunny.exr");
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Image> img = ReadImage(path);
   ASSERT_TRUE(img.ok()) << img.status().message();
   ASSERT_EQ(img->width, 768);
@@ -367,10 +368,9 @@ TEST(ImageIoNori, BunnyReference) {
 
 TEST(ImageIoNori, EnvmapHdrMatchesItsLosslessExr) {
   // SOURCES.md: the envmap .exr files are lossless float32 conversions of the .hdr originals.
-  const std::string base = PTLAB_SOURCE_DIR "/../shared/data/envmaps/pedestrian_overpass_1k";
-  if (!fs::exists(base + ".hdr") || !fs::exists(base + ".exr")) {
-    GTEST_SKIP() << "envmap data absent: " << base;
-  }
+  const std::string base = test_data::Path("envmaps/pedestrian_overpass_1k");
+  PTLAB_REQUIRE_DATA(base + ".hdr");
+  PTLAB_REQUIRE_DATA(base + ".exr");
   StatusOr<Image> hdr = ReadImage(base + ".hdr");
   StatusOr<Image> exr = ReadImage(base + ".exr");
   ASSERT_TRUE(hdr.ok()) << hdr.status().message();

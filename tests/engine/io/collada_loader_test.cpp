@@ -11,9 +11,10 @@
 #include <gtest/gtest.h>
 
 #include "engine/io/scene_file.h"
+#include "engine/io/shapes.h"
 #include "engine/light/distant_disk.h"
 #include "engine/render/camera.h"
-#include "engine/io/shapes.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -527,7 +528,7 @@ TEST(ColladaLoader, FormatByExtensionOrRoot) {
   EXPECT_EQ(SceneFormatOf("scene.xml"), SceneFormat::kNoriXml);
 }
 
-const std::string kSky = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/cs184/dae/sky/";
+const std::string kSky = test_data::Path("cs184/dae/sky/");
 
 const char* const kCs184Scenes[] = {
     "CBbunny_microfacet_cu.dae", "CBempty.dae",           "CBgems.dae",
@@ -535,7 +536,7 @@ const char* const kCs184Scenes[] = {
     "CBspheres_refract.dae",     "bunny_microfacet_cu_unlit.dae", "bunny_unlit.dae"};
 
 TEST(ColladaLoader, EveryCs184SceneLoads) {
-  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  PTLAB_REQUIRE_DATA(kSky);
   for (const char* name : kCs184Scenes) {
     SCOPED_TRACE(name);
     StatusOr<Scene> s = LoadSceneFile(kSky + name);
@@ -553,7 +554,7 @@ TEST(ColladaLoader, EveryCs184SceneLoads) {
 
 // The η and k of the CGL <microfacet> elements reach the conductor table as written.
 TEST(ColladaLoader, MicrofacetEtaKReachTheConductorAsWritten) {
-  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  PTLAB_REQUIRE_DATA(kSky);
   struct Row {
     float alpha, eta[3], k[3];
   };

@@ -8,14 +8,14 @@
 #include <vector>
 
 #include "engine/bsdf/bsdf.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
 
-std::string NoriDir() { return PTLAB_SOURCE_DIR "/../shared/data/nori"; }
+std::string NoriDir() { return test_data::Path("nori"); }
 
-#define PTLAB_SKIP_WITHOUT_NORI_DATA() \
-  if (!std::filesystem::exists(NoriDir())) GTEST_SKIP() << "no shared data at " << NoriDir()
+#define PTLAB_SKIP_WITHOUT_NORI_DATA() PTLAB_REQUIRE_DATA(NoriDir())
 
 StatusOr<NoriTestFile> Parse(const std::string& xml) {
   return LoadNoriTestFileFromString(xml, PTLAB_SOURCE_DIR "/tests/data/scene", "bad.xml");

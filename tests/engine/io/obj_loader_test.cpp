@@ -1,5 +1,6 @@
 // Tests of LoadObj: fan triangulation, vertex deduplication, and one test per malformed input.
 #include "engine/io/obj_loader.h"
+#include "tests/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,7 @@ std::string Fixture(const std::string& name) {
   return PTLAB_SOURCE_DIR "/tests/data/scene/meshes/" + name;
 }
 
-std::string NoriDir() { return PTLAB_SOURCE_DIR "/../shared/data/nori"; }
+std::string NoriDir() { return test_data::Path("nori"); }
 
 // The error names `file`, then `line` as "file:line:", and contains every word of `words`.
 void ExpectObjError(const StatusOr<MeshData>& result, const std::string& file, int line,
@@ -73,7 +74,7 @@ TEST(ObjLoader, ForwardReferencesResolveLikeNori) {
 }
 
 TEST(ObjLoader, NoriMeshes) {
-  if (!std::filesystem::exists(NoriDir())) GTEST_SKIP() << "no shared data at " << NoriDir();
+  PTLAB_REQUIRE_DATA(NoriDir());
   const StatusOr<MeshData> bunny = LoadObj(NoriDir() + "/epfl/scenes/pa1/bunny.obj");
   ASSERT_TRUE(bunny.ok()) << bunny.status().message();
   EXPECT_EQ(bunny->triangle_count(), 2000u);

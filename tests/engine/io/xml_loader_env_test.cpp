@@ -7,14 +7,15 @@
 #include <vector>
 
 #include "engine/image/image_io.h"
+#include "engine/io/xml_loader.h"
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
-#include "engine/io/xml_loader.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
 
-std::string SharedData() { return PTLAB_SOURCE_DIR "/../shared/data"; }
+std::string SharedData() { return test_data::Path(""); }
 
 // A directory holding small maps: sky.exr (4x2), nan.exr (a NaN pixel), and sub/sky.exr.
 std::string MapDir() {
@@ -98,8 +99,8 @@ TEST(SceneLoaderInfiniteLights, EnvmapTakesSamplingAndARotation) {
 }
 
 TEST(SceneLoaderInfiniteLights, LoadsTheNoriSphereScenes) {
-  const std::string dir = SharedData() + "/nori/eth2015/scenes/pa3/sphere";
-  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no " << dir;
+  const std::string dir = SharedData() + "nori/eth2015/scenes/pa3/sphere";
+  PTLAB_REQUIRE_DATA(dir);
   for (const char* variant : {"ao", "side"}) {
     for (const char* integrator : {"ems", "mats", "mis"}) {
       const std::string path = dir + "/sphere_" + variant + "_" + integrator + ".xml";
@@ -128,8 +129,8 @@ TEST(SceneLoaderInfiniteLights, LoadsTheNoriSphereScenes) {
 TEST(SceneLoaderInfiniteLights, LoadsThePolyHavenMaps) {
   for (const char* name :
        {"venice_sunset_1k.exr", "venice_sunset_1k.hdr", "pedestrian_overpass_1k.exr"}) {
-    const std::string path = SharedData() + "/envmaps/" + name;
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
+    const std::string path = SharedData() + "envmaps/" + name;
+    PTLAB_REQUIRE_DATA(path);
     const StatusOr<Scene> scene = Parse(
         "<emitter type=\"envmap\"><string name=\"filename\" value=\"" + path + "\"/></emitter>\n");
     ASSERT_TRUE(scene.ok()) << scene.status().message();

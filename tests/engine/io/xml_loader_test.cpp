@@ -2,6 +2,7 @@
 #include "engine/io/xml_loader.h"
 
 #include "engine/bsdf/conductor_presets.h"
+#include "tests/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -14,10 +15,9 @@ namespace ptlab {
 namespace {
 
 std::string DataDir() { return PTLAB_SOURCE_DIR "/tests/data/scene"; }
-std::string NoriDir() { return PTLAB_SOURCE_DIR "/../shared/data/nori"; }
+std::string NoriDir() { return test_data::Path("nori"); }
 
-#define PTLAB_SKIP_WITHOUT_NORI_DATA() \
-  if (!std::filesystem::exists(NoriDir())) GTEST_SKIP() << "no shared data at " << NoriDir()
+#define PTLAB_SKIP_WITHOUT_NORI_DATA() PTLAB_REQUIRE_DATA(NoriDir())
 
 // A scene with the required camera and integrator on lines 2-3; `body` starts on line 4.
 std::string Wrap(const std::string& body) {

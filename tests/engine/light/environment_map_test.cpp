@@ -12,6 +12,7 @@
 #include "engine/core/rng.h"
 #include "engine/image/image_io.h"
 #include "engine/image/srgb.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -500,8 +501,8 @@ TEST(EnvironmentMapDebugImage, FailsClearlyOnBadInput) {
 }
 
 TEST(EnvironmentMapRealData, VeniceSunsetLoadsAndSamplesFinitely) {
-  const std::string path = PTLAB_SOURCE_DIR "/../shared/data/envmaps/venice_sunset_1k.hdr";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
+  const std::string path = test_data::Path("envmaps/venice_sunset_1k.hdr");
+  PTLAB_REQUIRE_DATA(path);
   const StatusOr<Image> image = ReadImage(path);
   ASSERT_TRUE(image.ok()) << image.status().message();
   const EnvironmentMapTable t = MakeTable(*image);

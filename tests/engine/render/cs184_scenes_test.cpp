@@ -17,12 +17,13 @@
 #include "engine/render/camera.h"
 #include "engine/render/render.h"
 #include "tests/engine/render/packet_render_for_test.h"
+#include "tests/test_data.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab {
 namespace {
 
-const std::string kData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kData = test_data::Dir();
 const std::string kSky = kData + "cs184/dae/sky/";
 
 bool FullQuality() {
@@ -68,7 +69,7 @@ const char* const kScenes[] = {
 // Every scene, path traced with light sampling and 6 bounces (pathtracer -m 6): no NaN/Inf
 // sample, no NaN/Inf pixel, and light reaches the image.
 TEST(Cs184Scenes, RenderWithoutNanOrInf) {
-  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  PTLAB_REQUIRE_DATA(kSky);
   for (const char* name : kScenes) {
     SCOPED_TRACE(name);
     const RenderResult r = RenderCs184(LoadCs184(name), IntegratorDesc::Type::kPathEms, 64, 8, 6);
@@ -86,7 +87,7 @@ TEST(Cs184Scenes, RenderWithoutNanOrInf) {
 // outside): the scalar loop and the wavefront with the oracle's kernels give the same bits (the
 // SIMD kernels' render contract: Traverse8Render.PacketPathMatchesOracleOnCs184Spheres).
 TEST(Cs184Scenes, SpheresRenderBitIdenticallyThroughTheOracleWavefront) {
-  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  PTLAB_REQUIRE_DATA(kSky);
   Scene scene = LoadCs184("CBspheres.dae");
   ASSERT_EQ(scene.spheres.size(), 2u);
   scene.integrator.max_depth = 6;
@@ -113,7 +114,7 @@ void ExpectAgree(const Image& a, const Image& b, const std::string& what) {
 // the same image. CBempty is left out: its only light is a point light, which BSDF sampling
 // cannot reach. `./lab test` runs two scenes; PTLAB_FULL=1 runs all eight.
 TEST(ImageParityStrategies, Cs184ScenesMatsAgreeWithEms) {
-  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  PTLAB_REQUIRE_DATA(kSky);
   std::vector<std::string> names = {"CBspheres_lambertian.dae", "bunny_unlit.dae"};
   if (FullQuality())
     names = {"CBbunny_microfacet_cu.dae", "CBgems.dae", "CBspheres.dae",
@@ -134,7 +135,7 @@ TEST(ImageParityStrategies, Cs184ScenesMatsAgreeWithEms) {
 // triangles each, shading normals interpolated): the same image by PARITY.md's criterion,
 // path_ems with 6 bounces at 128×96 and 512 spp (about 30 s on 2 busy cores for both).
 TEST(ImageParityCs184Spheres, AnalyticSpheresAgreeWithTessellatedOnes) {
-  if (!std::filesystem::exists(kSky)) GTEST_SKIP() << "no " << kSky;
+  PTLAB_REQUIRE_DATA(kSky);
   for (const char* name : {"CBspheres_lambertian.dae", "CBspheres_refract.dae"}) {
     SCOPED_TRACE(name);
     const Scene analytic = LoadCs184(name);

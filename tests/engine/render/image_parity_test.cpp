@@ -9,15 +9,16 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
-#include "engine/render/render.h"
 #include "engine/io/xml_loader.h"
+#include "engine/render/render.h"
 #include "tests/engine/render/packet_render_for_test.h"
+#include "tests/test_data.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab {
 namespace {
 
-const std::string kData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/";
+const std::string kData = test_data::Path("nori/");
 
 struct ParityCase {
   const char* name;
@@ -52,8 +53,8 @@ class ImageParity : public ::testing::TestWithParam<ParityCase> {};
 TEST_P(ImageParity, MatchesReference) {
   const ParityCase& c = GetParam();
   const std::string scene_path = kData + c.scene, ref_path = kData + c.reference;
-  if (!std::filesystem::exists(scene_path) || !std::filesystem::exists(ref_path))
-    GTEST_SKIP() << "reference data not found under " << kData;
+  PTLAB_REQUIRE_DATA(scene_path);
+  PTLAB_REQUIRE_DATA(ref_path);
   StatusOr<Scene> scene = LoadScene(scene_path, LoadOptions{c.lookat});
   ASSERT_TRUE(scene.ok()) << scene.status().message();
   if (c.sampler) {

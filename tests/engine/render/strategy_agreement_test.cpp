@@ -8,16 +8,17 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
+#include "engine/io/xml_loader.h"
 #include "engine/render/integrator.h"
 #include "engine/render/render.h"
-#include "engine/io/xml_loader.h"
 #include "tests/engine/render/packet_render_for_test.h"
+#include "tests/test_data.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab {
 namespace {
 
-const std::string kData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kData = test_data::Dir();
 
 // Renders `scene` (already loaded) with the given integrator at a reduced resolution.
 Image RenderWith(Scene scene, IntegratorDesc::Type type, int width, uint32_t spp) {
@@ -41,7 +42,7 @@ void ExpectAgree(const Image& a, const Image& b, const std::string& what) {
 // Nori's path-traced Cornell box (mirror and glass spheres): the three path tracers agree.
 TEST(ImageParityStrategies, CboxMatsEmsMis) {
   const std::string path = kData + "nori/epfl/scenes/pa5/cbox/cbox_mis.xml";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
+  PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> scene = LoadScene(path);
   ASSERT_TRUE(scene.ok()) << scene.status().message();
   using T = IntegratorDesc::Type;
@@ -76,7 +77,7 @@ std::string EnvScene(const std::string& sampling) {
 
 TEST(ImageParityStrategies, EnvironmentUniformImportanceMatsEmsMis) {
   const std::string map = kData + "envmaps/venice_sunset_1k.exr";
-  if (!std::filesystem::exists(map)) GTEST_SKIP() << "no " << map;
+  PTLAB_REQUIRE_DATA(map);
   StatusOr<Scene> importance = LoadSceneFromString(EnvScene("importance"), ".", "env.xml");
   StatusOr<Scene> uniform = LoadSceneFromString(EnvScene("uniform"), ".", "env.xml");
   ASSERT_TRUE(importance.ok()) << importance.status().message();
@@ -118,13 +119,13 @@ TEST(ImageParityStrategies, SamplersAndLightSelectionAgree) {
                           "nori/epfl/scenes/pa5/veach_mi/veach_mis.xml",
                           "nori/epfl/scenes/pa5/table/table_mis.xml"}) {
     const std::string path = kData + rel;
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
+    PTLAB_REQUIRE_DATA(path);
     StatusOr<Scene> scene = LoadScene(path);
     ASSERT_TRUE(scene.ok()) << scene.status().message();
     ExpectSamplersAgree(*scene, 160, 512, rel);
   }
   const std::string map = kData + "envmaps/venice_sunset_1k.exr";
-  if (!std::filesystem::exists(map)) GTEST_SKIP() << "no " << map;
+  PTLAB_REQUIRE_DATA(map);
   StatusOr<Scene> env = LoadSceneFromString(EnvScene("importance"), ".", "env.xml");
   ASSERT_TRUE(env.ok()) << env.status().message();
   ExpectSamplersAgree(*env, 160, 512, "venice env");

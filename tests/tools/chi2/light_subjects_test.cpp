@@ -11,6 +11,7 @@
 #include "engine/core/rng.h"
 #include "engine/image/image_io.h"
 #include "engine/light/environment_map.h"
+#include "tests/test_data.h"
 #include "tools/chi2/chi2.h"
 #include "tools/chi2/report.h"
 #include "tools/chi2/stats_math.h"
@@ -18,13 +19,12 @@
 namespace ptlab {
 namespace {
 
-std::string DataDir() { return PTLAB_SOURCE_DIR "/../shared/data"; }
-std::string VenicePath() { return DataDir() + "/envmaps/venice_sunset_1k.exr"; }
+std::string VenicePath() { return test_data::Path("envmaps/venice_sunset_1k.exr"); }
 
 const Chi2Registry& Registry() {
   static const Chi2Registry registry = [] {
     Chi2Registry r;
-    RegisterLightSubjects(&r, DataDir());
+    RegisterLightSubjects(&r, test_data::Path(""));
     return r;
   }();
   return registry;
@@ -68,7 +68,7 @@ TEST(StatLightChi2Registry, HoldsTheSyntheticAndRealMaps) {
 // 32x32-pixel block are compared (Pearson) with probabilities computed here from the pixels
 // (bilinear cell-mean luminance × sinθ).
 TEST(StatEnvironmentMapPixels, VeniceSunsetMatchesLuminanceTimesSinTheta) {
-  if (!std::filesystem::exists(VenicePath())) GTEST_SKIP() << "no " << VenicePath();
+  PTLAB_REQUIRE_DATA(VenicePath());
   const StatusOr<Image> image = ReadImage(VenicePath());
   ASSERT_TRUE(image.ok()) << image.status().message();
   EnvironmentMapTable table;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/core/rng.h"
+#include "tests/test_data.h"
 #include "tools/chi2/stats_math.h"
 
 namespace ptlab {
@@ -254,9 +255,8 @@ TEST(NoriTestRunner, ChiSquareOfDiffuseAndSkippedDeltaBsdf) {
 }
 
 TEST(NoriTestRunner, ResultsDoNotDependOnThreads) {
-  const std::string dir = PTLAB_SOURCE_DIR "/../shared/data/nori/epfl/scenes/pa5/tests";
-  if (!std::filesystem::exists(dir + "/test-furnace.xml"))
-    GTEST_SKIP() << dir << " is absent (../shared/data not installed)";
+  const std::string dir = test_data::Path("nori/epfl/scenes/pa5/tests");
+  PTLAB_REQUIRE_DATA(dir + "/test-furnace.xml");
   StatusOr<NoriTestFile> file = LoadNoriTestFile(dir + "/test-furnace.xml");
   ASSERT_TRUE(file.ok()) << file.status().message();
   file->scenes.resize(1);
@@ -353,9 +353,8 @@ class StatNoriTests : public ::testing::TestWithParam<const char*> {};
 // significance (Šidák over the file's tests), fixed seed. Skipped when the data is absent or the
 // file needs a feature that is not supported yet.
 TEST_P(StatNoriTests, PassesAsWritten) {
-  const std::string data = PTLAB_SOURCE_DIR "/../shared/data/nori";
-  const std::string path = data + "/" + GetParam();
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
+  const std::string path = test_data::Path("nori/" + std::string(GetParam()));
+  PTLAB_REQUIRE_DATA(path);
   NoriTestOptions options;
   options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   options.chi2_report_dir = PTLAB_BINARY_DIR "/chi2_failures";

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/image/image_io.h"
+#include "tests/test_data.h"
 #include "tests/tools/command_test_util.h"
 
 namespace ptlab {
@@ -20,8 +21,7 @@ const std::string kMpirun = std::string(PTLAB_MPIEXEC) + " --allow-run-as-root -
 #endif
 const std::string kBin = std::string(PTLAB_BINARY_DIR) + "/bin/";
 const std::string kCbox = std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml";
-const std::string kTable =
-    std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/epfl/scenes/pa5/table/table_mis.xml";
+const std::string kTable = test_data::Path("nori/epfl/scenes/pa5/table/table_mis.xml");
 
 using test_util::ReadFile;
 using test_util::RunShell;
@@ -54,6 +54,7 @@ std::string Attribute(const fs::path& exr, const std::string& name) {
 
 TEST(MpiRender, BitIdenticalToOneProcessForAnyRanksAndThreads) {
   // Two scenes, two integrators (cbox: direct_mis, table: path_mis), two passes of 16 spp.
+  PTLAB_REQUIRE_DATA(kTable);
   for (const std::string& scene : {kCbox, kTable}) {
     const fs::path dir = TempDir(fs::path(scene).stem().string());
     const std::string args = " render " + scene + " --spp 32 --width 64 --height 48 --seed 5 -q";
@@ -178,7 +179,8 @@ TEST(MpiChi2, SameVerdictsAndPValuesAsOneProcess) {
 TEST(MpiNoriTest, SameLinesAsOneProcess) {
   // Scene t-tests, BSDF t-tests and BSDF chi2 tests, their cases shared among 2 ranks.
   const fs::path dir = TempDir("nori_test");
-  const std::string tests = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/nori/epfl/scenes/pa5/tests/";
+  const std::string tests = test_data::Path("nori/epfl/scenes/pa5/tests/");
+  PTLAB_REQUIRE_DATA(tests);
   for (const std::string name : {"test-direct", "ttest-microfacet", "chi2test-microfacet"}) {
     const std::string file = tests + name + ".xml";
     ASSERT_EQ(RunShell(kBin + "ptlab test " + file, dir / (name + ".one")), 0)

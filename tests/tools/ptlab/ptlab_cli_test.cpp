@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/image/image_io.h"
+#include "tests/test_data.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab {
@@ -267,8 +268,8 @@ TEST(PtlabCli, HelpOnEveryCommand) {
 }
 
 TEST(PtlabCli, EnvmapPdfWritesTheDebugImage) {
-  const std::string map = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/envmaps/venice_sunset_1k.exr";
-  if (!fs::exists(map)) GTEST_SKIP() << "no " << map;
+  const std::string map = test_data::Path("envmaps/venice_sunset_1k.exr");
+  PTLAB_REQUIRE_DATA(map);
   const fs::path dir = TempDir("cli_envmap_pdf");
   ASSERT_EQ(RunPtlab("envmap-pdf " + map + " -o " + (dir / "pdf.png").string(), dir / "log"), 0)
       << ReadFile(dir / "log");

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/image/image_io.h"
+#include "tests/test_data.h"
 #include "tests/tools/command_test_util.h"
 
 namespace ptlab {
@@ -20,7 +21,7 @@ using test_util::RunShell;
 using test_util::TempDir;
 
 const std::string kPtlab = std::string(PTLAB_BINARY_DIR) + "/bin/ptlab";
-const std::string kData = std::string(PTLAB_SOURCE_DIR) + "/../shared/data/";
+const std::string kData = test_data::Dir();
 const std::string kLambertian = kData + "cs184/dae/sky/CBspheres_lambertian.dae";
 const std::string kUnlit = kData + "cs184/dae/sky/bunny_unlit.dae";
 const std::string kVenice = kData + "envmaps/venice_sunset_1k.exr";
@@ -28,8 +29,9 @@ const std::string kVenice = kData + "envmaps/venice_sunset_1k.exr";
 class PtlabCs184Flags : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(kLambertian) || !fs::exists(kUnlit) || !fs::exists(kVenice))
-      GTEST_SKIP() << "no CS184 scenes under " << kData;
+    PTLAB_REQUIRE_DATA(kLambertian);
+    PTLAB_REQUIRE_DATA(kUnlit);
+    PTLAB_REQUIRE_DATA(kVenice);
     dir_ = TempDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
 
