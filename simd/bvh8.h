@@ -87,8 +87,8 @@ inline constexpr uint32_t Bvh8LeafLines(uint32_t count) {
 /// line of padding). A node's leaves lie right after it, each from a line of its own, as
 /// Embree's allocator places them, where separate node and leaf arrays put them megabytes apart
 /// (measured on the 1 M-triangle terrain's bounce rays: 1-3 % faster, 8 % more bytes; see
-/// README). The scene rows sit beside the positions because a hit reads its row right after
-/// the test: from a separate array that was one more cache miss per hit.
+/// docs/traversal.md). The scene rows sit beside the positions because a hit reads its row
+/// right after the test: from a separate array that was one more cache miss per hit.
 struct Bvh8 {
   AlignedVector<Bvh8Line> lines;  // the root node is lines [0, 4) (empty: nothing can be hit)
   uint32_t num_triangles = 0;

@@ -12,7 +12,7 @@ inline constexpr std::size_t kColumnAlignment = 64;
 /// kernel's transparent huge pages (madvise), as Embree does for its BVH: traversal of a large
 /// scene visits nodes and leaves all over megabytes of memory, and with 4 KiB pages those
 /// visits also wait on page walks (measured: the 1 M-triangle terrain's bounce rays traverse
-/// 5-7 % faster on huge pages, see README).
+/// 5-7 % faster on huge pages, see docs/traversal.md).
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 
 /// Aligned allocation of `bytes` for a column (kColumnAlignment, or kHugePageBytes with the

@@ -107,7 +107,7 @@ Status ReadCommon(const Document& doc, const pugi::xml_node& profile, Effect* e)
   if (!model) return doc.Error(technique, "the common technique has no shading model");
   // The shading model's other terms (specular, shininess, ambient, reflective, transparency,
   // index_of_refraction) are what Blender exports for its own renderer; CS184 renders the
-  // diffuse color only, and so does ptlab (README "CS184 scenes").
+  // diffuse color only, and so does ptlab (docs/cs184.md).
   PTLAB_RETURN_IF_ERROR(doc.CheckChildren(
       model, {"emission", "ambient", "diffuse", "specular", "shininess", "reflective",
               "reflectivity", "transparent", "transparency", "index_of_refraction"}));

@@ -26,7 +26,7 @@ struct Effect {
 /// profile_COMMON technique (phong, blinn, lambert or constant; 0.5 grey when it has none).
 StatusOr<Effect> ReadEffect(const Document& doc, const pugi::xml_node& effect);
 
-/// Adds the ptlab row for `effect` (README "CS184 scenes" gives the mapping): diffuse →
+/// Adds the ptlab row for `effect` (docs/cs184.md gives the mapping): diffuse →
 /// Lambertian; mirror → mirror; glass → dielectric with Schlick's Fresnel and radiance scaling
 /// (CS184 GlassBSDF), exterior IOR 1; refraction → the same, refraction only; microfacet →
 /// Beckmann conductor with the RGB η, k; emission → black Lambertian (its radiance becomes an

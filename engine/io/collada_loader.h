@@ -9,7 +9,7 @@
 namespace ptlab {
 
 /// Loads a COLLADA 1.4.1 scene as CS184's pathtracer reads it (the subset Blender 2.7x exports
-/// and the course's CGL extras; README "CS184 scenes" lists what maps to what):
+/// and the course's CGL extras; docs/cs184.md lists what maps to what):
 /// - <asset>: <unit meter> scales the world, <up_axis> X_UP/Y_UP/Z_UP is turned to +y up (as
 ///   CS184 does, so that environment maps have their zenith up). Other asset children are
 ///   metadata.

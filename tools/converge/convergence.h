@@ -68,7 +68,7 @@ Status WriteConvergeCsv(const std::string& path, const std::vector<ConvergencePo
 Status WriteConvergeJson(const std::string& path, const std::vector<std::string>& references,
                          const std::vector<ConvergencePoint>& points,
                          const std::vector<VariantSummary>& summary);
-/// A Markdown table of the summary (what `ptlab converge` prints and the README shows).
+/// A Markdown table of the summary (what `ptlab converge` prints and docs/converge.md shows).
 std::string SummaryTable(const std::vector<VariantSummary>& summary);
 
 /// Plots of one scene's variants through gnuplot: <stem>_seconds (relMSE vs seconds),

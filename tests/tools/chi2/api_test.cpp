@@ -15,7 +15,7 @@ namespace {
 
 constexpr float kPiF = 3.14159265f;
 
-// README's example lobe: sampler and pdf, float arithmetic.
+// docs/chi2.md's example lobe: sampler and pdf, float arithmetic.
 chi2::Point SamplePowerCosine(float u0, float u1, float n) {
   const float z = std::pow(u0, 1.0f / (n + 1.0f)), r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
   const float phi = 2.0f * kPiF * u1;
@@ -69,7 +69,7 @@ TEST(StatChi2Api, SameResultAsTheLabsOwnTest) {
   EXPECT_TRUE(b.passed);
 }
 
-// α = 0.01; the broken variants of the README are rejected for the reason they are broken.
+// α = 0.01; the broken variants of docs/chi2.md are rejected for the reason they are broken.
 TEST(StatChi2Api, BrokenVariantsFail) {
   chi2::Options o;
   o.samples = 200000;

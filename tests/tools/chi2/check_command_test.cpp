@@ -30,7 +30,7 @@ chi2::Point SamplePowerCosine(float u0, float u1, float n) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-// The README's power-cosine subject whose sampler also records the points it returns.
+// docs/chi2.md's power-cosine subject whose sampler also records the points it returns.
 chi2::Subject RecordingPowerCosine(std::vector<chi2::Point>* drawn) {
   chi2::Subject s;
   s.name = "power_cosine_n10";
@@ -84,7 +84,7 @@ TEST(StatChi2Check, SameResultAsTheCppRoute) {
   EXPECT_EQ(JsonNumber(json, "dof"), r.dof);
 }
 
-// The README's broken variants through the file route: a pdf program answering half the
+// docs/chi2.md's broken variants through the file route: a pdf program answering half the
 // density, and one answering the n = 11 lobe, are both rejected (exit 1).
 TEST(StatChi2Check, BrokenVariantsFail) {
   const fs::path dir = TempDir("chi2_check_broken");

@@ -1,4 +1,4 @@
-// README's "Validating your own sampler": its examples are the files tests run, verbatim.
+// docs/chi2.md's "Validating your own sampler": its examples are the files tests run, verbatim.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -12,9 +12,9 @@ using test_util::ReadFile;
 using test_util::RunShell;
 using test_util::TempDir;
 
-// Each example file appears in README.md as a whole fenced block.
+// Each example file appears in docs/chi2.md as a whole fenced block.
 TEST(Chi2Readme, ExamplesAreIncludedVerbatim) {
-  const std::string readme = ReadFile(PTLAB_SOURCE_DIR "/README.md");
+  const std::string readme = ReadFile(PTLAB_SOURCE_DIR "/docs/chi2.md");
   ASSERT_FALSE(readme.empty());
   const struct {
     const char* path;
@@ -30,11 +30,11 @@ TEST(Chi2Readme, ExamplesAreIncludedVerbatim) {
     ASSERT_FALSE(text.empty()) << f.path;
     const std::string block = "```" + std::string(f.lang) + "\n" + text + "```\n";
     EXPECT_NE(readme.find(block), std::string::npos)
-        << f.path << " is not in README.md verbatim as a ```" << f.lang << " block";
+        << f.path << " is not in docs/chi2.md verbatim as a ```" << f.lang << " block";
   }
 }
 
-// The file-based route exactly as the README shows it (with the built chi2 as $CHI2).
+// The file-based route exactly as docs/chi2.md shows it (with the built chi2 as $CHI2).
 TEST(StatChi2Readme, CliRouteRunsAsWritten) {
   const auto dir = TempDir("chi2_readme_cli");
   const std::string cmd = "cd " + dir.string() +

@@ -41,7 +41,7 @@ TEST(Convergence, TimeToQualityInterpolatesLogLog) {
 // Two halves of N samples each of a known noise: the estimate of the mean's relMSE is the
 // expected value, var/(2N) / (mu^2 + eps), within its sampling error and the bias of its
 // denominator (a 3x3 mean of the halves with 1/9 of a pixel's variance: +3 r^2 for a relative
-// noise r of that mean). Sigma 0.2 is the README's case: a half's noise 40 % of the signal.
+// noise r of that mean). Sigma 0.2 is docs/converge.md's case: a half's noise 40 % of the signal.
 TEST(Convergence, TwoHalvesEstimateTheErrorOfTheirMean) {
   struct Case {
     double sigma, bias, tol;  // bias: the expected +3 r^2

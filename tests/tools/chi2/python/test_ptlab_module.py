@@ -1,4 +1,4 @@
-# The `ptlab` Python module: README example, broken variants, same chi2 as `chi2 check`, errors.
+# The `ptlab` Python module: docs/chi2.md's example, broken variants, same chi2 as `chi2 check`, errors.
 import json
 import os
 import pathlib
@@ -13,7 +13,7 @@ import ptlab
 SOURCE = pathlib.Path(os.environ["PTLAB_SOURCE_DIR"])
 CHI2 = os.environ["PTLAB_CHI2"]
 sys.path.insert(0, str(SOURCE / "examples" / "chi2_python"))
-import power_cosine  # noqa: E402  (the README's example, imported as written)
+import power_cosine  # noqa: E402  (docs/chi2.md's example, imported as written)
 
 PDF_PROGRAM = f"{sys.executable} {SOURCE / 'examples' / 'chi2_cli' / 'power_cosine_pdf.py'}"
 FAST = dict(samples=200000, res=25)
@@ -56,7 +56,7 @@ def test_same_chi2_as_the_cli_on_the_same_samples(tmp_path):
     # The same points given as an array: bit-identical result.
     r2 = ptlab.chi2_test("hemisphere", points, power_cosine.power_cosine_pdf, **FAST)
     assert (r2.chi2, r2.p_value, r2.dof) == (r.chi2, r.p_value, r.dof)
-    # Through chi2 check with the README's pdf program (the same formula in float64).
+    # Through chi2 check with docs/chi2.md's pdf program (the same formula in float64).
     points.astype("<f4").tofile(tmp_path / "samples.f32")
     run = subprocess.run([CHI2, "check", "--domain", "hemisphere", "--dims", "3", "--samples",
                           str(tmp_path / "samples.f32"), "--res", "25", "--json",
