@@ -6,7 +6,9 @@ repository. It is looked for where the tests look (tests/test_data.h): $PTLAB_DA
 else ../shared/data beside the checkout. A file that is absent there, or whose size or SHA-256
 differs from the manifest, is downloaded from its repository at the pinned commit through
 PTLAB_DATA_URL, a template with {repo}, {commit} and {path} (default: GitHub's raw files), and
-kept only when its size and SHA-256 match.
+kept only when its size and SHA-256 match. Rows of repository `derived` (the EXR conversions
+of the environment maps) are made again from their source file (envmap_exr.py) and checked the
+same way.
 
 Usage: third_party.py dir            print the data folder
        third_party.py fetch [-n]     find, check and download what is missing (-n: only report)
@@ -103,22 +105,52 @@ def download(row, dest):
             os.remove(tmp)
 
 
+def derive(row, root, dest):
+    """Makes `row` from its source file (row["in_repo"], a checked file of the data folder) into
+    `dest` (atomically); returns None or what went wrong."""
+    import envmap_exr  # beside this file
+    source = os.path.join(root, row["in_repo"])
+    try:
+        data = envmap_exr.hdr_to_exr(open(source, "rb").read(), os.path.basename(source))
+    except (OSError, ValueError, IndexError) as e:
+        return f"conversion of {row['in_repo']} failed: {e}"
+    sha = hashlib.sha256(data).hexdigest()
+    if len(data) != row["bytes"] or sha != row["sha256"]:
+        return f"conversion of {row['in_repo']}: sha256 {sha}, expected {row['sha256']}"
+    os.makedirs(os.path.dirname(dest), exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(dest), prefix=".derive-")
+    with os.fdopen(fd, "wb") as out:
+        out.write(data)
+    os.replace(tmp, dest)
+    return None
+
+
 def fetch(report_only):
     root = data_dir()
     rows = read_manifest()
     present, fetched, failed, unreachable = 0, 0, [], 0
-    for row in rows:
+    bad = set()  # paths still missing or wrong, which derived rows cannot be made from
+    # Downloads first, then the rows made from them.
+    for row in sorted(rows, key=lambda r: r["repo"] == "derived"):
         dest = os.path.join(root, row["path"])
         wrong = check(dest, row)
         if wrong is None:
             present += 1
             continue
+        bad.add(row["path"])
         if report_only:
             failed.append(f"{row['path']}: {wrong}")
             continue
         if row["repo"] == "derived":
-            failed.append(f"{row['path']}: {wrong}; not downloadable (converted from "
-                          f"{row['in_repo']}, see the manifest)")
+            if row["in_repo"] in bad:
+                failed.append(f"{row['path']}: {wrong}; its source {row['in_repo']} is missing")
+                continue
+            error = derive(row, root, dest)
+            if error:
+                failed.append(f"{row['path']}: {wrong}; {error}")
+            else:
+                fetched += 1
+                bad.discard(row["path"])
             continue
         if os.path.exists(dest) and not os.access(dest, os.W_OK):
             failed.append(f"{row['path']}: {wrong}; read-only, not replaced")
@@ -135,12 +167,13 @@ def fetch(report_only):
             failed.append(f"{row['path']}: {wrong}; download failed: {error}")
         else:
             fetched += 1
+            bad.discard(row["path"])
     for line in failed[:MAX_LISTED]:
         print(f"data: {line}", file=sys.stderr)
     if len(failed) > MAX_LISTED:
         print(f"data: ... and {len(failed) - MAX_LISTED} more", file=sys.stderr)
     print(f"data: {root}: {present} of {len(rows)} files present and checked, {fetched} "
-          f"downloaded, {len(failed)} missing or wrong")
+          f"downloaded or made, {len(failed)} missing or wrong")
     return 0 if not failed else 1
 
 

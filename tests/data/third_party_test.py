@@ -4,8 +4,10 @@
 A temporary folder laid out like the upstream URLs ({repo}/{commit}/{path}) is built from the
 local data (links to its files) and served by Python's http.server on 127.0.0.1. One file of
 the mirror is corrupted (a byte flipped): the fetch must refuse it by its SHA-256, keep every
-other file, and succeed once the mirror serves the right bytes. Exits 77 (CTest: skipped) when
-the local data is absent, or fails under CI=true, where the data must be present.
+other file, and succeed once the mirror serves the right bytes; the EXR conversions, which no
+repository holds, are made from their downloaded sources and must match the manifest too.
+Exits 77 (CTest: skipped) when the local data is absent, or fails under CI=true, where the data
+must be present.
 """
 import functools
 import http.server
@@ -51,10 +53,7 @@ def main():
         for r in rows:
             src = os.path.join(source, r["path"])
             if r["repo"] == "derived":
-                # Not downloadable: placed where the fetch looks, as a user would.
-                os.makedirs(os.path.dirname(os.path.join(dest, r["path"])), exist_ok=True)
-                shutil.copyfile(src, os.path.join(dest, r["path"]))
-                continue
+                continue  # made from its downloaded source by the fetch
             url_path = os.path.join(mirror, r["repo"], r["commit"], r["in_repo"])
             os.makedirs(os.path.dirname(url_path), exist_ok=True)
             if os.path.lexists(url_path):
@@ -100,6 +99,16 @@ def main():
                                            f"{second.stderr!r}")
             expect(f"{len(rows) - 1} of {len(rows)} files present and checked, 1 downloaded"
                    in second.stdout, f"summary: {second.stdout!r}")
+
+            # A derived file that is wrong is made again from its source, and checks.
+            derived = next(r for r in rows if r["repo"] == "derived")
+            with open(os.path.join(dest, derived["path"]), "r+b") as f:
+                f.seek(derived["bytes"] // 2)
+                f.write(b"\0\0\0\0")
+            third = run_fetch(env)
+            expect(third.returncode == 0 and "1 downloaded or made" in third.stdout and
+                   third_party.check(os.path.join(dest, derived["path"]), derived) is None,
+                   f"third fetch: {third.returncode} {third.stdout!r} {third.stderr!r}")
         finally:
             server.shutdown()
             server.server_close()
@@ -108,7 +117,7 @@ def main():
         print("FAILED:", f)
     if not failures:
         print(f"third_party fetch: {len(rows)} files through a local mirror, the corrupted one "
-              "refused by its sha256")
+              "refused by its sha256, the EXR conversions made and checked")
     return 1 if failures else 0
 
 
