@@ -886,7 +886,7 @@ TEST(Traverse8, EmptyAndSingleTriangleScenes) {
 // The wavefront (engine/render/wavefront.h) with the oracle's kernel table against the scalar
 // tile loop (RenderTileScalar): bit-identical film on the Nori scenes, for every integrator.
 // With simd/'s table (SIMD shading, a few ulp off its oracle) against the oracle's: issue 11's
-// render contract, relMSE ≤ 1e-3 and every block of PARITY.md's 32×32 grid within 1 %.
+// render contract, relMSE ≤ 1e-3 and every block of docs/parity.md's 32×32 grid within 1 %.
 
 struct RenderRun {
   Image image;

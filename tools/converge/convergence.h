@@ -21,7 +21,7 @@ struct ConvergencePoint {
   double cpu_seconds = 0;  // CPU time of the render so far, all threads (RenderPass::cpu_seconds)
   double rel_mse = 0, rmse = 0, mae = 0;  // over the three channels (imgdiff's definitions)
   std::array<double, 3> bias{};           // (mean render - mean reference) / mean reference
-  double parity_share = 0;                // PARITY.md block share (32 px blocks within 5 %)
+  double parity_share = 0;                // docs/parity.md block share (32 px blocks within 5 %)
   /// Reference-free relMSE expected of this image, from its two halves (EstimateRelMseFrom-
   /// Halves); NaN on passes where the halves are unequal (odd pass counts).
   double estimated_rel_mse = 0;

@@ -1,4 +1,4 @@
-// imgdiff library: metrics, block parity (PARITY.md), heat map, and the table/JSON reports.
+// imgdiff library: metrics, block parity (docs/parity.md), heat map, and the table/JSON reports.
 #include "tools/imgdiff/imgdiff.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// imgdiff library: error metrics, block-mean comparison, the PARITY.md criterion and a heat map.
+// imgdiff library: error metrics, block means, the parity criterion (docs/parity.md), heat map.
 #pragma once
 
 #include <array>
@@ -68,7 +68,7 @@ struct ImageDiff {
   BlockComparison blocks;
 };
 
-/// Result of PARITY.md's criterion P(f) for a render against a reference.
+/// Result of docs/parity.md's criterion P(f) for a render against a reference.
 struct ParityResult {
   bool pass = false;
   bool size_ok = false;  ///< same width and height
@@ -108,8 +108,8 @@ inline bool SameSize(const Image& a, const Image& b) {
   return a.width == b.width && a.height == b.height;
 }
 
-/// PARITY.md's criterion P(min_block_share): channel means within 1 %, no NaN/Inf in the render,
-/// share of 32x32 blocks with reference mean >= 0.01 whose render mean is within 5 % >= f.
+/// docs/parity.md's criterion P(min_block_share): channel means within 1 %, no NaN/Inf in the
+/// render, share of 32x32 blocks with reference mean >= 0.01 whose render mean is within 5 % >= f.
 /// `flip_x` mirrors the render left-right first (for eth2015 references). A size mismatch fails.
 ParityResult CheckParity(const Image& render, const Image& reference, double min_block_share,
                          bool flip_x);

@@ -1,5 +1,5 @@
 // The CS184 scenes render: finite images, and BSDF sampling agrees with emitter sampling
-// (PARITY.md's criterion, as ImageParityStrategies checks for the Nori scenes).
+// (docs/parity.md's criterion, as ImageParityStrategies checks for the Nori scenes).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -132,7 +132,7 @@ TEST(ImageParityStrategies, Cs184ScenesMatsAgreeWithEms) {
 }
 
 // The analytic spheres of a CS184 scene against the UV-sphere meshes ptlab used before (3,968
-// triangles each, shading normals interpolated): the same image by PARITY.md's criterion,
+// triangles each, shading normals interpolated): the same image by docs/parity.md's criterion,
 // path_ems with 6 bounces at 128×96 and 512 spp (about 30 s on 2 busy cores for both).
 TEST(ImageParityCs184Spheres, AnalyticSpheresAgreeWithTessellatedOnes) {
   PTLAB_REQUIRE_DATA(kSky);

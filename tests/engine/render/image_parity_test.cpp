@@ -1,4 +1,4 @@
-// Image parity with Nori's official references (../shared/PARITY.md), label `image`.
+// Image parity with Nori's official references (docs/parity.md), label `image`.
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -24,9 +24,9 @@ struct ParityCase {
   const char* name;
   const char* scene;      // under kData
   const char* reference;  // under kData
-  double floor;           // PARITY.md's f
+  double floor;           // docs/parity.md's f
   // The eth2015 references were rendered by the 2015-16 Nori, whose lookat frame is mirrored
-  // (PARITY.md's mirror convention) and, when `up` is not perpendicular to the view
+  // (docs/parity.md's mirror convention) and, when `up` is not perpendicular to the view
   // direction, not normalised (a zoom: 4.3 % for odyssey). A horizontal flip alone leaves
   // odyssey 8 % too dark and 45 % of blocks off; so we render those scenes with the old
   // frame (LookatConvention::kNori2015) and compare without flipping.
@@ -116,7 +116,7 @@ INSTANTIATE_TEST_SUITE_P(
                    "eth2015/scenes/pa3/sphere/ref/sphere_side_ems_256spp.exr", 0.94,
                    LookatConvention::kNori2015},
         // BSDF sampling of a 10° cone is noisy: at the reference's 256 spp we agree on 91 % of
-        // blocks (< 0.94), so this one renders at 4x the reference's samples (PARITY.md
+        // blocks (< 0.94), so this one renders at 4x the reference's samples (docs/parity.md
         // allows more).
         ParityCase{"sphere_side_mats", "eth2015/scenes/pa3/sphere/sphere_side_mats.xml",
                    "eth2015/scenes/pa3/sphere/ref/sphere_side_mats_256spp.exr", 0.94,
@@ -144,7 +144,7 @@ INSTANTIATE_TEST_SUITE_P(
         // BSDF sampling alone rarely finds the small lights, and this reference is the noisiest
         // of the three: at its own 256 spp our render agrees on 80 % of blocks (< 0.84; vs the
         // less noisy veach_ems reference 88.5 %). Rendered at 4x the reference's samples
-        // (PARITY.md allows more): 87.2 %. Always at 1024 spp.
+        // (docs/parity.md allows more): 87.2 %. Always at 1024 spp.
         ParityCase{"veach_mats", "epfl/scenes/pa5/veach_mi/veach_mats.xml",
                    "epfl/references/veach_mats.exr", 0.84, LookatConvention::kNori, 1024, 0},
         ParityCase{"veach_ems", "epfl/scenes/pa5/veach_mi/veach_ems.xml",

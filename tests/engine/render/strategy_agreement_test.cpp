@@ -1,5 +1,6 @@
 // Unbiasedness across strategies (issue 5): mats, ems and mis, and uniform vs importance
-// environment sampling, converge to the same image — judged by PARITY.md's criterion P(0.97).
+// environment sampling, converge to the same image — judged by docs/parity.md's criterion
+// P(0.97).
 #include <filesystem>
 #include <string>
 #include <thread>
