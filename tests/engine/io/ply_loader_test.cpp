@@ -214,6 +214,15 @@ TEST(PlyLoader, BinaryErrorsNameTheByteAndHugeCountsAreRefusedBeforeAllocation) 
   EXPECT_NE(ErrorOf(good + "x").find("expected the end of the file"), std::string::npos);
 }
 
+// The fuzz seeds are valid files (so that the fuzzer starts from meshes that load).
+TEST(PlyLoader, FuzzSeedsLoad) {
+  for (const char* name : {"grid_le.ply", "grid_be.ply", "quad_attributes_ascii.ply"}) {
+    const StatusOr<MeshData> m = LoadPly(PTLAB_SOURCE_DIR "/tests/fuzz/seeds/ply/" + std::string(name));
+    ASSERT_TRUE(m.ok()) << m.status().message();
+    EXPECT_GE(m->triangle_count(), 2u) << name;
+  }
+}
+
 TEST(PlyLoader, MissingFile) {
   const StatusOr<MeshData> m = LoadPly("/nonexistent/mesh.ply");
   ASSERT_FALSE(m.ok());

@@ -68,6 +68,19 @@ TEST(SerializedLoader, VersionsPrecisionsAndShapeIndices) {
   EXPECT_EQ(flat->uvs.size(), a.uvs.size());
 }
 
+// The fuzz seeds are valid files (so that the fuzzer starts from meshes that load).
+TEST(SerializedLoader, FuzzSeedsLoad) {
+  const std::string dir = PTLAB_SOURCE_DIR "/tests/fuzz/seeds/serialized/";
+  for (const auto& [name, shapes] : {std::pair{"two_v4.serialized", 2u},
+                                     std::pair{"one_v3_double.serialized", 1u}}) {
+    for (uint32_t i = 0; i < shapes; ++i) {
+      const StatusOr<MeshData> m = LoadSerialized(dir + name, i);
+      ASSERT_TRUE(m.ok()) << m.status().message();
+      EXPECT_GE(m->triangle_count(), 2u) << name;
+    }
+  }
+}
+
 std::string ErrorOf(const std::string& bytes, uint32_t index = 0) {
   const StatusOr<MeshData> m = LoadSerializedFromBytes(bytes, index, "bad.serialized");
   EXPECT_FALSE(m.ok());
