@@ -18,11 +18,11 @@ enum class PlyType { kInt8, kUInt8, kInt16, kUInt16, kInt32, kUInt32, kFloat32, 
 
 bool ParsePlyType(std::string_view s, PlyType* t) {
   static constexpr std::pair<std::string_view, PlyType> kNames[] = {
-      {"char", PlyType::kInt8},     {"int8", PlyType::kInt8},       {"uchar", PlyType::kUInt8},
-      {"uint8", PlyType::kUInt8},   {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
-      {"ushort", PlyType::kUInt16}, {"uint16", PlyType::kUInt16},   {"int", PlyType::kInt32},
-      {"int32", PlyType::kInt32},   {"uint", PlyType::kUInt32},     {"uint32", PlyType::kUInt32},
-      {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
+      {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},       {"uchar", PlyType::kUInt8},
+      {"uint8", PlyType::kUInt8},    {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
+      {"ushort", PlyType::kUInt16},  {"uint16", PlyType::kUInt16},   {"int", PlyType::kInt32},
+      {"int32", PlyType::kInt32},    {"uint", PlyType::kUInt32},     {"uint32", PlyType::kUInt32},
+      {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
       {"float64", PlyType::kFloat64}};
   for (const auto& [name, type] : kNames) {
     if (s == name) {
@@ -35,10 +35,18 @@ bool ParsePlyType(std::string_view s, PlyType* t) {
 
 size_t TypeSize(PlyType t) {
   switch (t) {
-    case PlyType::kInt8: case PlyType::kUInt8: return 1;
-    case PlyType::kInt16: case PlyType::kUInt16: return 2;
-    case PlyType::kInt32: case PlyType::kUInt32: case PlyType::kFloat32: return 4;
-    case PlyType::kFloat64: return 8;
+    case PlyType::kInt8:
+    case PlyType::kUInt8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUInt16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUInt32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
   }
   return 8;
 }
@@ -48,27 +56,43 @@ bool IsInteger(PlyType t) { return t != PlyType::kFloat32 && t != PlyType::kFloa
 // Largest value of an integer type (the divisor of Mitsuba's normalised integer properties).
 double TypeMax(PlyType t) {
   switch (t) {
-    case PlyType::kInt8: return 127.0;
-    case PlyType::kUInt8: return 255.0;
-    case PlyType::kInt16: return 32767.0;
-    case PlyType::kUInt16: return 65535.0;
-    case PlyType::kInt32: return 2147483647.0;
-    case PlyType::kUInt32: return 4294967295.0;
-    case PlyType::kFloat32: case PlyType::kFloat64: return 1.0;
+    case PlyType::kInt8:
+      return 127.0;
+    case PlyType::kUInt8:
+      return 255.0;
+    case PlyType::kInt16:
+      return 32767.0;
+    case PlyType::kUInt16:
+      return 65535.0;
+    case PlyType::kInt32:
+      return 2147483647.0;
+    case PlyType::kUInt32:
+      return 4294967295.0;
+    case PlyType::kFloat32:
+    case PlyType::kFloat64:
+      return 1.0;
   }
   return 1.0;
 }
 
 const char* TypeName(PlyType t) {
   switch (t) {
-    case PlyType::kInt8: return "char";
-    case PlyType::kUInt8: return "uchar";
-    case PlyType::kInt16: return "short";
-    case PlyType::kUInt16: return "ushort";
-    case PlyType::kInt32: return "int";
-    case PlyType::kUInt32: return "uint";
-    case PlyType::kFloat32: return "float";
-    case PlyType::kFloat64: return "double";
+    case PlyType::kInt8:
+      return "char";
+    case PlyType::kUInt8:
+      return "uchar";
+    case PlyType::kInt16:
+      return "short";
+    case PlyType::kUInt16:
+      return "ushort";
+    case PlyType::kInt32:
+      return "int";
+    case PlyType::kUInt32:
+      return "uint";
+    case PlyType::kFloat32:
+      return "float";
+    case PlyType::kFloat64:
+      return "double";
   }
   return "?";
 }
@@ -133,28 +157,30 @@ StatusOr<Header> ParseHeader(const std::string& bytes, const std::string& name) 
     if (key == "format") {
       if (have_format) return Status::Error(where + "a second 'format' line");
       if (t.size() != 3 || t[2] != "1.0")
-        return Status::Error(where + "expected 'format ascii|binary_little_endian|"
-                                     "binary_big_endian 1.0'");
-      if (t[1] == "ascii") h.format = Header::Format::kAscii;
-      else if (t[1] == "binary_little_endian") h.format = Header::Format::kBinaryLittle;
-      else if (t[1] == "binary_big_endian") h.format = Header::Format::kBinaryBig;
+        return Status::Error(where +
+                             "expected 'format ascii|binary_little_endian|"
+                             "binary_big_endian 1.0'");
+      if (t[1] == "ascii")
+        h.format = Header::Format::kAscii;
+      else if (t[1] == "binary_little_endian")
+        h.format = Header::Format::kBinaryLittle;
+      else if (t[1] == "binary_big_endian")
+        h.format = Header::Format::kBinaryBig;
       else
         return Status::Error(where + "unknown format '" + std::string(t[1]) +
                              "'; expected ascii, binary_little_endian or binary_big_endian");
       have_format = true;
     } else if (key == "element") {
       uint64_t count = 0;
-      if (t.size() != 3 ||
-          std::from_chars(t[2].data(), t[2].data() + t[2].size(), count).ptr !=
-              t[2].data() + t[2].size())
+      if (t.size() != 3 || std::from_chars(t[2].data(), t[2].data() + t[2].size(), count).ptr !=
+                               t[2].data() + t[2].size())
         return Status::Error(where + "expected 'element NAME COUNT' with COUNT an integer >= 0");
       for (const Element& e : h.elements)
         if (e.name == t[1])
           return Status::Error(where + "a second element '" + std::string(t[1]) + "'");
       h.elements.push_back(Element{std::string(t[1]), count, {}, line_no});
     } else if (key == "property") {
-      if (h.elements.empty())
-        return Status::Error(where + "'property' before any 'element'");
+      if (h.elements.empty()) return Status::Error(where + "'property' before any 'element'");
       Property p;
       if (t.size() == 5 && t[1] == "list") {
         p.list = true;
@@ -171,8 +197,9 @@ StatusOr<Header> ParseHeader(const std::string& bytes, const std::string& name) 
                                "(or int8 ... float64)");
         p.name = std::string(t[2]);
       } else {
-        return Status::Error(where + "expected 'property TYPE NAME' or 'property list "
-                                     "COUNT_TYPE TYPE NAME'");
+        return Status::Error(where +
+                             "expected 'property TYPE NAME' or 'property list "
+                             "COUNT_TYPE TYPE NAME'");
       }
       for (const Property& q : h.elements.back().props)
         if (q.name == p.name)
@@ -199,8 +226,8 @@ class AsciiReader {
   AsciiReader(const std::string& bytes, size_t pos, int line, const std::string& name)
       : s_(bytes), pos_(pos), line_(line), name_(name) {}
   bool Read(PlyType t, double* v) {
-    while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\r' ||
-                                s_[pos_] == '\n')) {
+    while (pos_ < s_.size() &&
+           (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\r' || s_[pos_] == '\n')) {
       if (s_[pos_] == '\n') ++line_;
       ++pos_;
     }
@@ -239,8 +266,8 @@ class AsciiReader {
                           : "found '" + std::string(token_.substr(0, 40)) + "'";
   }
   bool AtEnd() {
-    while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\r' ||
-                                s_[pos_] == '\n')) {
+    while (pos_ < s_.size() &&
+           (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\r' || s_[pos_] == '\n')) {
       if (s_[pos_] == '\n') ++line_;
       ++pos_;
     }
@@ -271,14 +298,51 @@ class BinaryReader {
       for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
     }
     switch (t) {
-      case PlyType::kInt8: { int8_t x; std::memcpy(&x, b, 1); *v = x; break; }
-      case PlyType::kUInt8: *v = b[0]; break;
-      case PlyType::kInt16: { int16_t x; std::memcpy(&x, b, 2); *v = x; break; }
-      case PlyType::kUInt16: { uint16_t x; std::memcpy(&x, b, 2); *v = x; break; }
-      case PlyType::kInt32: { int32_t x; std::memcpy(&x, b, 4); *v = x; break; }
-      case PlyType::kUInt32: { uint32_t x; std::memcpy(&x, b, 4); *v = x; break; }
-      case PlyType::kFloat32: { float x; std::memcpy(&x, b, 4); *v = x; break; }
-      case PlyType::kFloat64: { double x; std::memcpy(&x, b, 8); *v = x; break; }
+      case PlyType::kInt8: {
+        int8_t x;
+        std::memcpy(&x, b, 1);
+        *v = x;
+        break;
+      }
+      case PlyType::kUInt8:
+        *v = b[0];
+        break;
+      case PlyType::kInt16: {
+        int16_t x;
+        std::memcpy(&x, b, 2);
+        *v = x;
+        break;
+      }
+      case PlyType::kUInt16: {
+        uint16_t x;
+        std::memcpy(&x, b, 2);
+        *v = x;
+        break;
+      }
+      case PlyType::kInt32: {
+        int32_t x;
+        std::memcpy(&x, b, 4);
+        *v = x;
+        break;
+      }
+      case PlyType::kUInt32: {
+        uint32_t x;
+        std::memcpy(&x, b, 4);
+        *v = x;
+        break;
+      }
+      case PlyType::kFloat32: {
+        float x;
+        std::memcpy(&x, b, 4);
+        *v = x;
+        break;
+      }
+      case PlyType::kFloat64: {
+        double x;
+        std::memcpy(&x, b, 8);
+        *v = x;
+        break;
+      }
     }
     return true;
   }
@@ -478,9 +542,9 @@ class BodyParser {
       columns[size_t(nz)].role = Role::kNz;
     }
     bool has_uvs = false;
-    for (const auto& [un, vn] : {std::pair{"u", "v"}, std::pair{"s", "t"},
-                                 std::pair{"texture_u", "texture_v"},
-                                 std::pair{"texture_s", "texture_t"}}) {
+    for (const auto& [un, vn] :
+         {std::pair{"u", "v"}, std::pair{"s", "t"}, std::pair{"texture_u", "texture_v"},
+          std::pair{"texture_s", "texture_t"}}) {
       const int u = find(un), v = find(vn);
       if (u < 0 || v < 0 || has_uvs) continue;
       columns[size_t(u)].role = Role::kU;
@@ -511,20 +575,38 @@ class BodyParser {
         if (!r_.Read(p.type, &v)) return ValueError(e, row, p, p.type, "a number");
         const float f = float(v);
         switch (columns[i].role) {
-          case Role::kX: pos.x = f; break;
-          case Role::kY: pos.y = f; break;
-          case Role::kZ: pos.z = f; break;
-          case Role::kNx: mesh->normals[row].x = f; break;
-          case Role::kNy: mesh->normals[row].y = f; break;
-          case Role::kNz: mesh->normals[row].z = f; break;
-          case Role::kU: mesh->uvs[row].x = f; break;
-          case Role::kV: mesh->uvs[row].y = f; break;
+          case Role::kX:
+            pos.x = f;
+            break;
+          case Role::kY:
+            pos.y = f;
+            break;
+          case Role::kZ:
+            pos.z = f;
+            break;
+          case Role::kNx:
+            mesh->normals[row].x = f;
+            break;
+          case Role::kNy:
+            mesh->normals[row].y = f;
+            break;
+          case Role::kNz:
+            mesh->normals[row].z = f;
+            break;
+          case Role::kU:
+            mesh->uvs[row].x = f;
+            break;
+          case Role::kV:
+            mesh->uvs[row].y = f;
+            break;
           case Role::kAttribute: {
             MeshAttribute& a = mesh->attributes[first_attribute + size_t(columns[i].attribute)];
             a.values[size_t(row) * a.dim + size_t(columns[i].channel)] = AttributeValue(v, p.type);
             break;
           }
-          case Role::kIndices: case Role::kSkip: break;
+          case Role::kIndices:
+          case Role::kSkip:
+            break;
         }
       }
       if (!(std::isfinite(pos.x) && std::isfinite(pos.y) && std::isfinite(pos.z)))
@@ -539,8 +621,7 @@ class BodyParser {
                                "vector");
       }
       if (has_uvs && !(std::isfinite(mesh->uvs[row].x) && std::isfinite(mesh->uvs[row].y)))
-        return Status::Error(r_.Where() + ": vertex " + std::to_string(row) +
-                             ": uv is not finite");
+        return Status::Error(r_.Where() + ": vertex " + std::to_string(row) + ": uv is not finite");
     }
     return Status::Ok();
   }
@@ -587,8 +668,7 @@ class BodyParser {
             return ValueError(e, row, p, p.count_type, "a vertex count");
           if (count < 3)
             return Status::Error(r_.Where() + ": face " + std::to_string(row) + " has " +
-                                 std::to_string(int64_t(count)) +
-                                 " vertices; expected 3 or more");
+                                 std::to_string(int64_t(count)) + " vertices; expected 3 or more");
           // Checked before the polygon's storage grows: each index takes a byte at least.
           if (uint64_t(count) > r_.Remaining())
             return Status::Error(r_.Where() + ": face " + std::to_string(row) + " declares " +
@@ -644,8 +724,8 @@ StatusOr<MeshData> LoadPlyFromBytes(const std::string& bytes, const std::string&
     AsciiReader reader(bytes, header->body_offset, header->body_line, display_name);
     s = BodyParser<AsciiReader>(&reader, display_name).Parse(*header, &mesh);
   } else {
-    BinaryReader reader(bytes, header->body_offset,
-                        header->format == Header::Format::kBinaryBig, display_name);
+    BinaryReader reader(bytes, header->body_offset, header->format == Header::Format::kBinaryBig,
+                        display_name);
     s = BodyParser<BinaryReader>(&reader, display_name).Parse(*header, &mesh);
   }
   if (!s.ok()) return s;

@@ -110,7 +110,8 @@ StatusOr<MeshData> LoadSerializedFromBytes(const std::string& bytes, uint32_t sh
     const uint16_t magic = LoadLe<uint16_t>(bytes, size_t(offset));
     *version = LoadLe<uint16_t>(bytes, size_t(offset) + 2);
     if (magic != kMagic)
-      return Status::Error(name + ": byte " + std::to_string(offset) + ": expected the "
+      return Status::Error(name + ": byte " + std::to_string(offset) +
+                           ": expected the "
                            ".serialized identifier 0x041C, found 0x" +
                            [&] {
                              char b[8];
@@ -145,8 +146,9 @@ StatusOr<MeshData> LoadSerializedFromBytes(const std::string& bytes, uint32_t sh
     offset = version == 4 ? LoadLe<uint64_t>(bytes, at) : LoadLe<uint32_t>(bytes, at);
     uint16_t v = 0;
     s = header_at(offset, &v);
-    if (!s.ok()) return Status::Error(s.message() + " (shape " + std::to_string(shape_index) +
-                                      "'s offset, read at file byte " + std::to_string(at) + ")");
+    if (!s.ok())
+      return Status::Error(s.message() + " (shape " + std::to_string(shape_index) +
+                           "'s offset, read at file byte " + std::to_string(at) + ")");
     if (v != version)
       return Status::Error(name + ": byte " + std::to_string(offset) + ": shape " +
                            std::to_string(shape_index) + " has version " + std::to_string(v) +
@@ -162,8 +164,7 @@ StatusOr<MeshData> LoadSerializedFromBytes(const std::string& bytes, uint32_t sh
       s = in.Read(&c, 1, "the shape name");
       if (!s.ok()) return s;
       if (c == 0) break;
-      if (n >= (1 << 16))
-        return Status::Error(in.Where() + ": shape name longer than 65536 bytes");
+      if (n >= (1 << 16)) return Status::Error(in.Where() + ": shape name longer than 65536 bytes");
     }
   }
   uint64_t counts[2] = {0, 0};
@@ -178,8 +179,8 @@ StatusOr<MeshData> LoadSerializedFromBytes(const std::string& bytes, uint32_t sh
                          "triangles");
   const bool doubles = flags & kDoublePrecision;
   const uint64_t real = doubles ? 8 : 4;
-  const uint64_t per_vertex = 3 + (flags & kHasNormals ? 3 : 0) + (flags & kHasUvs ? 2 : 0) +
-                              (flags & kHasColors ? 3 : 0);
+  const uint64_t per_vertex =
+      3 + (flags & kHasNormals ? 3 : 0) + (flags & kHasUvs ? 2 : 0) + (flags & kHasColors ? 3 : 0);
   const uint64_t needed = v * per_vertex * real + f * 12;
   if (needed / kMaxInflateRatio > in.compressed_left())
     return Status::Error(in.Where() + ": " + std::to_string(v) + " vertices and " +

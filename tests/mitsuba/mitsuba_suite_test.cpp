@@ -94,10 +94,10 @@ TEST(MitsubaSuiteTable, IsWellFormedAndListsEverySceneOnce) {
   if (!HaveData()) GTEST_SKIP() << kScenes << " is missing";
   std::set<std::string> listed, names;
   for (const SuiteRow& r : Table().rows) {
-    EXPECT_TRUE(listed.insert(r.scene).second) << "suite.txt:" << r.line << ": " << r.scene
-                                               << " listed twice";
-    EXPECT_TRUE(names.insert(r.name).second) << "suite.txt:" << r.line << ": " << r.name
-                                             << " named twice";
+    EXPECT_TRUE(listed.insert(r.scene).second)
+        << "suite.txt:" << r.line << ": " << r.scene << " listed twice";
+    EXPECT_TRUE(names.insert(r.name).second)
+        << "suite.txt:" << r.line << ": " << r.name << " named twice";
     EXPECT_TRUE(fs::exists(kScenes + "/" + r.scene)) << "suite.txt:" << r.line;
     EXPECT_TRUE(fs::exists(ReferenceStem(r.scene) + "_ref_rgb.exr")) << "suite.txt:" << r.line;
   }
@@ -169,10 +169,11 @@ TEST_P(MitsubaSuite, Renders) {
   options.spp = spp;
   const ZTestResult own = ZTest(*image, *ref, *own_var, options);
   const ZTestResult mitsuba = ZTest(*image, *ref, *ref_var, options);
-  std::printf("mitsuba-suite | %s | %s (own variance, %.4f %% of channels) | Mitsuba's variance: "
-              "%s (%.4f %%) | %u spp | %.1f s\n",
-              row.name.c_str(), own.pass ? "pass" : "FAIL", 100 * own.pass_share,
-              mitsuba.pass ? "pass" : "fail", 100 * mitsuba.pass_share, spp, seconds);
+  std::printf(
+      "mitsuba-suite | %s | %s (own variance, %.4f %% of channels) | Mitsuba's variance: "
+      "%s (%.4f %%) | %u spp | %.1f s\n",
+      row.name.c_str(), own.pass ? "pass" : "FAIL", 100 * own.pass_share,
+      mitsuba.pass ? "pass" : "fail", 100 * mitsuba.pass_share, spp, seconds);
   if (!own.pass) WriteFailure(own, dir / (row.name + "_own"));
   if (!mitsuba.pass) WriteFailure(mitsuba, dir / (row.name + "_mitsuba"));
   EXPECT_TRUE(own.pass) << FormatZTestTable(own);

@@ -30,8 +30,8 @@ void PassVariance::AddPass(const std::vector<FilmBlock>& blocks) {
       ++count_[p];
       const double total = weight_[p] + w;
       for (int c = 0; c < 3; ++c) {
-        const double v = kRgbToXyz[c][0] * rgb[0] + kRgbToXyz[c][1] * rgb[1] +
-                         kRgbToXyz[c][2] * rgb[2];
+        const double v =
+            kRgbToXyz[c][0] * rgb[0] + kRgbToXyz[c][1] * rgb[1] + kRgbToXyz[c][2] * rgb[2];
         // West's weighted update: stable where Σ W m² - (Σ W m)² / Σ W would cancel.
         double& mean = mean_[p * 3 + size_t(c)];
         const double delta = v - mean;
@@ -48,9 +48,9 @@ Image PassVariance::PerSampleVariance(uint32_t spp) const {
   for (size_t p = 0; p < count_.size(); ++p) {
     for (int c = 0; c < 3; ++c) {
       xyz.rgb[p * 3 + size_t(c)] =
-          count_[p] >= 2 ? float(double(spp) * m2_[p * 3 + size_t(c)] /
-                                 (double(count_[p] - 1) * weight_[p]))
-                         : std::numeric_limits<float>::quiet_NaN();
+          count_[p] >= 2
+              ? float(double(spp) * m2_[p * 3 + size_t(c)] / (double(count_[p] - 1) * weight_[p]))
+              : std::numeric_limits<float>::quiet_NaN();
     }
   }
   return XyzToRgb(xyz);

@@ -97,9 +97,8 @@ int RunZTest(const std::vector<std::string>& paths, uint32_t spp, const std::str
   if (json) {
     std::printf("%s\n", ptlab::FormatZTestJson(paths[0], paths[1], paths[2], r).c_str());
   } else {
-    std::printf("REF: %s\nVAR: %s\nIMAGE: %s\n%sresult: %s\n", paths[0].c_str(),
-                paths[1].c_str(), paths[2].c_str(), ptlab::FormatZTestTable(r).c_str(),
-                r.pass ? "PASS" : "FAIL");
+    std::printf("REF: %s\nVAR: %s\nIMAGE: %s\n%sresult: %s\n", paths[0].c_str(), paths[1].c_str(),
+                paths[2].c_str(), ptlab::FormatZTestTable(r).c_str(), r.pass ? "PASS" : "FAIL");
   }
   return r.pass ? kExitPass : kExitOverThreshold;
 }
@@ -125,9 +124,8 @@ int main(int argc, char** argv) {
       app.add_option("--ztest", ztest_paths,
                      "REF VAR IMAGE: Mitsuba 3's Z test of IMAGE (see below) instead of A/B")
           ->expected(3);
-  CLI::Option* o_spp =
-      app.add_option("--spp", ztest_spp, "--ztest: samples per pixel of IMAGE")
-          ->check(CLI::Range(1u, 0xffffffffu));
+  CLI::Option* o_spp = app.add_option("--spp", ztest_spp, "--ztest: samples per pixel of IMAGE")
+                           ->check(CLI::Range(1u, 0xffffffffu));
   app.add_option("--ztest-out", ztest_out,
                  "--ztest: prefix of the p-value and failed-pixel images (default: IMAGE's)");
   app.add_flag("--json", json, "print one JSON object instead of the table");

@@ -102,11 +102,10 @@ std::string FormatZTestTable(const ZTestResult& r) {
   o << buf;
   std::snprintf(buf, sizeof buf,
                 "  pixel channels with p > alpha: %lld of %lld (%.4f %%; needed %.2f %%)\n",
-                (long long)r.channels_passed, (long long)r.channels, 100.0 * r.pass_share,
-                99.75);
+                (long long)r.channels_passed, (long long)r.channels, 100.0 * r.pass_share, 99.75);
   o << buf;
-  std::snprintf(buf, sizeof buf, "  min p: %.6g at pixel (%d, %d) channel %c\n", r.min_p,
-                r.min_p_x, r.min_p_y, r.min_p_channel >= 0 ? "XYZ"[r.min_p_channel] : '-');
+  std::snprintf(buf, sizeof buf, "  min p: %.6g at pixel (%d, %d) channel %c\n", r.min_p, r.min_p_x,
+                r.min_p_y, r.min_p_channel >= 0 ? "XYZ"[r.min_p_channel] : '-');
   o << buf;
   return o.str();
 }
@@ -116,8 +115,8 @@ std::string FormatZTestJson(const std::string& reference, const std::string& var
   std::ostringstream o;
   o << "{\"reference\": " << JsonString(reference) << ", \"variance\": " << JsonString(variance)
     << ", \"image\": " << JsonString(image) << ", \"width\": " << r.width
-    << ", \"height\": " << r.height << ", \"spp\": " << r.spp << ", \"alpha\": "
-    << JsonNumber(r.alpha) << ", \"channels\": " << r.channels
+    << ", \"height\": " << r.height << ", \"spp\": " << r.spp
+    << ", \"alpha\": " << JsonNumber(r.alpha) << ", \"channels\": " << r.channels
     << ", \"channels_passed\": " << r.channels_passed
     << ", \"pass_share\": " << JsonNumber(r.pass_share) << ", \"min_p\": " << JsonNumber(r.min_p)
     << ", \"min_p_x\": " << r.min_p_x << ", \"min_p_y\": " << r.min_p_y

@@ -10,9 +10,8 @@ namespace ptlab {
 
 /// Linear Rec. 709 RGB -> CIE XYZ (D65), the matrix Mitsuba 3's Bitmap::convert applies (its
 /// srgb_to_xyz, written to 6 digits there). Row i gives output channel i.
-inline constexpr double kRgbToXyz[3][3] = {{0.412453, 0.357580, 0.180423},
-                                           {0.212671, 0.715160, 0.072169},
-                                           {0.019334, 0.119193, 0.950227}};
+inline constexpr double kRgbToXyz[3][3] = {
+    {0.412453, 0.357580, 0.180423}, {0.212671, 0.715160, 0.072169}, {0.019334, 0.119193, 0.950227}};
 /// CIE XYZ -> linear Rec. 709 RGB, Mitsuba 3's xyz_to_srgb (the inverse of kRgbToXyz to ~1e-6).
 inline constexpr double kXyzToRgb[3][3] = {{3.240479, -1.537150, -0.498535},
                                            {-0.969256, 1.875991, 0.041556},

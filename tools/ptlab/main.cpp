@@ -341,8 +341,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   }
   // --moments: NAME_var.exr beside NAME.exr, from two passes on.
   const std::string var_out =
-      args.moments ? out_path.parent_path().string() + (out_path.has_parent_path() ? "/" : "") +
-                         out_path.stem().string() + "_var.exr"
+      args.moments ? (out_path.parent_path() / (out_path.stem().string() + "_var.exr")).string()
                    : "";
   if (args.moments && (!args.adaptive.empty() || mpi.active())) {
     if (mpi.root()) std::fprintf(stderr, "error: --moments does not run with -a or under mpirun\n");
@@ -484,8 +483,10 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (st.ok() && !args.tile_times.empty()) st = WriteTileTimes(args.tile_times, result);
   if (st.ok() && moments) {
     if (moments->passes() < 2)
-      std::fprintf(stderr, "warning: --moments: %u pass(es), no variance estimate (NaN); "
-                   "use more than 16 spp\n", moments->passes());
+      std::fprintf(stderr,
+                   "warning: --moments: %u pass(es), no variance estimate (NaN); use more than "
+                   "16 spp\n",
+                   moments->passes());
     std::vector<std::pair<std::string, std::string>> var_header = header;
     var_header.emplace_back("ptlab:variance",
                             "per-sample variance in XYZ from " + std::to_string(moments->passes()) +

@@ -1,4 +1,5 @@
-// Writers of binary PLY and Mitsuba .serialized bytes from MeshData, for tests, seeds and benchmarks.
+// Writers of binary PLY and Mitsuba .serialized bytes from MeshData, for tests, seeds and
+// benchmarks.
 #pragma once
 
 #include <zlib.h>
@@ -27,7 +28,8 @@ inline std::string PlyBinaryBytes(const MeshData& m, bool big_endian) {
   std::string out = "ply\nformat ";
   out += big_endian ? "binary_big_endian" : "binary_little_endian";
   out += " 1.0\ncomment written by ptlab's tests\nelement vertex " +
-         std::to_string(m.positions.size()) + "\nproperty float x\nproperty float y\nproperty float z\n";
+         std::to_string(m.positions.size()) +
+         "\nproperty float x\nproperty float y\nproperty float z\n";
   if (!m.normals.empty()) out += "property float nx\nproperty float ny\nproperty float nz\n";
   if (!m.uvs.empty()) out += "property float u\nproperty float v\n";
   out += "element face " + std::to_string(m.indices.size() / 3) +
@@ -67,8 +69,10 @@ inline std::string SerializedBytes(const std::vector<MeshData>& shapes, int vers
     AppendValue(&raw, uint64_t(m.positions.size()));
     AppendValue(&raw, uint64_t(m.indices.size() / 3));
     const auto real = [&](float v) {
-      if (doubles) AppendValue(&raw, double(v));
-      else AppendValue(&raw, v);
+      if (doubles)
+        AppendValue(&raw, double(v));
+      else
+        AppendValue(&raw, v);
     };
     for (const Vec3f& p : m.positions) real(p.x), real(p.y), real(p.z);
     for (const Vec3f& n : m.normals) real(n.x), real(n.y), real(n.z);
@@ -84,8 +88,10 @@ inline std::string SerializedBytes(const std::vector<MeshData>& shapes, int vers
     file += packed;
   }
   for (uint64_t o : offsets) {
-    if (version == 4) AppendValue(&file, o);
-    else AppendValue(&file, uint32_t(o));
+    if (version == 4)
+      AppendValue(&file, o);
+    else
+      AppendValue(&file, uint32_t(o));
   }
   AppendValue(&file, uint32_t(shapes.size()));
   return file;

@@ -88,7 +88,7 @@ TEST(PlyLoader, PolygonsAreFanTriangulatedAndAttributesGrouped) {
   EXPECT_EQ(color.name, "vertex_color");
   EXPECT_EQ(color.dim, 3u);
   ASSERT_EQ(color.rows(), 6u);
-  EXPECT_EQ(color.values[0], 1.0f);   // 255 / 255
+  EXPECT_EQ(color.values[0], 1.0f);  // 255 / 255
   EXPECT_EQ(color.values[1], 0.0f);
   // 128 / 255 decoded from sRGB: ((0.50196 + 0.055) / 1.055)^2.4 = 0.21586.
   EXPECT_NEAR(color.values[15], 0.215861, 1e-5);
@@ -165,14 +165,16 @@ TEST(PlyLoader, MalformedFilesGiveErrorsWithWhere) {
   EXPECT_NE(ErrorOf(kAsciiHeader + "0 0 nan\n1 0 0\n0 1 0\n3 0 1 2\n").find("bad.ply:10:"),
             std::string::npos);
   // Normals that are zero, and only some of nx ny nz.
-  e = ErrorOf("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-              "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
-              "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-              "0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n3 0 1 2\n");
+  e = ErrorOf(
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n3 0 1 2\n");
   EXPECT_NE(e.find("vertex 1: normal is zero"), std::string::npos) << e;
-  e = ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-              "property float z\nproperty float nx\nelement face 0\n"
-              "property list uchar int vertex_indices\nend_header\n0 0 0 1\n");
+  e = ErrorOf(
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float nx\nelement face 0\n"
+      "property list uchar int vertex_indices\nend_header\n0 0 0 1\n");
   EXPECT_NE(e.find("some of nx, ny, nz"), std::string::npos) << e;
   // No face element; no vertex element.
   EXPECT_NE(ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
@@ -217,7 +219,8 @@ TEST(PlyLoader, BinaryErrorsNameTheByteAndHugeCountsAreRefusedBeforeAllocation) 
 // The fuzz seeds are valid files (so that the fuzzer starts from meshes that load).
 TEST(PlyLoader, FuzzSeedsLoad) {
   for (const char* name : {"grid_le.ply", "grid_be.ply", "quad_attributes_ascii.ply"}) {
-    const StatusOr<MeshData> m = LoadPly(PTLAB_SOURCE_DIR "/tests/fuzz/seeds/ply/" + std::string(name));
+    const StatusOr<MeshData> m =
+        LoadPly(PTLAB_SOURCE_DIR "/tests/fuzz/seeds/ply/" + std::string(name));
     ASSERT_TRUE(m.ok()) << m.status().message();
     EXPECT_GE(m->triangle_count(), 2u) << name;
   }

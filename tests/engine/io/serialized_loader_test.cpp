@@ -71,8 +71,8 @@ TEST(SerializedLoader, VersionsPrecisionsAndShapeIndices) {
 // The fuzz seeds are valid files (so that the fuzzer starts from meshes that load).
 TEST(SerializedLoader, FuzzSeedsLoad) {
   const std::string dir = PTLAB_SOURCE_DIR "/tests/fuzz/seeds/serialized/";
-  for (const auto& [name, shapes] : {std::pair{"two_v4.serialized", 2u},
-                                     std::pair{"one_v3_double.serialized", 1u}}) {
+  for (const auto& [name, shapes] :
+       {std::pair{"two_v4.serialized", 2u}, std::pair{"one_v3_double.serialized", 1u}}) {
     for (uint32_t i = 0; i < shapes; ++i) {
       const StatusOr<MeshData> m = LoadSerialized(dir + name, i);
       ASSERT_TRUE(m.ok()) << m.status().message();
@@ -121,8 +121,7 @@ TEST(SerializedLoader, MalformedFiles) {
   MeshData bad = a;
   bad.indices[4] = 99;
   e = ErrorOf(test_util::SerializedBytes({bad}, 4, false));
-  EXPECT_NE(e.find("triangle 1: vertex index 99 out of range; expected 0 to 8"),
-            std::string::npos)
+  EXPECT_NE(e.find("triangle 1: vertex index 99 out of range; expected 0 to 8"), std::string::npos)
       << e;
   // A dictionary pointing outside the file.
   std::string dict = test_util::SerializedBytes({a, a}, 4, false);

@@ -214,9 +214,8 @@ TEST(ZTest, UnbiasedNoisyImagePassesAndBiasedFails) {
   EXPECT_LT(bad.pass_share, 0.9);
   // Half the samples' variance claimed: the same unbiased image still passes at this size,
   // but a 4x smaller claimed variance (z doubled) fails.
-  const ZTestResult tight =
-      ZTest(NoisyMean(truth, sigma, o.spp, 1.0, 42), ref,
-            UniformFromXyz(w, h, {0.0625f, 0.0625f, 0.0625f}), o);
+  const ZTestResult tight = ZTest(NoisyMean(truth, sigma, o.spp, 1.0, 42), ref,
+                                  UniformFromXyz(w, h, {0.0625f, 0.0625f, 0.0625f}), o);
   EXPECT_FALSE(tight.pass) << FormatZTestTable(tight);
 }
 
@@ -235,7 +234,8 @@ class ImgdiffZTestCli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
   int Run(std::initializer_list<std::string> args) {
-    std::string cmd = "'" + std::string(kBinary) + "'";
+    std::string cmd(1, '\'');
+    cmd.append(kBinary).append("'");
     for (const std::string& a : args) cmd.append(" '").append(a).append("'");
     cmd.append(" > '").append(Path("out.txt")).append("' 2>&1");
     const int status = std::system(cmd.c_str());
@@ -283,9 +283,9 @@ TEST_F(ImgdiffZTestCli, PassFailOutputsAndUsage) {
   EXPECT_EQ(Run({"--ztest", ref, var}), 3) << Output();
   EXPECT_EQ(Run({ref, "--ztest", ref, var, Path("good.exr"), "--spp", "4"}), 3) << Output();
   // An unwritable output prefix is exit code 3.
-  EXPECT_EQ(Run({"--ztest", ref, var, Path("bad.exr"), "--spp", "1024", "--ztest-out",
-                 Path("no/dir/x")}),
-            3);
+  EXPECT_EQ(
+      Run({"--ztest", ref, var, Path("bad.exr"), "--spp", "1024", "--ztest-out", Path("no/dir/x")}),
+      3);
 }
 
 }  // namespace

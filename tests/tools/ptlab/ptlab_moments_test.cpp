@@ -1,4 +1,5 @@
-// `ptlab render --moments`: NAME_var.exr beside the image, and the Z test with ptlab's own variance.
+// `ptlab render --moments`: NAME_var.exr beside the image, and the Z test with ptlab's own
+// variance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,7 +51,8 @@ TEST(PtlabMoments, WritesVarianceThatPassesTheZTestAgainstAReference) {
       ReadExrStringAttributes((dir / "img_var.exr").string());
   ASSERT_TRUE(attrs.ok());
   bool described = false;
-  for (const auto& [k, v] : *attrs) described |= k == "ptlab:variance" && v.find("32 passes") != std::string::npos;
+  for (const auto& [k, v] : *attrs)
+    described |= k == "ptlab:variance" && v.find("32 passes") != std::string::npos;
   EXPECT_TRUE(described);
   StatusOr<Image> image = ReadImage(img), reference = ReadImage(ref);
   ASSERT_TRUE(image.ok() && reference.ok());
