@@ -184,6 +184,21 @@ TEST(ZTest, XyzConversionMatchesPrimariesAndWhitePoint) {
   for (size_t i = 0; i < img.rgb.size(); ++i) EXPECT_NEAR(back.rgb[i], img.rgb[i], 1e-5);
 }
 
+// Mitsuba's _var.exr holds an XYZ variance stored through the XYZ->RGB matrix: read as RGB it
+// has negative values, converted back to XYZ (as ZTest does) none (floating_sphere's reference).
+TEST(ZTest, MitsubaVarianceFilesAreXyzVariances) {
+  const std::string path = PTLAB_SOURCE_DIR
+      "/../shared/data/mitsuba3/tests/scenes/floating_sphere/refs/test_directional_ref_rgb_var.exr";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " is missing";
+  const StatusOr<Image> var = ReadImage(path);
+  ASSERT_TRUE(var.ok()) << var.status().message();
+  int negative_rgb = 0, negative_xyz = 0;
+  for (float v : var->rgb) negative_rgb += v < 0;
+  for (float v : RgbToXyz(*var).rgb) negative_xyz += v < -1e-6f;
+  EXPECT_GT(negative_rgb, 100);  // 146
+  EXPECT_EQ(negative_xyz, 0);
+}
+
 // A mean of spp samples per pixel channel with per-sample standard deviation sigma (in XYZ),
 // drawn from the normal the CLT gives, around `truth` times `scale`.
 Image NoisyMean(const Image& truth_xyz, double sigma, uint32_t spp, double scale, uint64_t seed) {
