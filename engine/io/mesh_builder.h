@@ -7,6 +7,7 @@
 
 #include "engine/core/transform.h"
 #include "engine/core/vec.h"
+#include "engine/io/mesh_attribute.h"
 #include "engine/scene/refs.h"
 #include "engine/scene/scene.h"
 
@@ -19,6 +20,8 @@ struct MeshData {
   std::vector<Vec3f> positions, normals;
   std::vector<Vec2f> uvs;
   std::vector<uint32_t> indices;
+  /// Other per-vertex / per-triangle columns of the file (PLY), for mesh_attribute textures.
+  std::vector<MeshAttribute> attributes;
 
   size_t triangle_count() const { return indices.size() / 3; }
 };

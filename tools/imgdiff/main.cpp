@@ -1,4 +1,4 @@
-// imgdiff CLI: compares test image A with reference B; prints a table or JSON; exit code = verdict.
+// imgdiff CLI: compares test image A with reference B (or runs Mitsuba 3's Z test); exit = verdict.
 #include <CLI/CLI.hpp>
 #include <cctype>
 #include <cstdio>
@@ -9,6 +9,7 @@
 #include "engine/image/image_io.h"
 #include "tools/cli_checks.h"
 #include "tools/imgdiff/imgdiff.h"
+#include "tools/imgdiff/ztest.h"
 
 namespace {
 
@@ -34,14 +35,72 @@ Blocks: N x N tiles from the top-left; partial edge blocks are INCLUDED (mean ov
   blue-white-red map: -scale blue, 0 white, +scale red; NaN/Inf pixels green. Written as PNG
   (or EXR/PFM by the extension).
 With any --fail-* threshold, NaN/Inf pixels in A also fail.
-Exit codes: 0 pass, 1 over a threshold (or parity failed), 2 size mismatch, 3 unreadable
-  file, unwritable heat map or bad usage.)";
+--ztest REF VAR IMAGE --spp N: Mitsuba 3's render test instead of A/B (docs/mitsuba-tests.md):
+  REF, VAR and IMAGE converted from RGB to XYZ (VAR is a per-sample variance stored as Mitsuba's
+  _var.exr: Mitsuba's reference variance, or `ptlab render --moments`'s NAME_var.exr for the
+  test with ptlab's own variance); per pixel channel z = |IMAGE - REF| sqrt(N / max(VAR, 1e-4)),
+  p = 2 (1 - Phi(z)); pass when >= 99.75 % of the pixel channels have p > 1 - 0.99^(1/pixels).
+  On failure writes PREFIX_pvalue.exr (p of X, Y, Z) and PREFIX_failed.exr (0.02 IMAGE, failed
+  channels 1); PREFIX is --ztest-out, else IMAGE without its extension.
+Exit codes: 0 pass, 1 over a threshold (or parity or the Z test failed), 2 size mismatch,
+  3 unreadable file, unwritable heat map or bad usage.)";
 
 bool IsLdrPng(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   unsigned char magic[16] = {};
   in.read(reinterpret_cast<char*>(magic), sizeof(magic));
   return ptlab::DetectImageFormat(magic, size_t(in.gcount())) == ptlab::ImageFormat::kPng;
+}
+
+std::string WithoutExtension(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return path;
+  return path.substr(0, dot);
+}
+
+// --ztest REF VAR IMAGE: Mitsuba 3's Z test; writes the p-value and failed-pixel images on failure.
+int RunZTest(const std::vector<std::string>& paths, uint32_t spp, const std::string& out_prefix,
+             bool json) {
+  ptlab::Image images[3];
+  for (int k = 0; k < 3; ++k) {
+    ptlab::StatusOr<ptlab::Image> img = ptlab::ReadImage(paths[size_t(k)]);
+    if (!img.ok()) {
+      std::fprintf(stderr, "imgdiff: %s\n", img.status().message().c_str());
+      return kExitUsage;
+    }
+    images[k] = std::move(*img);
+  }
+  for (int k = 1; k < 3; ++k) {
+    if (!ptlab::SameSize(images[0], images[k])) {
+      std::fprintf(stderr, "imgdiff: size mismatch: REF %s is %dx%d, %s %s is %dx%d\n",
+                   paths[0].c_str(), images[0].width, images[0].height, k == 1 ? "VAR" : "IMAGE",
+                   paths[size_t(k)].c_str(), images[k].width, images[k].height);
+      return kExitSizeMismatch;
+    }
+  }
+  ptlab::ZTestOptions options;
+  options.spp = spp;
+  const ptlab::ZTestResult r = ptlab::ZTest(images[2], images[0], images[1], options);
+  if (!r.pass) {
+    const std::string prefix = out_prefix.empty() ? WithoutExtension(paths[2]) : out_prefix;
+    for (const auto& [suffix, image] :
+         {std::pair{"_pvalue.exr", &r.p_value}, std::pair{"_failed.exr", &r.failed_pixels}}) {
+      const ptlab::Status s = ptlab::WriteExr(prefix + suffix, *image);
+      if (!s.ok()) {
+        std::fprintf(stderr, "imgdiff: %s\n", s.message().c_str());
+        return kExitUsage;
+      }
+      if (!json) std::printf("wrote %s%s\n", prefix.c_str(), suffix);
+    }
+  }
+  if (json) {
+    std::printf("%s\n", ptlab::FormatZTestJson(paths[0], paths[1], paths[2], r).c_str());
+  } else {
+    std::printf("REF: %s\nVAR: %s\nIMAGE: %s\n%sresult: %s\n", paths[0].c_str(), paths[1].c_str(),
+                paths[2].c_str(), ptlab::FormatZTestTable(r).c_str(), r.pass ? "PASS" : "FAIL");
+  }
+  return r.pass ? kExitPass : kExitOverThreshold;
 }
 
 }  // namespace
@@ -56,8 +115,19 @@ int main(int argc, char** argv) {
   ptlab::ImageDiffOptions options;
   double heatmap_scale = 0.5;
   double fail_rmse = 0, fail_relmse = 0, fail_mean_rel = 0, fail_block_share = 0, parity = 0;
-  app.add_option("A", path_a, "test image")->required();
-  app.add_option("B", path_b, "reference image")->required();
+  std::vector<std::string> ztest_paths;
+  std::string ztest_out;
+  uint32_t ztest_spp = 0;
+  CLI::Option* o_a = app.add_option("A", path_a, "test image (required unless --ztest)");
+  CLI::Option* o_b = app.add_option("B", path_b, "reference image (required unless --ztest)");
+  CLI::Option* o_ztest =
+      app.add_option("--ztest", ztest_paths,
+                     "REF VAR IMAGE: Mitsuba 3's Z test of IMAGE (see below) instead of A/B")
+          ->expected(3);
+  CLI::Option* o_spp = app.add_option("--spp", ztest_spp, "--ztest: samples per pixel of IMAGE")
+                           ->check(CLI::Range(1u, 0xffffffffu));
+  app.add_option("--ztest-out", ztest_out,
+                 "--ztest: prefix of the p-value and failed-pixel images (default: IMAGE's)");
   app.add_flag("--json", json, "print one JSON object instead of the table");
   app.add_flag("--flip-x", flip_x, "mirror A left-right before comparing (eth2015 references)");
   app.add_option("--block", options.block_size, "block edge N in pixels")
@@ -90,6 +160,17 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitPass : kExitUsage;
+  }
+  if (o_ztest->count()) {
+    if (o_a->count() || o_b->count() || !o_spp->count()) {
+      std::fprintf(stderr, "imgdiff: --ztest REF VAR IMAGE takes --spp N and no A/B images\n");
+      return kExitUsage;
+    }
+    return RunZTest(ztest_paths, ztest_spp, ztest_out, json);
+  }
+  if (!o_a->count() || !o_b->count()) {
+    std::fprintf(stderr, "imgdiff: images A and B are required (or --ztest REF VAR IMAGE)\n");
+    return kExitUsage;
   }
   options.flip_x = flip_x;
 

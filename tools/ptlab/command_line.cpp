@@ -122,6 +122,10 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
   cmd->add_option("--tile-times", cl->render.tile_times,
                   "Write the wall time of every tile of every pass to this CSV "
                   "(pass,tile,seconds)");
+  cmd->add_flag("--moments", cl->render.moments,
+                "Also write NAME_var.exr beside NAME.exr: each pixel's per-sample variance in "
+                "XYZ, estimated from the 16-sample passes, for imgdiff --ztest "
+                "(docs/mitsuba-tests.md)");
 
   CLI::App* test_cmd = cl->test_cmd = app.add_subcommand(
       "test", "Run a Nori statistical test file (<test type=\"ttest|chi2test\">)");

@@ -28,6 +28,7 @@ struct RenderArgs {
   bool scalar = false;
   bool stats = false;
   std::string tile_times;
+  bool moments = false;  // --moments: NAME_var.exr beside NAME.exr
   std::string sampler;  // empty: the scene's
 };
 

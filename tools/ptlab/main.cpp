@@ -39,6 +39,7 @@
 #include "simd/traverse8.h"
 #include "simd/wavefront_kernels.h"
 #include "tools/chi2/nori_tests.h"
+#include "tools/converge/pass_variance.h"
 #include "tools/mpi/mpi_render.h"
 #include "tools/mpi/mpi_session.h"
 #include "tools/ptlab/command_line.h"
@@ -338,8 +339,16 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     output_ok = Status::Error("output directory '" + out_path.parent_path().string() +
                               "' does not exist");
   }
-  for (const std::string& file : {out, png}) {
-    if (!output_ok.ok() || !mpi.root()) break;
+  // --moments: NAME_var.exr beside NAME.exr, from two passes on.
+  const std::string var_out =
+      args.moments ? (out_path.parent_path() / (out_path.stem().string() + "_var.exr")).string()
+                   : "";
+  if (args.moments && (!args.adaptive.empty() || mpi.active())) {
+    if (mpi.root()) std::fprintf(stderr, "error: --moments does not run with -a or under mpirun\n");
+    return 2;
+  }
+  for (const std::string& file : {out, png, var_out}) {
+    if (!output_ok.ok() || !mpi.root() || file.empty()) break;
     output_ok = PrepareOutputFile(file);
   }
   output_ok = mpi.Agree(output_ok);
@@ -373,6 +382,11 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     options.distribution = &share->distribution();
   }
   if (!quiet) options.on_progress = [&](const RenderProgress& p) { reporter.Update(p); };
+  std::unique_ptr<PassVariance> moments;
+  if (args.moments) {
+    moments = std::make_unique<PassVariance>(scene.camera.width, scene.camera.height);
+    options.on_pass = [&](const RenderPass& pass) { moments->AddPass(*pass.blocks); };
+  }
 
   if (mpi.root())
     std::fprintf(stderr, "ptlab: %s  %dx%d  %u spp  %d threads%s  %zu triangles%s\n",
@@ -467,6 +481,19 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   }
   Status st = WriteImages(out, png, result.image, header, options.threads);
   if (st.ok() && !args.tile_times.empty()) st = WriteTileTimes(args.tile_times, result);
+  if (st.ok() && moments) {
+    if (moments->passes() < 2)
+      std::fprintf(stderr,
+                   "warning: --moments: %u pass(es), no variance estimate (NaN); use more than "
+                   "16 spp\n",
+                   moments->passes());
+    std::vector<std::pair<std::string, std::string>> var_header = header;
+    var_header.emplace_back("ptlab:variance",
+                            "per-sample variance in XYZ from " + std::to_string(moments->passes()) +
+                                " passes (batch means), stored through the XYZ->RGB matrix as "
+                                "Mitsuba's _var.exr");
+    st = WriteExr(var_out, moments->PerSampleVariance(result.spp_done), var_header);
+  }
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
     return 1;
