@@ -2,6 +2,7 @@
 #include "engine/io/collada_loader.h"
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numbers>
 #include <pugixml.hpp>
@@ -9,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/core/memory_budget.h"
 #include "engine/io/collada_document.h"
 #include "engine/io/collada_effect.h"
 #include "engine/io/collada_mesh.h"
@@ -82,6 +84,10 @@ Matrix4 Columns(const Vec3f& x, const Vec3f& y, const Vec3f& z, const Vec3f& p) 
   return m;
 }
 
+// Deepest nesting of nodes read (through <node> children and <instance_node>s): the node
+// reader recurses once a level, and ~10,000 levels overflowed its stack.
+constexpr size_t kMaxNodeDepth = 256;
+
 class ColladaReader {
  public:
   explicit ColladaReader(const Document& doc) : doc_(doc) {}
@@ -111,6 +117,20 @@ class ColladaReader {
     pugi::xml_node visual;
     PTLAB_RETURN_IF_ERROR(doc_.Resolve(instance, "url", "visual_scene", &visual));
     PTLAB_RETURN_IF_ERROR(doc_.CheckChildren(visual, {"node", "asset"}, true));
+    // Count what the node tree instances before expanding any of it: a few kilobytes of
+    // <instance_node>s can multiply into billions of triangles.
+    uint64_t primitives = 0;
+    for (const pugi::xml_node node : visual.children("node")) {
+      uint64_t n = 0;
+      PTLAB_RETURN_IF_ERROR(CountInstances(node, 0, &n));
+      primitives = SaturatingAdd(primitives, n);
+    }
+    const std::string over = OverMemoryBudget(
+        double(primitives) * double(kSceneBytesPerTriangle),
+        "the visual scene instances " + std::to_string(primitives) +
+            (primitives == kCountSaturated ? "+" : "") +
+            " triangles and spheres (through its <instance_node>s), which");
+    if (!over.empty()) return doc_.Error(visual, over);
     std::vector<pugi::xml_node> path;
     for (const pugi::xml_node node : visual.children("node"))
       PTLAB_RETURN_IF_ERROR(ReadNode(node, global_, &path));
@@ -411,9 +431,65 @@ class ColladaReader {
     return Status::Ok();
   }
 
+  static constexpr uint64_t kCountSaturated = UINT64_MAX - 1;
+  static constexpr uint64_t kCounting = UINT64_MAX;  // a node whose count is under way
+  static uint64_t SaturatingAdd(uint64_t a, uint64_t b) {
+    return a > kCountSaturated - b ? kCountSaturated : a + b;
+  }
+
+  Status TooDeep(const pugi::xml_node& node) const {
+    return doc_.Error(node, "<node>s nested deeper than " + std::to_string(kMaxNodeDepth) +
+                                " levels (through <node> and <instance_node>); expected at "
+                                "most " + std::to_string(kMaxNodeDepth));
+  }
+
+  // The triangles and spheres `node` instances, its subtree and the nodes it instances
+  // included; memoised per node, so shared subtrees are counted once however often they are
+  // instanced. Cycles and depth are refused here as ReadNode would.
+  Status CountInstances(const pugi::xml_node& node, size_t depth, uint64_t* count) {
+    if (depth >= kMaxNodeDepth) return TooDeep(node);
+    const auto [it, inserted] = counts_.emplace(node.offset_debug(), kCounting);
+    if (!inserted) {
+      if (it->second == kCounting)
+        return doc_.Error(node, "node '" + Name(node) + "' instances itself (a cycle of "
+                                "<instance_node>s); expected a tree");
+      *count = it->second;
+      return Status::Ok();
+    }
+    uint64_t sum = 0;
+    for (const pugi::xml_node child : node.children()) {
+      const std::string_view name = child.name();
+      uint64_t n = 0;
+      if (name == "node") {
+        PTLAB_RETURN_IF_ERROR(CountInstances(child, depth + 1, &n));
+      } else if (name == "instance_node") {
+        pugi::xml_node target;
+        PTLAB_RETURN_IF_ERROR(doc_.Resolve(child, "url", "node", &target));
+        PTLAB_RETURN_IF_ERROR(CountInstances(target, depth + 1, &n));
+      } else if (name == "instance_geometry" || name == "instance_light") {
+        n = 1;  // a sphere or a light (an area light: two triangles)
+        pugi::xml_node geometry;
+        if (name == "instance_geometry" &&
+            doc_.Resolve(child, "url", "geometry", &geometry).ok()) {
+          const auto g = geometries_.find(geometry.offset_debug());
+          if (g != geometries_.end() && !g->second.is_sphere) {
+            n = 0;
+            for (const collada::MeshPart& part : g->second.parts)
+              n = SaturatingAdd(n, part.mesh.triangle_count());
+          }
+        }
+      }
+      sum = SaturatingAdd(sum, n);
+    }
+    counts_[node.offset_debug()] = sum;
+    *count = sum;
+    return Status::Ok();
+  }
+
   // `path` holds the nodes being read (for cycles through instance_node).
   Status ReadNode(const pugi::xml_node& node, const Matrix4& parent,
                   std::vector<pugi::xml_node>* path) {
+    if (path->size() >= kMaxNodeDepth) return TooDeep(node);
     for (const pugi::xml_node& open : *path)
       if (open == node)
         return doc_.Error(node, "node '" + Name(node) + "' instances itself (a cycle of "
@@ -687,6 +763,7 @@ class ColladaReader {
   std::map<ptrdiff_t, collada::Effect> effects_;
   std::map<ptrdiff_t, ptrdiff_t> effect_of_material_;
   std::map<ptrdiff_t, collada::Geometry> geometries_;
+  std::map<ptrdiff_t, uint64_t> counts_;  // CountInstances' memo
   std::map<ptrdiff_t, LightDesc> lights_;
   std::map<ptrdiff_t, CameraDesc> cameras_;
   std::map<ptrdiff_t, std::pair<MaterialRef, Color3f>> material_rows_;

@@ -8,14 +8,16 @@
 
 #include "engine/image/image_io.h"
 #include "tools/cli_checks.h"
+#include "tools/common/exit_codes.h"
+#include "tools/common/output_guard.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace {
 
-constexpr int kExitPass = 0;
-constexpr int kExitOverThreshold = 1;
-constexpr int kExitSizeMismatch = 2;
-constexpr int kExitUsage = 3;
+using ptlab::kExitFailed;
+using ptlab::kExitOk;
+using ptlab::kExitRunFailed;
+using ptlab::kExitUsage;
 
 constexpr const char* kFooter = R"(Metrics (A = test, B = reference; pixels with a NaN/Inf channel
 in A or B are skipped):
@@ -34,8 +36,9 @@ Blocks: N x N tiles from the top-left; partial edge blocks are INCLUDED (mean ov
   blue-white-red map: -scale blue, 0 white, +scale red; NaN/Inf pixels green. Written as PNG
   (or EXR/PFM by the extension).
 With any --fail-* threshold, NaN/Inf pixels in A also fail.
-Exit codes: 0 pass, 1 over a threshold (or parity failed), 2 size mismatch, 3 unreadable
-  file, unwritable heat map or bad usage.)";
+Exit codes (tools/common/exit_codes.h, shared with ptlab and chi2): 0 pass; 1 fail: over a
+  threshold, parity failed, or A and B of different sizes; 2 bad usage, an unreadable image,
+  or a heat map that would overwrite A or B; 3 the heat map could not be written.)";
 
 bool IsLdrPng(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -61,7 +64,7 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print one JSON object instead of the table");
   app.add_flag("--flip-x", flip_x, "mirror A left-right before comparing (eth2015 references)");
   app.add_option("--block", options.block_size, "block edge N in pixels")
-      ->check(CLI::PositiveNumber)
+      ->check(ptlab::IntegerRange(1, 65536))
       ->capture_default_str();
   app.add_option("--tol", options.block_tol, "block relative tolerance T")
       ->check(ptlab::FinitePositive())
@@ -89,9 +92,20 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitPass : kExitUsage;
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   options.flip_x = flip_x;
+  if (!heatmap_path.empty()) {  // before any work: the heat map may not replace A or B
+    ptlab::OutputGuard guard;
+    guard.AddInput(path_a, "A");
+    guard.AddInput(path_b, "B");
+    guard.AddOutput(heatmap_path, "--heatmap");
+    std::string error;
+    if (const int code = guard.Check(&error); code != kExitOk) {
+      std::fprintf(stderr, "imgdiff: %s\n", error.c_str());
+      return code;
+    }
+  }
 
   ptlab::StatusOr<ptlab::Image> a = ptlab::ReadImage(path_a);
   if (!a.ok()) {
@@ -106,7 +120,7 @@ int main(int argc, char** argv) {
   if (!ptlab::SameSize(*a, *b)) {
     std::fprintf(stderr, "imgdiff: size mismatch: A %s is %dx%d, B %s is %dx%d\n", path_a.c_str(),
                  a->width, a->height, path_b.c_str(), b->width, b->height);
-    return kExitSizeMismatch;
+    return kExitFailed;  // not the same image
   }
   if (IsLdrPng(path_b)) options.psnr_peak = 1.0;
 
@@ -137,7 +151,7 @@ int main(int argc, char** argv) {
         by_extension ? ptlab::WriteImage(heatmap_path, heat) : ptlab::WritePng(heatmap_path, heat);
     if (!s.ok()) {
       std::fprintf(stderr, "imgdiff: heat map: %s\n", s.message().c_str());
-      return kExitUsage;
+      return kExitRunFailed;
     }
   }
 
@@ -155,5 +169,5 @@ int main(int argc, char** argv) {
       for (const std::string& f : failures) std::printf("  - %s\n", f.c_str());
     }
   }
-  return failures.empty() ? kExitPass : kExitOverThreshold;
+  return failures.empty() ? kExitOk : kExitFailed;
 }

@@ -29,6 +29,7 @@ struct RenderArgs {
   bool stats = false;
   std::string tile_times;
   std::string sampler;  // empty: the scene's
+  double max_memory_gib = 0;  // --max-memory; 0: the default (engine/core/memory_budget.h)
 };
 
 /// Every option of every subcommand, filled by CLI::App::parse.

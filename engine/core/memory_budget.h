@@ -1,0 +1,35 @@
+// The memory budget of a run: how many bytes a scene and a render may take, set once by the
+// tool (ptlab --max-memory) and read by the loaders and the render's up-front estimate, so an
+// input of a few kilobytes that would expand into gigabytes is an error that says how much it
+// would need, before the memory is taken.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace ptlab {
+
+/// Bytes of scene memory one triangle costs, about: its traversal and shading rows, its share
+/// of the vertex table, the BVH and the 8-wide BVH, and the builders' temporaries (the README's
+/// 10^7-triangle height field peaks at 1.5 GB).
+inline constexpr uint64_t kSceneBytesPerTriangle = 160;
+
+/// The default budget: three quarters of the machine's physical memory (sysconf), at least
+/// 256 MiB; 8 GiB when the system does not say.
+uint64_t DefaultMemoryBudgetBytes();
+
+/// The budget in force: what SetMemoryBudgetBytes set, else DefaultMemoryBudgetBytes().
+uint64_t MemoryBudgetBytes();
+
+/// Sets the budget (0: back to the default).
+void SetMemoryBudgetBytes(uint64_t bytes);
+
+/// "1.5 GiB", "640 MiB": a byte count for messages.
+std::string FormatBytes(double bytes);
+
+/// Empty when `bytes` (what `what` would take) fits the budget; else a message with both
+/// figures and how to raise the budget, e.g. "the scene would take about 24.0 GiB (2^27
+/// triangles); expected at most 11.6 GiB (--max-memory, default 3/4 of this machine's RAM)".
+std::string OverMemoryBudget(double bytes, const std::string& what);
+
+}  // namespace ptlab
