@@ -181,9 +181,9 @@ TEST_F(Chi2CheckBadInput, SampleFiles) {
   ExpectBadInput("--domain hemisphere --samples " + Write("nan.csv", "0,0,1\nnan,0,1\n") + pdf,
                  "nan.csv:2: the sample is not finite");
   ExpectBadInput("--domain hemisphere --samples " + Write("out.csv", "0,0,1\n0,0,-1\n") + pdf,
-                 "sample 1 is (0, 0, -1): outside the domain hemisphere");
-  ExpectBadInput("--domain square --samples " + Write("far.csv", "0.5,0.5\n2,0.5\n") + pdf,
-                 "outside the domain square");
+                 "out.csv:2: sample 1 is (0, 0, -1): outside the domain hemisphere");
+  ExpectBadInput("--domain square --samples " + Write("far.csv", "x,y\n# c\n0.5,0.5\n\n2,0.5\n") + pdf,
+                 "far.csv:5: sample 1 is (2, 0.5): outside the domain square");
   ExpectBadInput("--domain hemisphere --samples " + Write("empty.csv", "") + pdf,
                  "the sample file is empty");
   ExpectBadInput("--domain hemisphere --samples " + Write("header.csv", "x,y,z\n") + pdf,

@@ -3,11 +3,13 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "engine/core/parse_number.h"
 #include "ptlab/chi2.h"
 #include "tools/chi2/check/pdf_command.h"
 #include "tools/chi2/check/pdf_grid.h"
@@ -123,7 +125,17 @@ int RunCheckCommand(int argc, char** argv) {
   options.images_dir = images_dir;
   chi2::Result r;
   st = chi2::TestPoints(name, domain, points.data(), int64_t(points.size()), pdf, options, &r);
-  if (!st.ok()) return Error(json, st.message());
+  if (!st.ok()) {
+    // "sample N is (x, y): outside the domain ...": name the file and line of sample N.
+    const std::string& m = st.message();
+    int64_t index = 0;
+    const size_t digits = m.rfind("sample ", 0) == 0 ? m.find(' ', 7) : std::string::npos;
+    if (digits != std::string::npos &&
+        ParseNumberQuietly<int64_t>(std::string_view(m).substr(7, digits - 7), 0, INT64_MAX,
+                                    &index) == NumberError::kOk)
+      return Error(json, SampleLocation(samples_path, dims != 0, domain.dims(), index) + ": " + m);
+    return Error(json, m);
+  }
   if (json) {
     Json j;
     j["name"] = name;

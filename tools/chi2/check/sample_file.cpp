@@ -118,6 +118,29 @@ chi2::Status ParseRaw(LineReader& in, uint64_t bytes, int dims, std::vector<chi2
 
 }  // namespace
 
+std::string SampleLocation(const std::string& path, bool raw, int dims, int64_t index) {
+  if (raw) {
+    const int64_t row = 4 * int64_t(dims);
+    return path + ": row " + std::to_string(index) + " (byte " + std::to_string(index * row) + ")";
+  }
+  LineReader in;
+  if (!in.Open(path, "the sample file").ok()) return path;
+  std::string_view line;
+  bool first = true;
+  int64_t samples = 0;
+  while (in.Next(&line)) {  // the same lines ParseText takes as samples
+    const size_t start = line.find_first_not_of(" \t");
+    if (start == std::string_view::npos || line[start] == '#') continue;
+    if (first && IsHeader(line)) {
+      first = false;
+      continue;
+    }
+    first = false;
+    if (samples++ == index) return path + ":" + std::to_string(in.line_number());
+  }
+  return path;
+}
+
 chi2::Status ReadSampleFile(const std::string& path, bool raw, int dims,
                             std::vector<chi2::Point>* points) {
   points->clear();
