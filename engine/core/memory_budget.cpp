@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 
@@ -28,6 +29,14 @@ uint64_t MemoryBudgetBytes() {
 
 void SetMemoryBudgetBytes(uint64_t bytes) { g_budget.store(bytes, std::memory_order_relaxed); }
 
+uint64_t ExpansionBudgetBytes(uint64_t input_bytes) {
+  if (g_budget.load(std::memory_order_relaxed) != 0) return MemoryBudgetBytes();
+  const uint64_t scaled = input_bytes > kMinExpansionBudgetBytes / kMaxExpansionPerInputByte
+                              ? input_bytes * kMaxExpansionPerInputByte
+                              : kMinExpansionBudgetBytes;
+  return std::min(MemoryBudgetBytes(), std::max(scaled, kMinExpansionBudgetBytes));
+}
+
 std::string FormatBytes(double bytes) {
   char buf[64];
   if (bytes >= double(uint64_t(1) << 30))
@@ -44,6 +53,16 @@ std::string OverMemoryBudget(double bytes, const std::string& what) {
   return what + " would take about " + FormatBytes(bytes) + "; expected at most " +
          FormatBytes(double(budget)) +
          (set ? " (--max-memory)" : " (--max-memory; the default is 3/4 of this machine's RAM)");
+}
+
+std::string OverExpansionBudget(double bytes, uint64_t input_bytes, const std::string& what) {
+  const uint64_t budget = ExpansionBudgetBytes(input_bytes);
+  if (!(bytes > double(budget))) return std::string();
+  if (g_budget.load(std::memory_order_relaxed) != 0) return OverMemoryBudget(bytes, what);
+  return what + " would take about " + FormatBytes(bytes) + "; expected at most " +
+         FormatBytes(double(budget)) + " for a file of " + std::to_string(input_bytes) +
+         " bytes (by default the smaller of 3/4 of this machine's RAM and max(2 GiB, " +
+         std::to_string(kMaxExpansionPerInputByte) + " x the file's size); --max-memory sets it)";
 }
 
 }  // namespace ptlab

@@ -90,7 +90,9 @@ constexpr size_t kMaxNodeDepth = 256;
 
 class ColladaReader {
  public:
-  explicit ColladaReader(const Document& doc) : doc_(doc) {}
+  // `input_bytes`: the file's size, which bounds what its instances may expand into by default.
+  ColladaReader(const Document& doc, uint64_t input_bytes)
+      : doc_(doc), input_bytes_(input_bytes) {}
 
   Status Read(const pugi::xml_node& root) {
     PTLAB_RETURN_IF_ERROR(doc_.CheckChildren(
@@ -125,8 +127,8 @@ class ColladaReader {
       PTLAB_RETURN_IF_ERROR(CountInstances(node, 0, &n));
       primitives = SaturatingAdd(primitives, n);
     }
-    const std::string over = OverMemoryBudget(
-        double(primitives) * double(kSceneBytesPerTriangle),
+    const std::string over = OverExpansionBudget(
+        double(primitives) * double(kSceneBytesPerTriangle), input_bytes_,
         "the visual scene instances " + std::to_string(primitives) +
             (primitives == kCountSaturated ? "+" : "") +
             " triangles and spheres (through its <instance_node>s), which");
@@ -764,6 +766,7 @@ class ColladaReader {
   std::map<ptrdiff_t, ptrdiff_t> effect_of_material_;
   std::map<ptrdiff_t, collada::Geometry> geometries_;
   std::map<ptrdiff_t, uint64_t> counts_;  // CountInstances' memo
+  uint64_t input_bytes_ = 0;
   std::map<ptrdiff_t, LightDesc> lights_;
   std::map<ptrdiff_t, CameraDesc> cameras_;
   std::map<ptrdiff_t, std::pair<MaterialRef, Color3f>> material_rows_;
@@ -789,7 +792,7 @@ StatusOr<Scene> LoadColladaSceneFromString(const std::string& text,
                               ">; expected <COLLADA>");
   Document doc(at);
   PTLAB_RETURN_IF_ERROR(doc.IndexIds(root));
-  ColladaReader reader(doc);
+  ColladaReader reader(doc, text.size());
   PTLAB_RETURN_IF_ERROR(reader.Read(root));
   Scene scene = reader.TakeScene();
   scene.source_path = display_name;
