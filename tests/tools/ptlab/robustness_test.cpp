@@ -256,6 +256,15 @@ TEST_F(Robustness, UnboundedWork) {
   Expect(kPtlab + " render -q " + Write("deep.dae", Collada("", deep + "\n")) + " -o " +
              (dir_ / "e.exr").string(),
          2, {"deep.dae:", "nested deeper than 256 levels"});
+  // A Nori file of 4000 tessellated spheres (16 M triangles): every shape is counted before it
+  // is appended, and the load stops at the budget (here --max-memory 0.05 GiB, ~84 spheres).
+  std::string spheres = kScene.substr(0, kScene.find("<shape type=\"sphere\">"));
+  for (int i = 0; i < 4000; ++i)
+    spheres += "<shape type=\"sphere\"><point name=\"center\" value=\"0, 0, -" +
+               std::to_string(i) + "\"/><float name=\"radius\" value=\"0.1\"/></shape>\n";
+  Expect(kPtlab + " render -q " + Write("spheres.xml", spheres + "</scene>\n") +
+             " --max-memory 0.05 -o " + (dir_ / "s.exr").string(),
+         2, {"spheres.xml:", "with <shape type=\"sphere\"> the scene's", "--max-memory"});
   // -l at its documented maximum on a 1024x1024 film: refused with the estimate.
   Expect(kPtlab + " render -q " + scene + " -l 65536 --width 1024 --height 1024 --max-memory 4 -o " +
              (dir_ / "f.exr").string(),
