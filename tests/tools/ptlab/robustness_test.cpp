@@ -275,6 +275,12 @@ TEST_F(Robustness, UnboundedWork) {
          {"fifo: cannot read the sample file: it is not a regular file"});
   Expect(kChi2 + " check --domain square --pdf-cmd true --samples /dev/zero", 2,
          {"not a regular file"});
+  // A 1 GiB raw sample file (sparse: no disk used) is refused from its size, before a read.
+  ASSERT_EQ(Run("truncate -s 1G " + (dir_ / "big.f32").string()), 0);
+  Expect(kChi2 + " check --domain square --dims 2 --pdf-cmd true --samples " +
+             (dir_ / "big.f32").string(),
+         2, {"big.f32: holds 134217728+ samples; expected at most 67108864"});
+  fs::remove(dir_ / "big.f32");
   Write("ok.csv", "0.5,0.5\n0.25,0.75\n");
   Expect("timeout 60 " + kChi2 + " check --domain square --samples " + (dir_ / "ok.csv").string() +
              " --pdf-cmd \"yes 1\"",

@@ -16,6 +16,16 @@ namespace {
 
 const char* Columns(int dims) { return dims == 3 ? "x,y,z" : "x,y"; }
 
+// Most samples a file may hold: 2^26 points take 768 MiB (12 bytes each, allocated once, for
+// the exact count found by a first pass over the file), 64 times the default test's.
+constexpr int64_t kMaxSamples = int64_t(1) << 26;
+
+chi2::Status TooManySamples(const std::string& path, int64_t count) {
+  return chi2::Status::Error(path + ": holds " + std::to_string(count) +
+                             "+ samples; expected at most " + std::to_string(kMaxSamples) +
+                             " (a chi-square test needs far fewer; sub-sample the file)");
+}
+
 // A coordinate: any decimal number, NaN and Inf included (reported below with their line),
 // and magnitudes past float range (then ±Inf, also reported).
 bool ParseCoordinate(std::string_view token, double* x) { return ParseDoubleOrNonFinite(token, x); }
@@ -47,8 +57,31 @@ bool IsHeader(std::string_view line) {
   return header;
 }
 
+// The count of sample lines (those ParseText takes), or -1 past kMaxSamples.
+int64_t CountTextSamples(const std::string& path) {
+  LineReader in;
+  if (!in.Open(path, "the sample file").ok()) return 0;
+  std::string_view line;
+  bool first = true;
+  int64_t count = 0;
+  while (in.Next(&line)) {
+    const size_t start = line.find_first_not_of(" \t");
+    if (start == std::string_view::npos || line[start] == '#') continue;
+    if (first && IsHeader(line)) {
+      first = false;
+      continue;
+    }
+    first = false;
+    if (++count > kMaxSamples) return -1;
+  }
+  return count;
+}
+
 chi2::Status ParseText(LineReader& in, int dims, std::vector<chi2::Point>* points) {
   const std::string& path = in.path();
+  const int64_t count = CountTextSamples(path);
+  if (count < 0) return TooManySamples(path, kMaxSamples + 1);
+  points->reserve(size_t(count));
   std::string_view line;
   bool first = true;
   while (in.Next(&line)) {
@@ -102,6 +135,8 @@ chi2::Status ParseRaw(LineReader& in, uint64_t bytes, int dims, std::vector<chi2
                                " little-endian float32 (" + std::to_string(row) +
                                " bytes each); check --dims");
   static_assert(std::endian::native == std::endian::little, "raw samples are little-endian");
+  if (bytes / row > uint64_t(kMaxSamples)) return TooManySamples(path, int64_t(bytes / row));
+  points->reserve(size_t(bytes / row));
   float v[3] = {0, 0, 0};
   while (in.Read(reinterpret_cast<char*>(v), row) == row) {
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || (dims == 3 && !std::isfinite(v[2])))
