@@ -1,6 +1,7 @@
 // COLLADA scene assembly: the visual scene's node tree instancing geometry, lights and a camera.
 #include "engine/io/collada_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "engine/core/memory_budget.h"
+#include "engine/core/parse_number.h"
 #include "engine/io/collada_document.h"
 #include "engine/io/collada_effect.h"
 #include "engine/io/collada_mesh.h"
@@ -638,6 +640,14 @@ class ColladaReader {
           std::isfinite(r)))
       return doc_.Error(instance,
                         "the sphere's node transform gives no finite centre and radius > 0");
+    // The sphere itself must lie within the scene's coordinates (a radius of 1e20 was only
+    // noticed later, as a camera the scene's bounds could not place).
+    const float reach = std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)}) + r;
+    if (!(reach <= kMaxWorldCoordinate))
+      return doc_.Error(instance, "the sphere (world radius " + FormatLimit(r) + ", centre " +
+                                      FormatLimit(c.x) + ", " + FormatLimit(c.y) + ", " +
+                                      FormatLimit(c.z) + ") reaches beyond the scene's "
+                                      "coordinates [-1e12, 1e12]; expected a smaller radius");
     if (scene_.spheres.size() + 1 >= kMaxSpheres)
       return doc_.Error(instance, "too many spheres; at most " + std::to_string(kMaxSpheres - 1));
     scene_.spheres.Append(c, r, material);

@@ -159,6 +159,15 @@ TEST_F(Robustness, UnclearMessages) {
   Write("big.txt", "60 1e38\n");
   Expect(kPtlab + " render " + scene + " -c " + (dir_ / "big.txt").string() + out, 2,
          {"big.txt:1: '1e38' is out of range [-1e12, 1e12]"});
+  // A CS184 sphere of radius 1e20 is named as the sphere, not blamed on the camera.
+  std::string dae = Collada("", "<node><instance_geometry url=\"#sph\"/></node>\n"
+                                "<node><instance_geometry url=\"#tri\"/></node>\n");
+  dae.replace(dae.find("<library_geometries>") + 20, 0,
+              "<geometry id=\"sph\"><extra><technique profile=\"CGL\"><sphere><radius>1e20"
+              "</radius></sphere></technique></extra></geometry>");
+  Expect(kPtlab + " render " + Write("big_sphere.dae", dae) + out, 2,
+         {"big_sphere.dae:", "the sphere (world radius 1e20", "[-1e12, 1e12]"});
+  EXPECT_EQ(Log().find("camera"), std::string::npos) << Log();
   // chi2 check sample files: file and line in every message; a NaN first line is a sample.
   Write("nan_first.csv", "NaN,0.5\n0.5,0.5\n");
   Expect(kChi2 + " check --domain square --pdf-cmd true --samples " + (dir_ / "nan_first.csv").string(),
