@@ -95,7 +95,9 @@ class Robustness : public ::testing::Test {
 TEST_F(Robustness, InputsOverwritten) {
   const std::string scene = Write("scene.xml", kScene);
   const std::string png_scene = Write("picture.png", kScene);  // a scene named like an image
-  const std::string camera = Write("camera.txt", "not read before the guard");
+  const std::string camera = Write("camera.txt",
+                                   "50 35 1.5 0.01 100\n2 1 5 7 1 5\n0 0 5 0.5 50\n"
+                                   "0 0 -1 0 1 0 1 0 0\n960 640 1\n3.5 0.25\n");
   const std::string render = kPtlab + " render -q ";
   const auto unchanged = [&](const std::string& path, const std::string& bytes) {
     EXPECT_EQ(ReadFile(path), bytes) << path;
@@ -132,7 +134,12 @@ TEST_F(Robustness, InputsOverwritten) {
              (dir_ / "missing" / "t.csv").string(),
          3, {"does not exist"});
   EXPECT_FALSE(fs::exists(dir_ / "c.exr"));
-  (void)camera;
+  // --tile-times over the -c camera file.
+  const std::string camera_bytes = ReadFile(camera);
+  Expect(render + scene + " -c " + camera + " -o " + (dir_ / "d.exr").string() + " --tile-times " +
+             camera,
+         2, {"(--tile-times) is the same file as the input '" + camera + "' (-c camera file)"});
+  unchanged(camera, camera_bytes);
   // imgdiff's heat map over its reference.
   Expect(kImgdiff + " " + (dir_ / "env.exr").string() + " " + (dir_ / "env.exr").string() +
              " --heatmap " + (dir_ / "env.exr").string(),
