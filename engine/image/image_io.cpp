@@ -29,6 +29,7 @@
 #include <set>
 
 #include "engine/core/input_file.h"
+#include "engine/core/parse_number.h"
 #include "engine/image/srgb.h"
 
 namespace ptlab {
@@ -365,8 +366,7 @@ StatusOr<Image> ReadPfmBytes(const std::string& path, const std::string& bytes) 
     for (char c : s) {
       if (!std::isdigit(uint8_t(c))) return false;
     }
-    *out = std::stoll(s);
-    return true;
+    return ParseNumberQuietly<int64_t>(s, 0, int64_t(1) << 40, out) == NumberError::kOk;
   };
   StatusOr<std::string> ws = next_token("width");
   if (!ws.ok()) return ws.status();
@@ -380,14 +380,8 @@ StatusOr<Image> ReadPfmBytes(const std::string& path, const std::string& bytes) 
                                "' is not two positive integers of a sane size");
   }
   double scale = 0;
-  try {
-    size_t used = 0;
-    scale = std::stod(*ss, &used);
-    if (used != ss->size()) scale = 0;
-  } catch (const std::exception&) {
-    scale = 0;
-  }
-  if (scale == 0 || !std::isfinite(scale)) {
+  if (ParseNumberQuietly<double>(*ss, -HUGE_VAL, HUGE_VAL, &scale) != NumberError::kOk ||
+      scale == 0) {
     return ReadError(path, "bad PFM header: scale '" + *ss + "' is not a non-zero number");
   }
   if (pos >= bytes.size()) return ReadError(path, "truncated PFM: no pixel data after the header");

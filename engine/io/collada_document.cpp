@@ -95,19 +95,19 @@ Status Document::CheckChildren(const pugi::xml_node& node,
 
 Status Document::Floats(const pugi::xml_node& node, std::vector<float>* values) const {
   values->clear();
-  std::string bad;
+  std::string error;
   const bool ok = ForEachToken(node.child_value(), [&](std::string_view token) {
     float v = 0;
-    if (!ParseFloat(token, &v) || !(std::fabs(v) <= kMaxRadiance)) {
-      bad = std::string(token);
+    if (ParseNumberQuietly<float>(token, -kMaxRadiance, kMaxRadiance, &v) != NumberError::kOk) {
+      error = ParseNumber<float>(token, -kMaxRadiance, kMaxRadiance, &v);
       return false;
     }
     values->push_back(v);
     return true;
   });
   if (!ok)
-    return Error(node, "'" + bad + std::string("' in <") + std::string(node.name()) +
-                           "> is not a number; expected finite decimal numbers");
+    return Error(node, "in <" + std::string(node.name()) + ">: " + error +
+                           " (COLLADA numbers are finite decimals)");
   return Status::Ok();
 }
 

@@ -1,7 +1,9 @@
 // COLLADA scene assembly: the visual scene's node tree instancing geometry, lights and a camera.
 #include "engine/io/collada_loader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numbers>
 #include <pugixml.hpp>
@@ -9,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "engine/core/memory_budget.h"
+#include "engine/core/parse_number.h"
 #include "engine/io/collada_document.h"
 #include "engine/io/collada_effect.h"
 #include "engine/io/collada_mesh.h"
@@ -82,9 +86,15 @@ Matrix4 Columns(const Vec3f& x, const Vec3f& y, const Vec3f& z, const Vec3f& p) 
   return m;
 }
 
+// Deepest nesting of nodes read (through <node> children and <instance_node>s): the node
+// reader recurses once a level, and ~10,000 levels overflowed its stack.
+constexpr size_t kMaxNodeDepth = 256;
+
 class ColladaReader {
  public:
-  explicit ColladaReader(const Document& doc) : doc_(doc) {}
+  // `input_bytes`: the file's size, which bounds what its instances may expand into by default.
+  ColladaReader(const Document& doc, uint64_t input_bytes)
+      : doc_(doc), input_bytes_(input_bytes) {}
 
   Status Read(const pugi::xml_node& root) {
     PTLAB_RETURN_IF_ERROR(doc_.CheckChildren(
@@ -111,6 +121,20 @@ class ColladaReader {
     pugi::xml_node visual;
     PTLAB_RETURN_IF_ERROR(doc_.Resolve(instance, "url", "visual_scene", &visual));
     PTLAB_RETURN_IF_ERROR(doc_.CheckChildren(visual, {"node", "asset"}, true));
+    // Count what the node tree instances before expanding any of it: a few kilobytes of
+    // <instance_node>s can multiply into billions of triangles.
+    uint64_t primitives = 0;
+    for (const pugi::xml_node node : visual.children("node")) {
+      uint64_t n = 0;
+      PTLAB_RETURN_IF_ERROR(CountInstances(node, 0, &n));
+      primitives = SaturatingAdd(primitives, n);
+    }
+    const std::string over = OverExpansionBudget(
+        double(primitives) * double(kSceneBytesPerTriangle), input_bytes_,
+        "the visual scene instances " + std::to_string(primitives) +
+            (primitives == kCountSaturated ? "+" : "") +
+            " triangles and spheres (through its <instance_node>s), which");
+    if (!over.empty()) return doc_.Error(visual, over);
     std::vector<pugi::xml_node> path;
     for (const pugi::xml_node node : visual.children("node"))
       PTLAB_RETURN_IF_ERROR(ReadNode(node, global_, &path));
@@ -411,9 +435,65 @@ class ColladaReader {
     return Status::Ok();
   }
 
+  static constexpr uint64_t kCountSaturated = UINT64_MAX - 1;
+  static constexpr uint64_t kCounting = UINT64_MAX;  // a node whose count is under way
+  static uint64_t SaturatingAdd(uint64_t a, uint64_t b) {
+    return a > kCountSaturated - b ? kCountSaturated : a + b;
+  }
+
+  Status TooDeep(const pugi::xml_node& node) const {
+    return doc_.Error(node, "<node>s nested deeper than " + std::to_string(kMaxNodeDepth) +
+                                " levels (through <node> and <instance_node>); expected at "
+                                "most " + std::to_string(kMaxNodeDepth));
+  }
+
+  // The triangles and spheres `node` instances, its subtree and the nodes it instances
+  // included; memoised per node, so shared subtrees are counted once however often they are
+  // instanced. Cycles and depth are refused here as ReadNode would.
+  Status CountInstances(const pugi::xml_node& node, size_t depth, uint64_t* count) {
+    if (depth >= kMaxNodeDepth) return TooDeep(node);
+    const auto [it, inserted] = counts_.emplace(node.offset_debug(), kCounting);
+    if (!inserted) {
+      if (it->second == kCounting)
+        return doc_.Error(node, "node '" + Name(node) + "' instances itself (a cycle of "
+                                "<instance_node>s); expected a tree");
+      *count = it->second;
+      return Status::Ok();
+    }
+    uint64_t sum = 0;
+    for (const pugi::xml_node child : node.children()) {
+      const std::string_view name = child.name();
+      uint64_t n = 0;
+      if (name == "node") {
+        PTLAB_RETURN_IF_ERROR(CountInstances(child, depth + 1, &n));
+      } else if (name == "instance_node") {
+        pugi::xml_node target;
+        PTLAB_RETURN_IF_ERROR(doc_.Resolve(child, "url", "node", &target));
+        PTLAB_RETURN_IF_ERROR(CountInstances(target, depth + 1, &n));
+      } else if (name == "instance_geometry" || name == "instance_light") {
+        n = 1;  // a sphere or a light (an area light: two triangles)
+        pugi::xml_node geometry;
+        if (name == "instance_geometry" &&
+            doc_.Resolve(child, "url", "geometry", &geometry).ok()) {
+          const auto g = geometries_.find(geometry.offset_debug());
+          if (g != geometries_.end() && !g->second.is_sphere) {
+            n = 0;
+            for (const collada::MeshPart& part : g->second.parts)
+              n = SaturatingAdd(n, part.mesh.triangle_count());
+          }
+        }
+      }
+      sum = SaturatingAdd(sum, n);
+    }
+    counts_[node.offset_debug()] = sum;
+    *count = sum;
+    return Status::Ok();
+  }
+
   // `path` holds the nodes being read (for cycles through instance_node).
   Status ReadNode(const pugi::xml_node& node, const Matrix4& parent,
                   std::vector<pugi::xml_node>* path) {
+    if (path->size() >= kMaxNodeDepth) return TooDeep(node);
     for (const pugi::xml_node& open : *path)
       if (open == node)
         return doc_.Error(node, "node '" + Name(node) + "' instances itself (a cycle of "
@@ -560,6 +640,14 @@ class ColladaReader {
           std::isfinite(r)))
       return doc_.Error(instance,
                         "the sphere's node transform gives no finite centre and radius > 0");
+    // The sphere itself must lie within the scene's coordinates (a radius of 1e20 was only
+    // noticed later, as a camera the scene's bounds could not place).
+    const float reach = std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)}) + r;
+    if (!(reach <= kMaxWorldCoordinate))
+      return doc_.Error(instance, "the sphere (world radius " + FormatLimit(r) + ", centre " +
+                                      FormatLimit(c.x) + ", " + FormatLimit(c.y) + ", " +
+                                      FormatLimit(c.z) + ") reaches beyond the scene's "
+                                      "coordinates [-1e12, 1e12]; expected a smaller radius");
     if (scene_.spheres.size() + 1 >= kMaxSpheres)
       return doc_.Error(instance, "too many spheres; at most " + std::to_string(kMaxSpheres - 1));
     scene_.spheres.Append(c, r, material);
@@ -687,6 +775,8 @@ class ColladaReader {
   std::map<ptrdiff_t, collada::Effect> effects_;
   std::map<ptrdiff_t, ptrdiff_t> effect_of_material_;
   std::map<ptrdiff_t, collada::Geometry> geometries_;
+  std::map<ptrdiff_t, uint64_t> counts_;  // CountInstances' memo
+  uint64_t input_bytes_ = 0;
   std::map<ptrdiff_t, LightDesc> lights_;
   std::map<ptrdiff_t, CameraDesc> cameras_;
   std::map<ptrdiff_t, std::pair<MaterialRef, Color3f>> material_rows_;
@@ -712,7 +802,7 @@ StatusOr<Scene> LoadColladaSceneFromString(const std::string& text,
                               ">; expected <COLLADA>");
   Document doc(at);
   PTLAB_RETURN_IF_ERROR(doc.IndexIds(root));
-  ColladaReader reader(doc);
+  ColladaReader reader(doc, text.size());
   PTLAB_RETURN_IF_ERROR(reader.Read(root));
   Scene scene = reader.TakeScene();
   scene.source_path = display_name;

@@ -8,7 +8,9 @@
 
 #include "engine/core/input_file.h"
 #include "engine/core/transform.h"
+#include "engine/core/parse_number.h"
 #include "engine/io/text_parsing.h"
+#include "engine/scene/scene_limits.h"
 
 namespace ptlab {
 namespace {
@@ -43,9 +45,10 @@ Status ApplyCs184CameraSettings(const std::string& text, const std::string& disp
       ++end;
     const std::string_view token(text.data() + i, end - i);
     float value = 0;
-    if (!ParseFloat(token, &value))
-      return Status::Error(At(display_name, line) + "'" + std::string(token.substr(0, 40)) +
-                           "' is not a number; expected CS184 camera settings (finite numbers)");
+    const std::string number = ParseNumber<float>(token, -kMaxWorldCoordinate, kMaxWorldCoordinate, &value);
+    if (!number.empty())
+      return Status::Error(At(display_name, line) + number +
+                           " (CS184 camera settings are finite numbers)");
     if (v.size() == kNumbersWithLens)
       return Status::Error(At(display_name, line) + "more than " +
                            std::to_string(kNumbersWithLens) + " numbers; expected " +
@@ -66,7 +69,8 @@ Status ApplyCs184CameraSettings(const std::string& text, const std::string& disp
     if (!(v[i].value > 0 && v[i].value < 180))
       return error(i, std::string(i == 0 ? "hFov" : "vFov") + " " + std::to_string(v[i].value) +
                           " is out of range; expected degrees in (0, 180)");
-  if (!(v[2].value > 0)) return error(2, "ar must be > 0");
+  if (!(v[2].value >= 1e-3f && v[2].value <= 1e3f))
+    return error(2, "ar " + FormatLimit(v[2].value) + " is out of range [1e-3, 1e3]");
   if (!(v[3].value > 0 && v[4].value > v[3].value))
     return error(3, "expected clip planes 0 < nClip < fClip");
   const Vec3f pos{v[5].value, v[6].value, v[7].value};

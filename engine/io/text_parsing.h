@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cerrno>
+#include <cfloat>
+#include <climits>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -12,41 +14,23 @@
 #include <vector>
 
 #include "engine/core/input_file.h"
+#include "engine/core/parse_number.h"
 #include "engine/core/status.h"
 
 namespace ptlab {
 
-/// from_chars takes no '+': drop one, and refuse "", "+", "++1" and "+-1".
-inline bool StripPlusSign(std::string_view* token) {
-  if (!token->empty() && (*token)[0] == '+') {
-    token->remove_prefix(1);
-    if (token->empty() || (*token)[0] == '+' || (*token)[0] == '-') return false;
-  }
-  return !token->empty();
-}
-
 /// Parses the whole of `token` as a finite decimal float (optional sign, digits, optional
 /// fraction and exponent). Rejects empty text, trailing junk ("1x", "1.2.3"), "nan", "inf",
-/// hexadecimal and values out of float range.
+/// hexadecimal and values out of float range. The bool face of engine/core/parse_number.h
+/// (ParseNumber<float> gives the message).
 inline bool ParseFloat(std::string_view token, float* value) {
-  if (!StripPlusSign(&token)) return false;
-  float v = 0;
-  const auto [end, error] =
-      std::from_chars(token.data(), token.data() + token.size(), v, std::chars_format::general);
-  if (error != std::errc() || end != token.data() + token.size() || !std::isfinite(v)) return false;
-  *value = v;
-  return true;
+  return ParseNumberQuietly<float>(token, -FLT_MAX, FLT_MAX, value) == NumberError::kOk;
 }
 
 /// Parses the whole of `token` as a decimal int (optional sign); "1.0", "1e3", "0x1" and
-/// out-of-range values are rejected.
+/// out-of-range values are rejected. The bool face of ParseNumber<int>.
 inline bool ParseInt(std::string_view token, int* value) {
-  if (!StripPlusSign(&token)) return false;
-  int v = 0;
-  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (error != std::errc() || end != token.data() + token.size()) return false;
-  *value = v;
-  return true;
+  return ParseNumberQuietly<int>(token, INT_MIN, INT_MAX, value) == NumberError::kOk;
 }
 
 /// Splits a list written "1,2,3", "1 2 3" or "1, 2, 3" into its items. Items are separated by

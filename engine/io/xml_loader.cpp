@@ -328,6 +328,7 @@ StatusOr<Scene> LoadSceneFromString(const std::string& xml, const std::string& b
     return Status::Error(at.AtOffset(result.offset) +
                          ": XML syntax error: " + result.description());
   SceneParser parser(&at, base_dir);
+  parser.set_input_bytes(xml.size());
   PTLAB_RETURN_IF_ERROR(parser.ParseRoot(doc));
   Scene scene = parser.TakeScene();
   scene.source_path = display_name;
@@ -351,6 +352,7 @@ StatusOr<Scene> ParseSceneElement(const std::string& xml, const pugi::xml_node& 
                                   const LoadOptions& options) {
   const Locator at(xml, display_name, options);
   SceneParser parser(&at, base_dir);
+  parser.set_input_bytes(xml.size());
   PTLAB_RETURN_IF_ERROR(parser.ParseSceneElement(node));
   Scene scene = parser.TakeScene();
   scene.source_path = display_name;

@@ -3,6 +3,7 @@
 // xml_emitters.cpp.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <pugixml.hpp>
 #include <string>
@@ -22,6 +23,10 @@ class SceneParser {
   Status ParseRoot(const pugi::xml_document& doc);
 
   Scene TakeScene() { return std::move(scene_); }
+
+  /// Bytes of the scene's text: with the OBJ files' bytes, what its shapes may expand into
+  /// (engine/core/memory_budget.h's ExpansionBudgetBytes).
+  void set_input_bytes(uint64_t bytes) { input_bytes_ = bytes; }
 
   // One <scene> or <bsdf> element of a larger document (xml_loader_internal.h).
   Status ParseSceneElement(const pugi::xml_node& node) { return ParseScene(node); }
@@ -94,6 +99,7 @@ class SceneParser {
   Scene scene_;
   pugi::xml_node camera_, integrator_, filter_;
   std::map<std::string, MeshData> obj_cache_;  // one OBJ used by several meshes loads once
+  uint64_t input_bytes_ = 0;  // the XML's and the loaded OBJ files' bytes
 };
 
 }  // namespace ptlab::internal

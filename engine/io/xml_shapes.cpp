@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <system_error>
 #include <map>
 #include <pugixml.hpp>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "engine/core/memory_budget.h"
 #include "engine/image/image_io.h"
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
@@ -84,11 +86,21 @@ Status SceneParser::ParseShape(const pugi::xml_node& node) {
                                    loaded.status().message());
       it = obj_cache_.emplace(path, std::move(*loaded)).first;
       scene_.input_files.push_back(path);
+      std::error_code ec;
+      const uintmax_t bytes = std::filesystem::file_size(path, ec);
+      if (!ec) input_bytes_ += uint64_t(bytes);
     }
     mesh = &it->second;
     name = filename;
   }
   if (!bsdf_node) material = scene_.materials.AddDiffuse({0.5f, 0.5f, 0.5f});
+  // Every shape appends its triangles (an OBJ used again is appended again): a short file of
+  // many shapes may not grow past its expansion budget.
+  const uint64_t triangles = uint64_t(scene_.triangles.size()) + mesh->triangle_count();
+  const std::string over = OverExpansionBudget(
+      double(triangles) * double(kSceneBytesPerTriangle), input_bytes_,
+      "with " + Describe(node) + " the scene's " + std::to_string(triangles) + " triangles");
+  if (!over.empty()) return at_.Error(node, over);
   const uint32_t first = uint32_t(scene_.triangles.size());
   const uint32_t row = AddMesh(&scene_, *mesh, to_world, material, name);
   const TriangleTable& tri = scene_.triangles;

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "engine/core/parse_number.h"
 #include "engine/core/rng.h"
 #include "ptlab/chi2.h"
 #include "tools/chi2/chi2.h"
@@ -22,6 +23,9 @@ namespace {
 
 // Rows of uniforms handed to SampleFn at once: whole arrays for NumPy, bounded memory.
 constexpr int64_t kSampleChunk = int64_t(1) << 22;
+// Largest magnitude of a box corner: the box's area and its cells' stay finite in double
+// (a box of ±1e308 had an infinite area and reported -1 degrees of freedom).
+constexpr double kMaxBoxCorner = 1e150;
 
 Chi2Domain ToInternal(const Domain& d) {
   switch (d.kind) {
@@ -80,6 +84,11 @@ Status CheckDomain(const Domain& d) {
         d.x0 < d.x1 && d.y0 < d.y1))
     return Status::Error("a box domain needs finite corners with x0 < x1 and y0 < y1, got " +
                          DomainName(d));
+  if (d.kind == DomainKind::kBox &&
+      !(std::fabs(d.x0) <= kMaxBoxCorner && std::fabs(d.x1) <= kMaxBoxCorner &&
+        std::fabs(d.y0) <= kMaxBoxCorner && std::fabs(d.y1) <= kMaxBoxCorner))
+    return Status::Error("a box domain's corners must lie in [-1e150, 1e150] (its area must "
+                         "stay finite), got " + DomainName(d));
   return Status::Ok();
 }
 
@@ -143,14 +152,19 @@ Status ParseDomain(const std::string& text, Domain* domain) {
   if (text.rfind("box:", 0) != 0)
     return Status::Error("unknown domain \"" + text + "\": " + expected);
   double v[4];
-  const char* s = text.c_str() + 4;
+  std::string_view rest = std::string_view(text).substr(4);
   for (int i = 0; i < 4; ++i) {
-    char* end = nullptr;
-    v[i] = std::strtod(s, &end);
-    const char want = i < 3 ? ',' : '\0';
-    if (end == s || *end != want)
+    const size_t comma = i < 3 ? rest.find(',') : rest.size();
+    if (comma == std::string_view::npos)
       return Status::Error("bad box domain \"" + text + "\": " + expected);
-    s = end + (i < 3 ? 1 : 0);
+    // Corners within ±1e150: the box's area (a product of two sides) and the cell areas
+    // then stay finite, so the test's degrees of freedom do too.
+    const std::string error =
+        ptlab::ParseNumber<double>(rest.substr(0, comma), -kMaxBoxCorner, kMaxBoxCorner, &v[i]);
+    if (!error.empty())
+      return Status::Error("bad box domain \"" + text + "\": corner " + std::to_string(i + 1) +
+                           " " + error + "; " + expected);
+    rest.remove_prefix(i < 3 ? comma + 1 : comma);
   }
   const Domain box = Domain::Box(v[0], v[1], v[2], v[3]);
   PTLAB_CHI2_RETURN_IF_ERROR(CheckDomain(box));

@@ -12,13 +12,16 @@
 #include "tools/chi2/report.h"
 #include "tools/chi2/subjects.h"
 #include "tools/cli_checks.h"
+#include "tools/common/exit_codes.h"
+#include "tools/common/output_guard.h"
 #include "tools/mpi/mpi_session.h"
 
 namespace {
 
-constexpr int kExitPass = 0;
-constexpr int kExitFail = 1;
-constexpr int kExitUsage = 3;
+using ptlab::kExitFailed;
+using ptlab::kExitOk;
+using ptlab::kExitRunFailed;
+using ptlab::kExitUsage;
 
 constexpr const char* kFooter =
     R"(Each test histograms the subject's samples on a grid (res x res cells; 2res x res in
@@ -29,8 +32,9 @@ pdf values, and on a pdf integral off 1 (or the subject's albedo) by more than 1
 Significance: alpha for the whole run, Sidak-corrected per test: alpha' = 1 - (1 - alpha)^(1/n).
 Verdicts: PASS / FAIL for real subjects; XFAIL (rejected as expected) / XPASS for "broken/..."
 subjects, which exist to prove the test can fail.
-Exit codes: 0 every subject as expected (real ones pass, broken ones fail), 1 otherwise,
-  3 bad usage, unknown subject or unwritable image directory.
+Exit codes (tools/common/exit_codes.h, shared with ptlab and imgdiff): 0 every subject as
+  expected (real ones pass, broken ones fail), 1 otherwise, 2 bad usage or unknown subject,
+  3 the image directory or an image could not be written.
 `chi2 check --help`: test samples from a file against a pdf program or grid (any language).)";
 
 // One subject's verdict line (and notes): what a rank sends to rank 0.
@@ -68,7 +72,7 @@ int RunOverRanks(const ptlab::mpi::Session& mpi,
     const std::string text = RunOne(*selected[i], options, images_dir, verbose, &ok);
     return (ok ? "+" : "-") + text;
   });
-  if (!mpi.root()) return kExitPass;  // rank 0 gives the run's exit status
+  if (!mpi.root()) return kExitOk;  // rank 0 gives the run's exit status
   int as_expected = 0, unexpected = 0, image_errors = 0;
   for (const std::string& t : texts) {
     std::fputs(t.c_str() + 1, stdout);
@@ -77,8 +81,8 @@ int RunOverRanks(const ptlab::mpi::Session& mpi,
   }
   std::printf("chi2: %d as expected, %d not: %s\n", as_expected, unexpected,
               unexpected == 0 ? "PASS" : "FAIL");
-  if (image_errors > 0) return kExitUsage;
-  return unexpected == 0 ? kExitPass : kExitFail;
+  if (image_errors > 0) return kExitRunFailed;
+  return unexpected == 0 ? kExitOk : kExitFailed;
 }
 
 }  // namespace
@@ -116,7 +120,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitPass : kExitUsage;
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
 
   const ptlab::Chi2Registry registry = ptlab::DefaultChi2Registry();
@@ -126,7 +130,7 @@ int main(int argc, char** argv) {
                   s.expect == ptlab::Chi2Expect::kPass ? "must pass" : "must fail",
                   s.params.empty() ? "" : "  ", s.params.c_str());
     }
-    return kExitPass;
+    return kExitOk;
   }
   if (all == !names.empty()) {
     std::fprintf(stderr, "chi2: give either --all or subject names (--list shows them)\n%s",
@@ -147,13 +151,11 @@ int main(int argc, char** argv) {
     }
   }
 
-  if (!images_dir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(images_dir, ec);
-    if (ec) {
-      std::fprintf(stderr, "chi2: %s: cannot create the image directory: %s\n", images_dir.c_str(),
-                   ec.message().c_str());
-      return kExitUsage;
+  if (!images_dir.empty()) {  // created and probed before any test runs
+    std::string error;
+    if (const int code = ptlab::PrepareOutputFolder(images_dir, &error); code != kExitOk) {
+      std::fprintf(stderr, "chi2: --images: %s\n", error.c_str());
+      return code;
     }
   }
   options.test_count = int(selected.size());
@@ -177,11 +179,11 @@ int main(int argc, char** argv) {
       const ptlab::Status status = ptlab::WriteChi2Report(images_dir, result);
       if (!status.ok()) {
         std::fprintf(stderr, "chi2: %s\n", status.message().c_str());
-        return kExitUsage;
+        return kExitRunFailed;
       }
     }
   }
   std::printf("chi2: %d as expected, %d not: %s\n", as_expected, unexpected,
               unexpected == 0 ? "PASS" : "FAIL");
-  return unexpected == 0 ? kExitPass : kExitFail;
+  return unexpected == 0 ? kExitOk : kExitFailed;
 }

@@ -17,6 +17,7 @@
 #include "tools/chi2/chi2.h"
 #include "tools/chi2/report.h"
 #include "tools/chi2/stats_math.h"
+#include "tools/common/exit_codes.h"
 
 namespace ptlab {
 namespace {
@@ -378,13 +379,13 @@ std::string FormatNoriTestSummary(const NoriTestReport& report) {
 int NoriTestExitCode(const NoriTestReport& report) {
   switch (report.Verdict()) {
     case NoriVerdict::kPass:
-      return 0;
+      return kExitOk;
     case NoriVerdict::kFail:
-      return 1;
+      return kExitFailed;
     case NoriVerdict::kSkip:
-      return 2;
+      return kExitSkipped;
   }
-  return 1;
+  return kExitFailed;
 }
 
 int RunNoriTestCommand(const std::string& path, bool verbose) {
@@ -393,10 +394,10 @@ int RunNoriTestCommand(const std::string& path, bool verbose) {
     if (IsUnsupportedFeatureMessage(file.status().message())) {
       std::printf("SKIP  %s\n      - %s\n", path.c_str(), file.status().message().c_str());
       std::printf("%s: skipped (a feature it needs is not supported yet)\n", path.c_str());
-      return 2;
+      return kExitSkipped;
     }
     std::fprintf(stderr, "error: %s\n", file.status().message().c_str());
-    return 3;
+    return kExitUsage;
   }
   std::printf("%s\n", FormatNoriTestHeader(*file).c_str());
   std::fflush(stdout);

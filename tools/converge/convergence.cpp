@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "engine/image/image_io.h"
+#include "tools/common/json_line.h"
 #include "tools/imgdiff/imgdiff.h"
 
 namespace ptlab {
@@ -27,22 +28,9 @@ std::string Num(double v) {
   return buf;
 }
 
-std::string JsonNum(double v) { return std::isfinite(v) ? Num(v) : "null"; }
 
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
+// A CSV field quoted as a JSON string (nlohmann/json escapes it).
+std::string JsonString(const std::string& s) { return DumpJsonLine(Json(s)); }
 
 double Mean(const std::vector<double>& v) {
   double s = 0;
@@ -215,37 +203,46 @@ Status WriteConvergeCsv(const std::string& path, const std::vector<ConvergencePo
 Status WriteConvergeJson(const std::string& path, const std::vector<std::string>& references,
                          const std::vector<ConvergencePoint>& points,
                          const std::vector<VariantSummary>& summary) {
+  // One point or summary row per line, as before; every value through nlohmann/json.
   std::ostringstream o;
-  o << "{\n  \"references\": [";
-  for (size_t i = 0; i < references.size(); ++i)
-    o << (i ? ", " : "") << JsonString(references[i]);
-  o << "],\n  \"points\": [\n";
+  o << "{\n  \"references\": " << DumpJsonLine(Json(references)) << ",\n  \"points\": [\n";
   for (size_t i = 0; i < points.size(); ++i) {
     const ConvergencePoint& p = points[i];
-    o << "    {\"scene\": " << JsonString(p.scene) << ", \"variant\": " << JsonString(p.variant)
-      << ", \"seed\": " << p.seed << ", \"pass\": " << p.pass << ", \"spp\": " << p.spp
-      << ", \"mean_spp\": " << JsonNum(p.mean_spp) << ", \"seconds\": " << JsonNum(p.seconds) << ", \"rel_mse\": " << JsonNum(p.rel_mse)
-      << ", \"rmse\": " << JsonNum(p.rmse) << ", \"mae\": " << JsonNum(p.mae)
-      << ", \"bias\": [" << JsonNum(p.bias[0]) << ", " << JsonNum(p.bias[1]) << ", "
-      << JsonNum(p.bias[2]) << "], \"parity_share\": " << JsonNum(p.parity_share)
-      << ", \"estimated_rel_mse\": " << JsonNum(p.estimated_rel_mse)
-      << ", \"cpu_seconds\": " << JsonNum(p.cpu_seconds) << "}"
-      << (i + 1 < points.size() ? "," : "") << "\n";
+    Json j;
+    j["scene"] = p.scene;
+    j["variant"] = p.variant;
+    j["seed"] = p.seed;
+    j["pass"] = p.pass;
+    j["spp"] = p.spp;
+    j["mean_spp"] = JsonNumberOrNull(p.mean_spp);
+    j["seconds"] = JsonNumberOrNull(p.seconds);
+    j["rel_mse"] = JsonNumberOrNull(p.rel_mse);
+    j["rmse"] = JsonNumberOrNull(p.rmse);
+    j["mae"] = JsonNumberOrNull(p.mae);
+    j["bias"] = Json::array({JsonNumberOrNull(p.bias[0]), JsonNumberOrNull(p.bias[1]),
+                             JsonNumberOrNull(p.bias[2])});
+    j["parity_share"] = JsonNumberOrNull(p.parity_share);
+    j["estimated_rel_mse"] = JsonNumberOrNull(p.estimated_rel_mse);
+    j["cpu_seconds"] = JsonNumberOrNull(p.cpu_seconds);
+    o << "    " << DumpJsonLine(j) << (i + 1 < points.size() ? "," : "") << "\n";
   }
   o << "  ],\n  \"summary\": [\n";
   for (size_t i = 0; i < summary.size(); ++i) {
     const VariantSummary& s = summary[i];
-    o << "    {\"scene\": " << JsonString(s.scene) << ", \"variant\": " << JsonString(s.variant)
-      << ", \"seeds\": " << s.seeds << ", \"final_rel_mse\": " << JsonNum(s.final_rel_mse)
-      << ", \"final_rel_mse_sd\": " << JsonNum(s.final_rel_mse_sd)
-      << ", \"final_seconds\": " << JsonNum(s.final_seconds)
-      << ", \"efficiency\": " << JsonNum(s.efficiency)
-      << ", \"slope_spp\": " << JsonNum(s.slope_spp.slope)
-      << ", \"slope_spp_stderr\": " << JsonNum(s.slope_spp.slope_stderr)
-      << ", \"seconds_to_rel_mse_1e-2\": " << JsonNum(s.seconds_to_1e2)
-      << ", \"seconds_to_rel_mse_1e-3\": " << JsonNum(s.seconds_to_1e3)
-      << ", \"estimate_over_true\": " << JsonNum(s.estimate_ratio) << "}"
-      << (i + 1 < summary.size() ? "," : "") << "\n";
+    Json j;
+    j["scene"] = s.scene;
+    j["variant"] = s.variant;
+    j["seeds"] = s.seeds;
+    j["final_rel_mse"] = JsonNumberOrNull(s.final_rel_mse);
+    j["final_rel_mse_sd"] = JsonNumberOrNull(s.final_rel_mse_sd);
+    j["final_seconds"] = JsonNumberOrNull(s.final_seconds);
+    j["efficiency"] = JsonNumberOrNull(s.efficiency);
+    j["slope_spp"] = JsonNumberOrNull(s.slope_spp.slope);
+    j["slope_spp_stderr"] = JsonNumberOrNull(s.slope_spp.slope_stderr);
+    j["seconds_to_rel_mse_1e-2"] = JsonNumberOrNull(s.seconds_to_1e2);
+    j["seconds_to_rel_mse_1e-3"] = JsonNumberOrNull(s.seconds_to_1e3);
+    j["estimate_over_true"] = JsonNumberOrNull(s.estimate_ratio);
+    o << "    " << DumpJsonLine(j) << (i + 1 < summary.size() ? "," : "") << "\n";
   }
   o << "  ]\n}\n";
   return WriteFileAtomically(path, o.str());

@@ -1,19 +1,20 @@
 // Variants of a scene for `ptlab converge`: one table row per key.
 #include "tools/converge/variant.h"
 
-#include <charconv>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
+
+#include "engine/core/parse_number.h"
 
 namespace ptlab {
 namespace {
 
 using Type = IntegratorDesc::Type;
 
-bool ParseInt(const std::string& s, int lo, int* out) {
-  const char* end = s.data() + s.size();
-  const auto [ptr, ec] = std::from_chars(s.data(), end, *out);
-  return ec == std::errc() && ptr == end && *out >= lo;
+// An integer in [lo, hi] through the shared checked parser (engine/core/parse_number.h).
+bool ParseIntIn(const std::string& s, int lo, int hi, int* out) {
+  return ParseNumberQuietly<int>(s, lo, hi, out) == NumberError::kOk;
 }
 
 // One overridable key: its name, what it accepts (for messages) and how it applies.
@@ -44,17 +45,17 @@ constexpr VariantKey kKeys[] = {
        if (t) t->scene->integrator.power_heuristic = v == "power";
        return Status::Ok();
      }},
-    {"lightSamples", "an integer >= 1",
+    {"lightSamples", "an integer in [1, 65536] (as render -l)",
      [](const std::string& v, VariantTarget* t) {
        int n = 0;
-       if (!ParseInt(v, 1, &n)) return Status::Error("");
+       if (!ParseIntIn(v, 1, 1 << 16, &n)) return Status::Error("");
        if (t) t->scene->integrator.light_samples = n;
        return Status::Ok();
      }},
-    {"maxDepth", "an integer >= -1 (-1: unbounded)",
+    {"maxDepth", "an integer in [-1, 1048576] (-1: unbounded)",
      [](const std::string& v, VariantTarget* t) {
        int n = 0;
-       if (!ParseInt(v, -1, &n)) return Status::Error("");
+       if (!ParseIntIn(v, -1, 1 << 20, &n)) return Status::Error("");
        if (t) t->scene->integrator.max_depth = n;
        return Status::Ok();
      }},
@@ -99,19 +100,17 @@ constexpr VariantKey kKeys[] = {
        }
        return Status::Ok();
      }},
-    {"adaptive", "BATCH:TOLERANCE (an integer >= 2 and a number > 0) or off",
+    {"adaptive", "BATCH:TOLERANCE (an integer in [2, 1048576] and a number > 0) or off",
      [](const std::string& v, VariantTarget* t) {
        AdaptiveSampling a;
        if (v != "off") {
          const size_t colon = v.find(':');
          int batch = 0;
-         if (colon == std::string::npos || !ParseInt(v.substr(0, colon), 2, &batch))
+         if (colon == std::string::npos || !ParseIntIn(v.substr(0, colon), 2, 1 << 20, &batch))
            return Status::Error("");
          const std::string tol = v.substr(colon + 1);
          float tolerance = 0;
-         const auto [ptr, ec] = std::from_chars(tol.data(), tol.data() + tol.size(), tolerance);
-         if (ec != std::errc() || ptr != tol.data() + tol.size() || !(tolerance > 0) ||
-             !std::isfinite(tolerance))
+         if (ParseNumberQuietly<float>(tol, FLT_MIN, FLT_MAX, &tolerance) != NumberError::kOk)
            return Status::Error("");
          a.batch = uint32_t(batch), a.tolerance = tolerance;
        }

@@ -8,6 +8,7 @@
 
 #include "engine/core/check.h"
 #include "engine/image/srgb.h"
+#include "tools/common/json_line.h"
 
 namespace ptlab {
 namespace {
@@ -50,65 +51,36 @@ std::string BlockLine(const BlockComparison& b) {
 
 // --- minimal JSON writer ---
 
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-          out += buf;
-        } else {
-          out += char(c);
-        }
-    }
-  }
-  return out + "\"";
+Json JsonArray(const std::array<double, 3>& v) {
+  Json a = Json::array();
+  for (int c = 0; c < 3; ++c) a.push_back(JsonNumberOrNull(v[c]));
+  return a;
 }
 
-std::string JsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  return Format("%.17g", v);
+Json JsonNonFinite(const NonFiniteCounts& n) {
+  Json j;
+  j["nan_pixels"] = n.nan_pixels;
+  j["inf_pixels"] = n.inf_pixels;
+  return j;
 }
 
-std::string JsonArray(const std::array<double, 3>& v) {
-  std::string s = "[";
-  for (int c = 0; c < 3; ++c) s.append(c ? ", " : "").append(JsonNumber(v[c]));
-  return s.append("]");
-}
-
-std::string JsonNonFinite(const NonFiniteCounts& n) {
-  return "{\"nan_pixels\": " + std::to_string(n.nan_pixels) +
-         ", \"inf_pixels\": " + std::to_string(n.inf_pixels) + "}";
-}
-
-std::string JsonBool(bool b) { return b ? "true" : "false"; }
-
-std::string JsonBlocks(const BlockComparison& b) {
-  return "{\"block_size\": " + std::to_string(b.block_size) + ", \"tol\": " + JsonNumber(b.tol) +
-         ", \"min_mean\": " + JsonNumber(b.min_mean) + ", \"partial_edge_blocks\": \"included\"" +
-         ", \"blocks_x\": " + std::to_string(b.blocks_x) +
-         ", \"blocks_y\": " + std::to_string(b.blocks_y) +
-         ", \"eligible\": " + std::to_string(b.eligible) +
-         ", \"within\": " + std::to_string(b.within) + ", \"share\": " + JsonNumber(b.share) +
-         ", \"worst_block\": {\"x\": " + std::to_string(b.worst_x) +
-         ", \"y\": " + std::to_string(b.worst_y) + ", \"rel\": " + JsonNumber(b.worst_rel) + "}}";
+Json JsonBlocks(const BlockComparison& b) {
+  Json j;
+  j["block_size"] = b.block_size;
+  j["tol"] = JsonNumberOrNull(b.tol);
+  j["min_mean"] = JsonNumberOrNull(b.min_mean);
+  j["partial_edge_blocks"] = "included";
+  j["blocks_x"] = b.blocks_x;
+  j["blocks_y"] = b.blocks_y;
+  j["eligible"] = b.eligible;
+  j["within"] = b.within;
+  j["share"] = JsonNumberOrNull(b.share);
+  Json worst;
+  worst["x"] = b.worst_x;
+  worst["y"] = b.worst_y;
+  worst["rel"] = JsonNumberOrNull(b.worst_rel);
+  j["worst_block"] = worst;
+  return j;
 }
 
 }  // namespace
@@ -402,46 +374,61 @@ std::string FormatDiffTable(const ImageDiff& d, const ParityResult* parity) {
 
 std::string FormatDiffJson(const std::string& path_a, const std::string& path_b, const ImageDiff& d,
                            const ParityResult* parity, const std::vector<std::string>& failures) {
-  std::string s = "{";
-  s += "\"a\": " + JsonString(path_a) + ", \"b\": " + JsonString(path_b);
-  s += ", \"width\": " + std::to_string(d.width) + ", \"height\": " + std::to_string(d.height);
-  s += ", \"flip_x\": " + JsonBool(d.flip_x);
-  s += ", \"compared_pixels\": " + std::to_string(d.compared_pixels);
-  s += ", \"mean_a\": " + JsonArray(d.mean_a) + ", \"mean_b\": " + JsonArray(d.mean_b);
-  s += ", \"mean_rel_diff\": " + JsonArray(d.mean_rel_diff);
-  s += ", \"max_abs_mean_rel\": " + JsonNumber(d.max_abs_mean_rel);
-  s += ", \"mae\": " + JsonArray(d.mae) + ", \"mae_all\": " + JsonNumber(d.mae_all);
-  s += ", \"mse\": " + JsonArray(d.mse) + ", \"mse_all\": " + JsonNumber(d.mse_all);
-  s += ", \"rmse\": " + JsonArray(d.rmse) + ", \"rmse_all\": " + JsonNumber(d.rmse_all);
-  s += ", \"rel_mse\": " + JsonArray(d.rel_mse) + ", \"rel_mse_all\": " + JsonNumber(d.rel_mse_all);
-  s += ", \"rel_mse_epsilon\": " + JsonNumber(kRelMseEpsilon);
-  s += ", \"psnr_db\": " + JsonNumber(d.psnr_db) + ", \"psnr_peak\": " + JsonNumber(d.psnr_peak);
-  s += ", \"max_abs_error\": {\"value\": " + JsonNumber(d.max_abs_error) +
-       ", \"x\": " + std::to_string(d.max_abs_x) + ", \"y\": " + std::to_string(d.max_abs_y) +
-       ", \"channel\": " + std::to_string(d.max_abs_channel) + "}";
-  s += ", \"nonfinite_a\": " + JsonNonFinite(d.nonfinite_a);
-  s += ", \"nonfinite_b\": " + JsonNonFinite(d.nonfinite_b);
-  s += ", \"blocks\": " + JsonBlocks(d.blocks);
+  Json j;
+  j["a"] = path_a;
+  j["b"] = path_b;
+  j["width"] = d.width;
+  j["height"] = d.height;
+  j["flip_x"] = d.flip_x;
+  j["compared_pixels"] = d.compared_pixels;
+  j["mean_a"] = JsonArray(d.mean_a);
+  j["mean_b"] = JsonArray(d.mean_b);
+  j["mean_rel_diff"] = JsonArray(d.mean_rel_diff);
+  j["max_abs_mean_rel"] = JsonNumberOrNull(d.max_abs_mean_rel);
+  j["mae"] = JsonArray(d.mae);
+  j["mae_all"] = JsonNumberOrNull(d.mae_all);
+  j["mse"] = JsonArray(d.mse);
+  j["mse_all"] = JsonNumberOrNull(d.mse_all);
+  j["rmse"] = JsonArray(d.rmse);
+  j["rmse_all"] = JsonNumberOrNull(d.rmse_all);
+  j["rel_mse"] = JsonArray(d.rel_mse);
+  j["rel_mse_all"] = JsonNumberOrNull(d.rel_mse_all);
+  j["rel_mse_epsilon"] = JsonNumberOrNull(kRelMseEpsilon);
+  j["psnr_db"] = JsonNumberOrNull(d.psnr_db);
+  j["psnr_peak"] = JsonNumberOrNull(d.psnr_peak);
+  Json max_abs;
+  max_abs["value"] = JsonNumberOrNull(d.max_abs_error);
+  max_abs["x"] = d.max_abs_x;
+  max_abs["y"] = d.max_abs_y;
+  max_abs["channel"] = d.max_abs_channel;
+  j["max_abs_error"] = max_abs;
+  j["nonfinite_a"] = JsonNonFinite(d.nonfinite_a);
+  j["nonfinite_b"] = JsonNonFinite(d.nonfinite_b);
+  j["blocks"] = JsonBlocks(d.blocks);
   if (parity) {
     const ParityResult& p = *parity;
-    s += ", \"parity\": {\"pass\": " + JsonBool(p.pass) + ", \"size_ok\": " + JsonBool(p.size_ok) +
-         ", \"flip_x\": " + JsonBool(p.flip_x) + ", \"means_ok\": " + JsonBool(p.means_ok) +
-         ", \"mean_tol\": " + JsonNumber(p.mean_tol) +
-         ", \"mean_render\": " + JsonArray(p.mean_render) +
-         ", \"mean_reference\": " + JsonArray(p.mean_reference) +
-         ", \"mean_rel_diff\": " + JsonArray(p.mean_rel_diff) +
-         ", \"finite_ok\": " + JsonBool(p.finite_ok) +
-         ", \"nonfinite_render\": " + JsonNonFinite(p.nonfinite_render) +
-         ", \"blocks_ok\": " + JsonBool(p.blocks_ok) +
-         ", \"min_block_share\": " + JsonNumber(p.min_block_share) +
-         ", \"blocks\": " + JsonBlocks(p.blocks) + ", \"summary\": " + JsonString(p.summary) + "}";
+    Json q;
+    q["pass"] = p.pass;
+    q["size_ok"] = p.size_ok;
+    q["flip_x"] = p.flip_x;
+    q["means_ok"] = p.means_ok;
+    q["mean_tol"] = JsonNumberOrNull(p.mean_tol);
+    q["mean_render"] = JsonArray(p.mean_render);
+    q["mean_reference"] = JsonArray(p.mean_reference);
+    q["mean_rel_diff"] = JsonArray(p.mean_rel_diff);
+    q["finite_ok"] = p.finite_ok;
+    q["nonfinite_render"] = JsonNonFinite(p.nonfinite_render);
+    q["blocks_ok"] = p.blocks_ok;
+    q["min_block_share"] = JsonNumberOrNull(p.min_block_share);
+    q["blocks"] = JsonBlocks(p.blocks);
+    q["summary"] = p.summary;
+    j["parity"] = q;
   } else {
-    s += ", \"parity\": null";
+    j["parity"] = nullptr;
   }
-  s += ", \"failures\": [";
-  for (size_t i = 0; i < failures.size(); ++i) s += (i ? ", " : "") + JsonString(failures[i]);
-  s += "], \"pass\": " + JsonBool(failures.empty()) + "}";
-  return s;
+  j["failures"] = failures;
+  j["pass"] = failures.empty();
+  return DumpJsonLine(j);
 }
 
 }  // namespace ptlab

@@ -8,15 +8,17 @@
 
 #include "engine/image/image_io.h"
 #include "tools/cli_checks.h"
+#include "tools/common/exit_codes.h"
+#include "tools/common/output_guard.h"
 #include "tools/imgdiff/imgdiff.h"
 #include "tools/imgdiff/ztest.h"
 
 namespace {
 
-constexpr int kExitPass = 0;
-constexpr int kExitOverThreshold = 1;
-constexpr int kExitSizeMismatch = 2;
-constexpr int kExitUsage = 3;
+using ptlab::kExitFailed;
+using ptlab::kExitOk;
+using ptlab::kExitRunFailed;
+using ptlab::kExitUsage;
 
 constexpr const char* kFooter = R"(Metrics (A = test, B = reference; pixels with a NaN/Inf channel
 in A or B are skipped):
@@ -42,8 +44,9 @@ With any --fail-* threshold, NaN/Inf pixels in A also fail.
   p = 2 (1 - Phi(z)); pass when >= 99.75 % of the pixel channels have p > 1 - 0.99^(1/pixels).
   On failure writes PREFIX_pvalue.exr (p of X, Y, Z) and PREFIX_failed.exr (0.02 IMAGE, failed
   channels 1); PREFIX is --ztest-out, else IMAGE without its extension.
-Exit codes: 0 pass, 1 over a threshold (or parity or the Z test failed), 2 size mismatch,
-  3 unreadable file, unwritable heat map or bad usage.)";
+Exit codes (tools/common/exit_codes.h, shared with ptlab and chi2): 0 pass; 1 fail: over a
+  threshold, parity failed, or A and B of different sizes; 2 bad usage, an unreadable image,
+  or a heat map that would overwrite A or B; 3 the heat map could not be written.)";
 
 bool IsLdrPng(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -62,6 +65,20 @@ std::string WithoutExtension(const std::string& path) {
 // --ztest REF VAR IMAGE: Mitsuba 3's Z test; writes the p-value and failed-pixel images on failure.
 int RunZTest(const std::vector<std::string>& paths, uint32_t spp, const std::string& out_prefix,
              bool json) {
+  {  // before any work: the p-value and failed-pixel images may not replace an input
+    const std::string prefix = out_prefix.empty() ? WithoutExtension(paths[2]) : out_prefix;
+    ptlab::OutputGuard guard;
+    guard.AddInput(paths[0], "REF");
+    guard.AddInput(paths[1], "VAR");
+    guard.AddInput(paths[2], "IMAGE");
+    guard.AddOutput(prefix + "_pvalue.exr", "the p-value image");
+    guard.AddOutput(prefix + "_failed.exr", "the failed-pixel image");
+    std::string error;
+    if (const int code = guard.Check(&error); code != kExitOk) {
+      std::fprintf(stderr, "imgdiff: %s\n", error.c_str());
+      return code;
+    }
+  }
   ptlab::Image images[3];
   for (int k = 0; k < 3; ++k) {
     ptlab::StatusOr<ptlab::Image> img = ptlab::ReadImage(paths[size_t(k)]);
@@ -76,7 +93,7 @@ int RunZTest(const std::vector<std::string>& paths, uint32_t spp, const std::str
       std::fprintf(stderr, "imgdiff: size mismatch: REF %s is %dx%d, %s %s is %dx%d\n",
                    paths[0].c_str(), images[0].width, images[0].height, k == 1 ? "VAR" : "IMAGE",
                    paths[size_t(k)].c_str(), images[k].width, images[k].height);
-      return kExitSizeMismatch;
+      return kExitFailed;  // not the same image
     }
   }
   ptlab::ZTestOptions options;
@@ -89,7 +106,7 @@ int RunZTest(const std::vector<std::string>& paths, uint32_t spp, const std::str
       const ptlab::Status s = ptlab::WriteExr(prefix + suffix, *image);
       if (!s.ok()) {
         std::fprintf(stderr, "imgdiff: %s\n", s.message().c_str());
-        return kExitUsage;
+        return kExitRunFailed;
       }
       if (!json) std::printf("wrote %s%s\n", prefix.c_str(), suffix);
     }
@@ -100,7 +117,7 @@ int RunZTest(const std::vector<std::string>& paths, uint32_t spp, const std::str
     std::printf("REF: %s\nVAR: %s\nIMAGE: %s\n%sresult: %s\n", paths[0].c_str(), paths[1].c_str(),
                 paths[2].c_str(), ptlab::FormatZTestTable(r).c_str(), r.pass ? "PASS" : "FAIL");
   }
-  return r.pass ? kExitPass : kExitOverThreshold;
+  return r.pass ? kExitOk : kExitFailed;
 }
 
 }  // namespace
@@ -131,7 +148,7 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print one JSON object instead of the table");
   app.add_flag("--flip-x", flip_x, "mirror A left-right before comparing (eth2015 references)");
   app.add_option("--block", options.block_size, "block edge N in pixels")
-      ->check(CLI::PositiveNumber)
+      ->check(ptlab::IntegerRange(1, 65536))
       ->capture_default_str();
   app.add_option("--tol", options.block_tol, "block relative tolerance T")
       ->check(ptlab::FinitePositive())
@@ -159,7 +176,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitPass : kExitUsage;
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   if (o_ztest->count()) {
     if (o_a->count() || o_b->count() || !o_spp->count()) {
@@ -173,6 +190,17 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   options.flip_x = flip_x;
+  if (!heatmap_path.empty()) {  // before any work: the heat map may not replace A or B
+    ptlab::OutputGuard guard;
+    guard.AddInput(path_a, "A");
+    guard.AddInput(path_b, "B");
+    guard.AddOutput(heatmap_path, "--heatmap");
+    std::string error;
+    if (const int code = guard.Check(&error); code != kExitOk) {
+      std::fprintf(stderr, "imgdiff: %s\n", error.c_str());
+      return code;
+    }
+  }
 
   ptlab::StatusOr<ptlab::Image> a = ptlab::ReadImage(path_a);
   if (!a.ok()) {
@@ -187,7 +215,7 @@ int main(int argc, char** argv) {
   if (!ptlab::SameSize(*a, *b)) {
     std::fprintf(stderr, "imgdiff: size mismatch: A %s is %dx%d, B %s is %dx%d\n", path_a.c_str(),
                  a->width, a->height, path_b.c_str(), b->width, b->height);
-    return kExitSizeMismatch;
+    return kExitFailed;  // not the same image
   }
   if (IsLdrPng(path_b)) options.psnr_peak = 1.0;
 
@@ -218,7 +246,7 @@ int main(int argc, char** argv) {
         by_extension ? ptlab::WriteImage(heatmap_path, heat) : ptlab::WritePng(heatmap_path, heat);
     if (!s.ok()) {
       std::fprintf(stderr, "imgdiff: heat map: %s\n", s.message().c_str());
-      return kExitUsage;
+      return kExitRunFailed;
     }
   }
 
@@ -236,5 +264,5 @@ int main(int argc, char** argv) {
       for (const std::string& f : failures) std::printf("  - %s\n", f.c_str());
     }
   }
-  return failures.empty() ? kExitPass : kExitOverThreshold;
+  return failures.empty() ? kExitOk : kExitFailed;
 }

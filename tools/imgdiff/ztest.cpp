@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "engine/core/check.h"
+#include "tools/common/json_line.h"
 
 namespace ptlab {
 namespace {
@@ -20,30 +21,6 @@ Image Transform(const Image& image, const double (&m)[3][3]) {
       out.rgb[i + size_t(r)] = float(m[r][0] * c[0] + m[r][1] * c[1] + m[r][2] * c[2]);
   }
   return out;
-}
-
-std::string JsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 }  // namespace
@@ -112,17 +89,23 @@ std::string FormatZTestTable(const ZTestResult& r) {
 
 std::string FormatZTestJson(const std::string& reference, const std::string& variance,
                             const std::string& image, const ZTestResult& r) {
-  std::ostringstream o;
-  o << "{\"reference\": " << JsonString(reference) << ", \"variance\": " << JsonString(variance)
-    << ", \"image\": " << JsonString(image) << ", \"width\": " << r.width
-    << ", \"height\": " << r.height << ", \"spp\": " << r.spp
-    << ", \"alpha\": " << JsonNumber(r.alpha) << ", \"channels\": " << r.channels
-    << ", \"channels_passed\": " << r.channels_passed
-    << ", \"pass_share\": " << JsonNumber(r.pass_share) << ", \"min_p\": " << JsonNumber(r.min_p)
-    << ", \"min_p_x\": " << r.min_p_x << ", \"min_p_y\": " << r.min_p_y
-    << ", \"min_p_channel\": " << r.min_p_channel << ", \"pass\": " << (r.pass ? "true" : "false")
-    << "}";
-  return o.str();
+  Json j;
+  j["reference"] = reference;
+  j["variance"] = variance;
+  j["image"] = image;
+  j["width"] = r.width;
+  j["height"] = r.height;
+  j["spp"] = r.spp;
+  j["alpha"] = JsonNumberOrNull(r.alpha);
+  j["channels"] = r.channels;
+  j["channels_passed"] = r.channels_passed;
+  j["pass_share"] = JsonNumberOrNull(r.pass_share);
+  j["min_p"] = JsonNumberOrNull(r.min_p);
+  j["min_p_x"] = r.min_p_x;
+  j["min_p_y"] = r.min_p_y;
+  j["min_p_channel"] = r.min_p_channel;
+  j["pass"] = r.pass;
+  return DumpJsonLine(j);
 }
 
 }  // namespace ptlab

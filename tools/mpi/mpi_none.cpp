@@ -14,6 +14,9 @@ Session::Session(int*, char***) {}
 Session::~Session() = default;
 Status Session::Agree(const Status& local) const { return local; }
 Status Session::CheckSameInputs(const std::vector<std::string>&) const { return Status::Ok(); }
+Status Session::CheckSameOptions(const std::vector<std::pair<std::string, std::string>>&) const {
+  return Status::Ok();
+}
 std::vector<std::string> Session::MapInOrder(size_t count,
                                              const std::function<std::string(size_t)>& run) const {
   std::vector<std::string> out;

@@ -3,6 +3,7 @@
 
 #include <mpi.h>
 
+#include <cstdio>
 #include <mutex>
 #include <span>
 #include <type_traits>
@@ -76,8 +77,30 @@ RenderShare::RenderShare(const Session& session, uint32_t passes)
       MPI_Get_count(&status, MPI_UINT64_T, &n);
       std::vector<uint64_t> tiles(size_t(n), 0);
       MPI_Recv(tiles.data(), n, MPI_UINT64_T, r, kTagTiles, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      // Every tile number a rank sends must name one of rank 0's tiles, once, in order: ranks
+      // whose film or tiles differ (which the options check should have stopped) end the run
+      // here instead of writing outside rank 0's arrays.
+      for (size_t k = 0; k < tiles.size(); ++k) {
+        if (tiles[k] < blocks->size() && (k == 0 || tiles[k] > tiles[k - 1])) continue;
+        std::fprintf(stderr,
+                     "error: rank %d sent tile %llu, but rank 0's film has %zu tiles (or it "
+                     "repeated a tile); every rank must render the same film and tiles\n",
+                     r, static_cast<unsigned long long>(tiles[k]), blocks->size());
+        MPI_Abort(MPI_COMM_WORLD, 2);
+      }
       size_t floats = 0;
       for (const uint64_t i : tiles) floats += (*blocks)[i].sums().size();
+      MPI_Status sums_status;
+      MPI_Probe(r, kTagSums, MPI_COMM_WORLD, &sums_status);
+      int sent = 0;
+      MPI_Get_count(&sums_status, MPI_FLOAT, &sent);
+      if (size_t(sent) != floats) {
+        std::fprintf(stderr,
+                     "error: rank %d sent %d film values for its %zu tiles, rank 0 expects %zu; "
+                     "every rank must render the same film\n",
+                     r, sent, tiles.size(), floats);
+        MPI_Abort(MPI_COMM_WORLD, 2);
+      }
       std::vector<float> sums(floats);
       std::vector<TileSampleStats> tile_stats(tiles.size());
       MPI_Recv(sums.data(), int(floats), MPI_FLOAT, r, kTagSums, MPI_COMM_WORLD,

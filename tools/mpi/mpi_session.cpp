@@ -122,6 +122,36 @@ Status Session::CheckSameInputs(const std::vector<std::string>& files) const {
   return Agree(local);
 }
 
+Status Session::CheckSameOptions(
+    const std::vector<std::pair<std::string, std::string>>& options) const {
+  if (!active_) return Status::Ok();
+  // "name\tvalue\n" per option; values keep their bytes (a tab or newline in one changes the
+  // text and so is a difference too).
+  std::string mine;
+  for (const auto& [name, value] : options) mine += name + "\t" + value + "\n";
+  const std::string roots = Broadcast(root() ? mine : std::string());
+  Status local;
+  if (roots != mine) {
+    std::string which = "its list of options differs from rank 0's";
+    for (const auto& [name, value] : options) {
+      const std::string key = name + "\t";
+      size_t at = roots.find("\n" + key);
+      at = roots.compare(0, key.size(), key) == 0 ? 0 : (at == std::string::npos ? at : at + 1);
+      const std::string theirs =
+          at == std::string::npos
+              ? std::string("(none)")
+              : roots.substr(at + key.size(), roots.find('\n', at) - at - key.size());
+      if (theirs != value) {
+        which = "option " + name + " is '" + value + "' here but '" + theirs +
+                "' on rank 0; every rank must run with the same options";
+        break;
+      }
+    }
+    local = Status::Error(which);
+  }
+  return Agree(local);
+}
+
 std::vector<std::string> Session::MapInOrder(size_t count,
                                              const std::function<std::string(size_t)>& run) const {
   std::vector<std::string> out;

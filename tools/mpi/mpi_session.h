@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/core/status.h"
@@ -34,6 +35,12 @@ class Session {
   /// Collective: the root broadcasts the byte hash of each of its input files; a process whose
   /// list or bytes differ fails, and Agree() names it and the file.
   Status CheckSameInputs(const std::vector<std::string>& files) const;
+
+  /// Collective: the root broadcasts its (option, value) pairs, the whole effective set of a
+  /// run; a process whose pairs differ fails naming the first option whose value differs (its
+  /// own value and rank 0's), and Agree() names the rank. Ranks that disagree on -s, -r, the
+  /// seed or the sampler would render different passes and tiles (and hang or blend).
+  Status CheckSameOptions(const std::vector<std::pair<std::string, std::string>>& options) const;
 
   /// Collective: runs items i with i % size == rank through `run` and returns, on the root, every
   /// item's text in item order (empty elsewhere).

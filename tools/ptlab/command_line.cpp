@@ -1,6 +1,7 @@
 // ptlab's command line (see command_line.h).
 #include "tools/ptlab/command_line.h"
 
+#include "engine/scene/scene_limits.h"
 #include "tools/cli_checks.h"
 #include "tools/converge/variant.h"
 
@@ -78,10 +79,10 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
       ->check(CLI::ExistingFile);
   cmd->add_option("-b,--lens-radius", cl->render.lens_radius,
                   "Thin-lens aperture radius, 0 = pinhole (CS184 -b; default: the scene's)")
-      ->check(FiniteRange(0, 1e6));
+      ->check(FloatRange(0, 1e6f));
   cmd->add_option("-d,--focal-distance", cl->render.focal_distance,
                   "Thin-lens focus distance (CS184 -d; default: the scene's, 4.7 for .dae)")
-      ->check(FinitePositive());
+      ->check(FloatRange(1e-6f, kMaxWorldCoordinate));
   CLI::Option* resolution_opt =
       cmd->add_option("-r,--resolution", cl->render.resolution,
                       "Film width and height in pixels (CS184 -r W H; a .dae keeps its vertical "
@@ -119,6 +120,10 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
                 "Print the fraction of time in traversal, shading and sampling, packet "
                 "occupancy, and the memory of the scene, BVHs, wavefronts and film with the "
                 "peak RSS");
+  cmd->add_option("--max-memory", cl->render.max_memory_gib,
+                  "GiB the scene and the render may take; a scene or option set that would "
+                  "need more is refused before it is built (default: 3/4 of the RAM)")
+      ->check(FiniteRange(0.01, 1e6));
   cmd->add_option("--tile-times", cl->render.tile_times,
                   "Write the wall time of every tile of every pass to this CSV "
                   "(pass,tile,seconds)");

@@ -12,11 +12,15 @@
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
+#include "engine/render/setup_checks.h"
 #include "engine/render/wavefront.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/wavefront_kernels.h"
+#include "engine/scene/scene_limits.h"
+#include "tools/common/exit_codes.h"
+#include "tools/common/output_guard.h"
 #include "tools/converge/convergence.h"
 #include "tools/converge/variant.h"
 #include "tools/imgdiff/imgdiff.h"
@@ -24,7 +28,6 @@
 namespace ptlab {
 namespace {
 
-constexpr int kExitRender = 1, kExitUsage = 2, kExitInterrupted = 130;
 /// --ref auto: the reference gets this many times a run's samples (or time).
 constexpr int kAutoReferenceFactor = 16;
 constexpr uint64_t kAutoReferenceSeed = 0x5eed0fef;
@@ -163,11 +166,10 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     }
     variants.push_back(*v);
   }
-  std::error_code ec;
-  fs::create_directories(args.out_dir, ec);
-  if (ec || !fs::is_directory(args.out_dir)) {
-    std::fprintf(stderr, "error: cannot create the output folder '%s'\n", args.out_dir.c_str());
-    return kExitUsage;
+  // The folder is created and probed before anything is loaded or rendered.
+  if (std::string error; const int code = PrepareOutputFolder(args.out_dir, &error)) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return code;
   }
   ConvergeArgs run_args = args;
   if (run_args.threads <= 0) run_args.threads = std::max(1, int(std::thread::hardware_concurrency()));
@@ -187,8 +189,19 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     ls->scene = std::move(*loaded);
     if (args.width > 0) {
       CameraDesc& cam = ls->scene.camera;
-      cam.height = std::max(1, int(std::lround(double(args.width) * cam.height / cam.width)));
+      // The film-size check of render's --width: a tall film's height may be past the limits.
+      const double height = std::round(double(args.width) * cam.height / cam.width);
+      const std::string size = FilmSizeError(args.width, int64_t(std::min(height, 1e15)));
+      if (!size.empty()) {
+        std::fprintf(stderr, "error: %s: --width: %s\n", ls->path.c_str(), size.c_str());
+        return kExitUsage;
+      }
+      cam.height = int(height);
       cam.width = args.width;
+    }
+    if (const Status sane = CheckRenderSetup(ls->scene); !sane.ok()) {  // as render does
+      std::fprintf(stderr, "error: %s: %s\n", ls->path.c_str(), sane.message().c_str());
+      return kExitUsage;
     }
     // Every variant must apply before anything renders.
     for (const Variant& v : variants) {
@@ -218,6 +231,24 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     scenes.push_back(std::move(ls));
   }
 
+  // No output may be a scene, a file a scene reads, or a reference (tools/common/output_guard.h).
+  OutputGuard guard;
+  for (const auto& ls : scenes) guard.AddInputs(ls->scene.input_files, "input of " + ls->stem);
+  if (!auto_ref) guard.AddInputs(args.refs, "--ref");
+  for (const char* name : {"converge.csv", "converge.json", "summary.md"})
+    guard.AddOutput((fs::path(args.out_dir) / name).string(), "output");
+  for (const auto& ls : scenes) {
+    if (auto_ref)
+      guard.AddOutput((fs::path(args.out_dir) / (ls->stem + "_reference.exr")).string(),
+                      "--ref auto output");
+    if (!args.no_plots)
+      guard.AddOutput((fs::path(args.out_dir) / (ls->stem + ".dat")).string(), "plot data");
+  }
+  if (std::string error; const int code = guard.Check(&error)) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return code;
+  }
+
   for (auto& ls : scenes) {
     if (!auto_ref) continue;
     // The reference: the first variant with kAutoReferenceFactor times the budget.
@@ -244,7 +275,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     if (const Status st = WriteExr(ref_path, ls->reference, {{"ptlab:note", ls->reference_note}});
         !st.ok()) {
       std::fprintf(stderr, "error: %s\n", st.message().c_str());
-      return kExitRender;
+      return kExitRunFailed;
     }
   }
 
@@ -261,7 +292,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
         if (!RunOne(*ls, v, run_args, args.seed + uint64_t(k), interrupted, &points, &error)) {
           if (!error.empty()) {  // variants were checked before: an output failed
             std::fprintf(stderr, "error: %s\n", error.c_str());
-            return kExitRender;
+            return kExitRunFailed;
           }
           stopped = true;
           break;
@@ -294,11 +325,11 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
   std::printf("%s", md.c_str());
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
-    return kExitRender;
+    return kExitRunFailed;
   }
   std::printf("wrote %s/converge.csv, converge.json, summary.md%s\n", dir.c_str(),
               args.no_plots ? "" : " and plots");
-  return stopped ? kExitInterrupted : 0;
+  return stopped ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace ptlab

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <csignal>
@@ -22,12 +23,15 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/core/memory.h"
+#include "engine/core/memory_budget.h"
 #include "engine/image/image_io.h"
 #include "engine/light/environment_map.h"
 #include "engine/light/light_selection.h"
 #include "engine/render/integrator.h"
 #include "engine/render/camera.h"
 #include "engine/render/render.h"
+#include "engine/render/render_memory.h"
+#include "engine/render/setup_checks.h"
 #include "engine/render/wavefront.h"
 #include "engine/io/text_parsing.h"
 #include "engine/scene/scene_bytes.h"
@@ -40,10 +44,13 @@
 #include "simd/wavefront_kernels.h"
 #include "tools/chi2/nori_tests.h"
 #include "tools/converge/pass_variance.h"
+#include "tools/common/exit_codes.h"
+#include "tools/common/output_guard.h"
 #include "tools/mpi/mpi_render.h"
 #include "tools/mpi/mpi_session.h"
 #include "tools/ptlab/command_line.h"
 #include "tools/ptlab/converge_command.h"
+#include "tools/ptlab/effective_options.h"
 #include "tools/ptlab/test_over_ranks.h"
 
 namespace ptlab {
@@ -237,17 +244,36 @@ Status ApplySceneFlags(const RenderArgs& args, Scene* scene) {
 // -a batch tolerance: samples per batch (an integer >= 1) and a tolerance (a finite number > 0).
 Status ParseAdaptiveFlag(const std::vector<std::string>& values, AdaptiveSampling* adaptive) {
   int batch = 0;
-  if (!ParseInt(values[0], &batch) || batch < 1)
-    return Status::Error("-a: batch '" + values[0] + "' is not an integer >= 1");
+  std::string error = ParseNumber<int>(values[0], 1, 1 << 20, &batch);
+  if (!error.empty()) return Status::Error("-a: batch " + error);
   float tolerance = 0;
-  if (!ParseFloat(values[1], &tolerance) || !(tolerance > 0))
-    return Status::Error("-a: tolerance '" + values[1] + "' is not a finite number > 0");
+  error = ParseNumber<float>(values[1], FLT_MIN, FLT_MAX, &tolerance);
+  if (!error.empty()) return Status::Error("-a: tolerance " + error);
   adaptive->batch = uint32_t(batch);
   adaptive->tolerance = tolerance;
   return Status::Ok();
 }
 
+// Every file `render` writes, against every file it reads (the scene's input_files, which hold
+// the scene, its meshes and maps, -c and -e).
+OutputGuard RenderOutputGuard(const RenderArgs& args, const std::vector<std::string>& inputs,
+                              const std::string& exr, const std::string& png,
+                              const std::string& var_exr, const std::string& tile_times) {
+  OutputGuard guard;
+  for (size_t i = 0; i < inputs.size(); ++i)
+    guard.AddInput(inputs[i], i == 0                          ? "scene"
+                              : inputs[i] == args.camera_file ? "-c camera file"
+                              : inputs[i] == args.envmap      ? "-e map"
+                                                              : "a file the scene reads");
+  guard.AddOutput(exr, "EXR output");
+  guard.AddOutput(png, "PNG output");
+  guard.AddOutput(var_exr, "--moments variance output");
+  guard.AddOutput(tile_times, "--tile-times");
+  return guard;
+}
+
 int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
+  if (args.max_memory_gib > 0) SetMemoryBudgetBytes(uint64_t(args.max_memory_gib * double(1 << 30)));
   LoadOptions load_options;
   if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
   StatusOr<Scene> loaded = LoadSceneFile(args.scene, load_options);
@@ -256,7 +282,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (agreed.ok()) agreed = mpi.CheckSameInputs(loaded->input_files);
   if (!agreed.ok()) {  // bad input: exit 2
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", agreed.message().c_str());
-    return 2;
+    return kExitUsage;
   }
   Scene& scene = *loaded;
   if (mpi.root())
@@ -265,14 +291,14 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   const std::string unsupported = UnsupportedFeature(scene);
   if (!unsupported.empty()) {
     std::fprintf(stderr, "error: %s: %s\n", args.scene.c_str(), unsupported.c_str());
-    return 2;
+    return kExitUsage;
   }
   if (!args.sampler.empty()) SamplerTypeFromName(args.sampler, &scene.sampler.type);
   if (!args.resolution.empty()) {
     const std::string size = FilmSizeError(args.resolution[0], args.resolution[1]);
     if (!size.empty()) {
       std::fprintf(stderr, "error: -r: %s\n", size.c_str());
-      return 2;
+      return kExitUsage;
     }
     ResizeFilm(&scene.camera, args.resolution[0], args.resolution[1]);
   }
@@ -284,7 +310,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                                            int64_t(std::min(height, 1e15)));
     if (!size.empty()) {
       std::fprintf(stderr, "error: --width/--height: %s\n", size.c_str());
-      return 2;
+      return kExitUsage;
     }
     ResizeFilm(&scene.camera, int(width), int(height));
   }
@@ -293,26 +319,31 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     const Status camera = ReadCs184CameraFile(args.camera_file, &scene.camera);
     if (!camera.ok()) {
       if (mpi.root()) std::fprintf(stderr, "error: -c: %s\n", camera.message().c_str());
-      return 2;
+      return kExitUsage;
     }
     scene.input_files.push_back(args.camera_file);
   }
   const Status overridden = ApplySceneFlags(args, &scene);
   if (!overridden.ok()) {  // e.g. an -e map that cannot be read
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", overridden.message().c_str());
-    return 2;
+    return kExitUsage;
+  }
+  // A camera, lens or light that makes a degenerate image is an error, not a black image.
+  if (const Status sane = CheckRenderSetup(scene); !sane.ok()) {
+    if (mpi.root()) std::fprintf(stderr, "error: %s: %s\n", args.scene.c_str(), sane.message().c_str());
+    return kExitUsage;
   }
   AdaptiveSampling adaptive;
   if (!args.adaptive.empty()) {
     const Status parsed = ParseAdaptiveFlag(args.adaptive, &adaptive);
     if (!parsed.ok()) {
       if (mpi.root()) std::fprintf(stderr, "error: %s\n", parsed.message().c_str());
-      return 2;
+      return kExitUsage;
     }
     if (mpi.active()) {
       if (mpi.root())
         std::fprintf(stderr, "error: -a (adaptive sampling) does not run under mpirun yet\n");
-      return 2;
+      return kExitUsage;
     }
   }
   // -f names the PNG (the EXR goes beside it) or the EXR; -o names the EXR.
@@ -328,16 +359,19 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (png.empty()) png = std::filesystem::path(out).replace_extension(".png").string();
   const std::filesystem::path out_path(out);
   Status output_ok;  // checked where the image is written: by rank 0 under mpirun
+  int output_code = kExitUsage;  // a bad name (or one that names an input): bad usage
   if (!mpi.root()) {
   } else if (!args.image.empty() && !image_is_png && out_path.extension() != ".exr") {
     output_ok = Status::Error("-f: output '" + args.image +
                               "' must end in .png (the .exr is written beside it) or .exr");
   } else if (out_path.extension() != ".exr") {
     output_ok = Status::Error("output '" + out + "' must end in .exr (a .png is written beside it)");
-  } else if (out_path.has_parent_path() &&
-             !std::filesystem::is_directory(out_path.parent_path())) {
+  } else if (std::error_code ec; out_path.has_parent_path() &&
+             !std::filesystem::is_directory(out_path.parent_path(), ec) &&
+             ec != std::errc::filename_too_long) {  // the output guard names a long path
     output_ok = Status::Error("output directory '" + out_path.parent_path().string() +
                               "' does not exist");
+    output_code = kExitRunFailed;
   }
   // --moments: NAME_var.exr beside NAME.exr, from two passes on.
   const std::string var_out =
@@ -345,16 +379,19 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                    : "";
   if (args.moments && (!args.adaptive.empty() || mpi.active())) {
     if (mpi.root()) std::fprintf(stderr, "error: --moments does not run with -a or under mpirun\n");
-    return 2;
+    return kExitUsage;
   }
-  for (const std::string& file : {out, png, var_out}) {
-    if (!output_ok.ok() || !mpi.root() || file.empty()) break;
-    output_ok = PrepareOutputFile(file);
+  if (output_ok.ok() && mpi.root()) {
+    std::string error;
+    output_code =
+        RenderOutputGuard(args, scene.input_files, out, png, var_out, args.tile_times)
+            .Check(&error);
+    if (output_code != 0) output_ok = Status::Error(error);
   }
   output_ok = mpi.Agree(output_ok);
   if (!output_ok.ok()) {
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", output_ok.message().c_str());
-    return 1;
+    return output_code;
   }
 
   const int cores = std::max(1, int(std::thread::hardware_concurrency()));
@@ -375,6 +412,25 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   options.cancel = &g_interrupted;
   ProgressReporter reporter;
   const bool quiet = args.quiet || !mpi.root();
+  // What the render will take (film, adaptive moments, wavefronts at -l) against --max-memory.
+  if (const std::string over = RenderOverMemoryBudget(
+          scene, options, double(scene.triangles.size()) * double(kSceneBytesPerTriangle));
+      !over.empty()) {
+    if (mpi.root()) std::fprintf(stderr, "error: %s\n", over.c_str());
+    return kExitUsage;
+  }
+  if (mpi.active()) {
+    // Every rank renders the same image: the same bytes of every input (the scene's files, -c
+    // and -e) and the same effective options, or every rank stops naming the one that differs.
+    Status same = mpi.CheckSameInputs(scene.input_files);
+    if (same.ok())
+      same = mpi.CheckSameOptions(EffectiveRenderOptions(args, scene, options.spp, adaptive,
+                                                         !args.scalar && !ForceScalar()));
+    if (!same.ok()) {
+      if (mpi.root()) std::fprintf(stderr, "error: %s\n", same.message().c_str());
+      return kExitUsage;
+    }
+  }
   std::unique_ptr<mpi::RenderShare> share;
   if (mpi.active()) {
     share = std::make_unique<mpi::RenderShare>(
@@ -426,10 +482,10 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   BlockInterrupts hold_interrupts;
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
-  const int interrupted_code = g_signal.load() == SIGTERM ? 143 : 130;
+  const int interrupted_code = g_signal.load() == SIGTERM ? kExitTerminated : kExitInterrupted;
   if (!result.error.empty()) {
     std::fprintf(stderr, "error: %s\n", result.error.c_str());
-    return 1;
+    return kExitRunFailed;
   }
   if (!quiet) reporter.Finish();
   if (!mpi.root()) return result.interrupted ? interrupted_code : 0;  // rank 0 writes the film
@@ -496,13 +552,13 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   }
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
-    return 1;
+    return kExitRunFailed;
   }
   std::printf("%s: %s (%u spp, %.2f s, %.2f Mrays/s)\n",
               result.interrupted ? "interrupted, wrote partial image" : "wrote", out.c_str(),
               result.spp_done, result.seconds,
               result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0);
-  return result.interrupted ? interrupted_code : 0;
+  return result.interrupted ? interrupted_code : kExitOk;
 }
 
 }  // namespace
@@ -531,12 +587,12 @@ int main(int argc, char** argv) {
   if (argc > 1 && argv[1][0] != '-' && !known) {
     std::fprintf(stderr, "error: unknown command '%s'; expected one of: render, converge, test, envmap-pdf (see --help)\n",
                  argv[1]);
-    return 3;
+    return ptlab::kExitUsage;
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // help and version: 0; bad usage: 2
+    return app.exit(e) == 0 ? ptlab::kExitOk : ptlab::kExitUsage;  // help, version; bad usage
   }
   if (cmd->parsed()) return ptlab::RunRender(render, mpi);
   if (converge_cmd->parsed()) {
@@ -548,19 +604,27 @@ int main(int argc, char** argv) {
     return mpi.active() ? ptlab::RunNoriTestOverRanks(test_file, test_verbose, mpi)
                         : ptlab::RunNoriTestCommand(test_file, test_verbose);
   if (envmap_cmd->parsed()) {
+    ptlab::OutputGuard guard;
+    guard.AddInput(envmap_in, "map");
+    guard.AddOutput(envmap_out, "-o");
+    std::string error;
+    if (const int code = guard.Check(&error); code != 0) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return code;
+    }
     const ptlab::StatusOr<ptlab::Image> pdf =
         ptlab::EnvironmentPdfImage(envmap_in, ptlab::LowercaseExtension(envmap_out) == ".png");
     if (!pdf.ok()) {  // the map cannot be read or used: bad input
       std::fprintf(stderr, "error: %s\n", pdf.status().message().c_str());
-      return 2;
+      return ptlab::kExitUsage;
     }
     const ptlab::Status st = ptlab::WriteImage(envmap_out, *pdf);
     if (!st.ok()) {
       std::fprintf(stderr, "error: %s\n", st.message().c_str());
-      return 1;
+      return ptlab::kExitRunFailed;
     }
     std::printf("wrote %s\n", envmap_out.c_str());
-    return 0;
+    return ptlab::kExitOk;
   }
-  return 0;
+  return ptlab::kExitOk;
 }

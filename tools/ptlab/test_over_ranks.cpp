@@ -8,6 +8,7 @@
 
 #include "engine/io/nori_test_loader.h"
 #include "tools/chi2/nori_tests.h"
+#include "tools/common/exit_codes.h"
 
 namespace ptlab {
 
@@ -17,14 +18,14 @@ int RunNoriTestOverRanks(const std::string& path, bool verbose, const mpi::Sessi
   const Status loaded = mpi.Agree(file.status());
   if (!loaded.ok() || !file.ok()) {
     // Every rank reads the same file; one that cannot stops all with the same message.
-    if (!mpi.root()) return 0;
+    if (!mpi.root()) return kExitOk;
     if (file.ok() || !IsUnsupportedFeatureMessage(file.status().message())) {
       std::fprintf(stderr, "error: %s\n", loaded.message().c_str());
-      return 3;
+      return kExitUsage;
     }
     std::printf("SKIP  %s\n      - %s\n", path.c_str(), file.status().message().c_str());
     std::printf("%s: skipped (a feature it needs is not supported yet)\n", path.c_str());
-    return 2;
+    return kExitSkipped;
   }
   if (mpi.root()) {
     std::printf("%s\n", FormatNoriTestHeader(*file).c_str());
@@ -44,7 +45,7 @@ int RunNoriTestOverRanks(const std::string& path, bool verbose, const mpi::Sessi
     const char verdict = "PFS"[int(r.cases[0].verdict)];
     return verdict + FormatNoriTestCase(r.cases[0], verbose);
   });
-  if (!mpi.root()) return 0;
+  if (!mpi.root()) return kExitOk;
   NoriTestReport report;
   report.path = file->path;
   for (const std::string& t : texts) {

@@ -83,14 +83,14 @@ std::string With(size_t n, const std::string& value) {
 
 TEST(Cs184CameraFile, BadFilesNameFileAndLine) {
   ExpectError(With(6, "x"), 2, "'x' is not a number");
-  ExpectError(With(3, "nan"), 1, "'nan' is not a number");
+  ExpectError(With(3, "nan"), 1, "'nan' is not a finite number");
   ExpectError(kLookingAlongX.substr(0, kLookingAlongX.rfind(" 0.25")), 6, "holds 29 numbers");
   ExpectError("50 35 1.5 0.01 100\n2 1 5\n", 2, "holds 8 numbers");
   ExpectError("", 1, "holds 0 numbers");
   ExpectError(kLookingAlongX + "7\n", 7, "more than 30");
   ExpectError(With(0, "0"), 1, "hFov");
   ExpectError(With(1, "180"), 1, "vFov");
-  ExpectError(With(2, "-1.5"), 1, "ar must be > 0");
+  ExpectError(With(2, "-1.5"), 1, "ar -1.5 is out of range [1e-3, 1e3]");
   ExpectError(With(4, "0.001"), 1, "0 < nClip < fClip");
   ExpectError(With(18, "0"), 4, "zero third column");  // back (0, 0, 0)
   ExpectError(With(20, "0"), 4, "up axis");            // up (0, 0, 0)

@@ -179,23 +179,23 @@ TEST_F(Chi2CheckBadInput, SampleFiles) {
   ExpectBadInput("--domain hemisphere --samples " + Write("two.csv", "0.1,0.2\n") + pdf,
                  "two.csv:1: 2 numbers, expected 3 per line (x,y,z)");
   ExpectBadInput("--domain hemisphere --samples " + Write("nan.csv", "0,0,1\nnan,0,1\n") + pdf,
-                 "sample 1 is (nan, 0, 1): not finite");
+                 "nan.csv:2: the sample is not finite");
   ExpectBadInput("--domain hemisphere --samples " + Write("out.csv", "0,0,1\n0,0,-1\n") + pdf,
-                 "sample 1 is (0, 0, -1): outside the domain hemisphere");
-  ExpectBadInput("--domain square --samples " + Write("far.csv", "0.5,0.5\n2,0.5\n") + pdf,
-                 "outside the domain square");
+                 "out.csv:2: sample 1 is (0, 0, -1): outside the domain hemisphere");
+  ExpectBadInput("--domain square --samples " + Write("far.csv", "x,y\n# c\n0.5,0.5\n\n2,0.5\n") + pdf,
+                 "far.csv:5: sample 1 is (2, 0.5): outside the domain square");
   ExpectBadInput("--domain hemisphere --samples " + Write("empty.csv", "") + pdf,
                  "the sample file is empty");
   ExpectBadInput("--domain hemisphere --samples " + Write("header.csv", "x,y,z\n") + pdf,
                  "no samples in the file");
   ExpectBadInput("--domain hemisphere --samples " + Write("text.csv", "0,0,1\n0,zero,1\n") + pdf,
-                 "text.csv:2: \"zero,1\" is not a number");
+                 "text.csv:2: 'zero' is not a number");
   ExpectBadInput("--domain hemisphere --dims 3 --samples " + Write("odd.f32", "0123456789") + pdf,
                  "10 bytes is not a whole number of rows of 3 little-endian float32");
   ExpectBadInput("--domain hemisphere --dims 2 --samples " + Write("d2.f32", "01234567") + pdf,
                  "--dims 2 does not fit the hemisphere domain");
   ExpectBadInput("--domain hemisphere --samples " + (dir_ / "missing.csv").string() + pdf,
-                 "cannot open the sample file");
+                 "missing.csv: cannot read the sample file: No such file or directory");
   ExpectBadInput("--domain cube --samples x.csv" + pdf, "unknown domain \"cube\"");
   ExpectBadInput("--domain box:0,0,0,1 --samples x.csv" + pdf, "x0 < x1");
   ExpectBadInput(Good(), "give the pdf as --pdf-cmd PROGRAM or --pdf-grid FILE");
@@ -205,7 +205,7 @@ TEST_F(Chi2CheckBadInput, PdfPrograms) {
   ExpectBadInput(Good() + " --pdf-cmd \"exit 3\"", "exited with status 3");
   ExpectBadInput(Good() + " --pdf-cmd \"kill -SEGV \\$\\$\"", "was killed by signal 11");
   ExpectBadInput(Good() + " --pdf-cmd \"cat > /dev/null; echo hello\"",
-                 "printed \"hello\" on line 1 of its output: expected one density");
+                 "printed 'hello' on line 1 of its output: expected one density");
   ExpectBadInput(Good() + " --pdf-cmd \"cat > /dev/null; echo 1\"", "printed 1 densities for");
   ExpectBadInput(Good() + " --pdf-cmd no_such_program_ptlab", "exited with status 127");
   const auto start = std::chrono::steady_clock::now();
@@ -213,7 +213,7 @@ TEST_F(Chi2CheckBadInput, PdfPrograms) {
                  "points within 1 s (killed; --pdf-timeout sets the limit)");
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(15));
   ExpectBadInput(Good() + " --pdf-grid " + Write("grid.txt", "3 2\n1 1 1\n1 -1 1\n"),
-                 "grid.txt:3: density -1, expected a finite number >= 0");
+                 "grid.txt:3: density '-1' is out of range [0, 1e300]");
   ExpectBadInput(Good() + " --pdf-grid " + Write("short.txt", "3 2\n1 1 1\n"),
                  "3 densities, expected NX*NY = 6");
 }

@@ -299,9 +299,9 @@ TEST(NoriTestRunner, CommandExitStatus) {
       "bad.xml", "<test type=\"ttest\"><string name=\"reference\" value=\"0.5\"/></test>");
   EXPECT_EQ(RunNoriTestCommand(pass, false), 0);
   EXPECT_EQ(RunNoriTestCommand(fail, true), 1);
-  EXPECT_EQ(RunNoriTestCommand(skip, false), 2);
-  EXPECT_EQ(RunNoriTestCommand(bad, false), 3);
-  EXPECT_EQ(RunNoriTestCommand(pass + ".missing", false), 3);
+  EXPECT_EQ(RunNoriTestCommand(skip, false), 4);  // tools/common/exit_codes.h: skipped
+  EXPECT_EQ(RunNoriTestCommand(bad, false), 2);   // bad input
+  EXPECT_EQ(RunNoriTestCommand(pass + ".missing", false), 2);
   const StatusOr<NoriTestReport> skipped = RunNoriTest(skip, {});
   ASSERT_TRUE(skipped.ok());
   EXPECT_NE(skipped->skip_reason.find("not supported yet"), std::string::npos);

@@ -144,7 +144,7 @@ TEST(ConvergeCli, BadArgumentsAreClearErrorsWithExitTwo) {
   const std::string out = " -o " + (dir / "out").string();
   for (const Case& c :
        {Case{"--ref auto --variant integrater=path_mis", "unknown key 'integrater'"},
-        Case{"--ref auto --variant maxDepth=deep", "'deep' is not an integer >= -1"},
+        Case{"--ref auto --variant maxDepth=deep", "'deep' is not an integer in [-1, 1048576]"},
         Case{"--ref auto --variant adaptive=1:0.05", "'1:0.05' is not BATCH:TOLERANCE"},
         Case{"--ref " + (dir / "other.exr").string(), "is 17x16 but the scene renders 16x16"},
         Case{"--ref " + (dir / "nan.exr").string(), "NaN/Inf value at pixel 5,2"},

@@ -197,6 +197,39 @@ TEST(MpiNoriTest, SameLinesAsOneProcess) {
   }
 }
 
+// Issue 41, class "MPI ranks that disagree": ranks with other effective options or other
+// bytes of a -c file stop before rendering, every one of them, naming the rank and the option
+// or file; nothing is written (different -s used to write and then hang).
+TEST(MpiRender, RanksThatDisagreeStopNamingTheRankAndTheOptionOrFile) {
+  const fs::path dir = TempDir("disagree");
+  WriteSceneIn(dir / "a", "4");
+  WriteSceneIn(dir / "b", "4");
+  const fs::path out = dir / "out.exr";
+  const std::string render =
+      kBin + "ptlab render scene.xml --width 32 --height 32 -q -o " + out.string();
+  const auto run = [&](const std::string& a, const std::string& b, const std::string& expect) {
+    SCOPED_TRACE(a + " | " + b);
+    const std::string command = kMpirun + " -np 1 -wdir " + (dir / "a").string() + " " + render +
+                                a + " : -np 1 -wdir " + (dir / "b").string() + " " + render + b;
+    const int rc = RunShell("timeout 60 " + command, dir / "log");
+    const std::string log = ReadFile(dir / "log");
+    EXPECT_NE(rc, 0) << log;
+    EXPECT_NE(rc, 124) << "hung: " << log;
+    EXPECT_NE(log.find(expect), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(out));
+  };
+  run(" --spp 4", " --spp 8",
+      "rank 1: option samples per pixel (-s) is '8' here but '4' on rank 0");
+  run(" --seed 1", " --seed 2", "rank 1: option seed (--seed) is '2' here but '1' on rank 0");
+  run(" -b 0.1", " -b 0.2", "rank 1: option lens radius (-b)");
+  std::ofstream(dir / "a" / "camera.txt") << "50 35 1.5 0.01 100\n2 1 5 7 1 5\n0 0 5 0.5 50\n"
+                                             "0 0 -1 0 1 0 1 0 0\n960 640 1\n3.5 0.25\n";
+  std::ofstream(dir / "b" / "camera.txt") << "50 35 1.5 0.01 100\n2 1 5 7 1 5\n0 0 5 0.5 50\n"
+                                             "0 0 -1 0 1 0 1 0 0\n960 640 1\n3.5 0.5\n";
+  run(" -c camera.txt", " -c camera.txt",
+      "rank 1: camera.txt: its bytes differ from rank 0's copy");
+}
+
 #else
 
 TEST(MpiRender, NeedsMpi) {

@@ -196,7 +196,7 @@ TEST_F(PtlabCs184Flags, OutputFile) {
   ASSERT_EQ(Render(kLambertian + " -r 16 12 -f " + Out("out.png")), 0) << Log();
   EXPECT_TRUE(fs::exists(dir_ / "out.png"));
   EXPECT_TRUE(fs::exists(dir_ / "out.exr"));
-  EXPECT_EQ(Render(kLambertian + " -r 16 12 -f " + Out("bad.txt")), 1) << Log();
+  EXPECT_EQ(Render(kLambertian + " -r 16 12 -f " + Out("bad.txt")), 2) << Log();
   EXPECT_NE(Log().find("must end in .png"), std::string::npos) << Log();
   EXPECT_FALSE(fs::exists(dir_ / "bad.txt"));
   ExpectUsageError(kLambertian + " -f " + Out("bad.png") + " -o " + Out("bad.exr"), "excludes");

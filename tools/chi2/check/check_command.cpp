@@ -3,22 +3,26 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "engine/core/parse_number.h"
 #include "ptlab/chi2.h"
 #include "tools/chi2/check/pdf_command.h"
 #include "tools/chi2/check/pdf_grid.h"
 #include "tools/chi2/check/sample_file.h"
+#include "tools/chi2/report.h"
+#include "tools/cli_checks.h"
+#include "tools/common/exit_codes.h"
+#include "tools/common/json_line.h"
+#include "tools/common/output_guard.h"
 
 namespace ptlab {
 namespace {
 
-constexpr int kExitPass = 0;
-constexpr int kExitFail = 1;
-constexpr int kExitBadInput = 2;
 
 constexpr const char* kFooter =
     R"(Samples: --samples FILE is text (one point per line, "x,y" or "x,y,z", a header line
@@ -30,41 +34,18 @@ from its stdout (per unit area, per steradian on the sphere); it must exit with 
 Pdf grid (--pdf-grid): "NX NY", then NY rows of NX densities at the nodes of the parameter
 rectangle (the box; [-1,1]^2 for the disk; (phi, cos theta) on the sphere), interpolated
 bilinearly: error <= (hx^2 max|p_xx| + hy^2 max|p_yy|)/8 for node spacings hx, hy.
-Exit codes: 0 pass, 1 fail (the verdict), 2 bad input.)";
-
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\', out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-std::string JsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
-}
-
-std::string JsonList(const std::vector<std::string>& items) {
-  std::string out = "[";
-  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + JsonString(items[i]);
-  return out + "]";
-}
+Exit codes (tools/common/exit_codes.h, as ptlab and imgdiff): 0 pass, 1 fail (the verdict),
+2 bad usage or input (files, the pdf program's failures, an --images file that would replace
+an input), 3 the --images folder or its files could not be written.)";
 
 int Error(bool json, const std::string& message) {
   std::fprintf(stderr, "chi2 check: %s\n", message.c_str());
-  if (json) std::printf("{\"error\": %s}\n", JsonString(message).c_str());
-  return kExitBadInput;
+  if (json) {
+    Json j;
+    j["error"] = message;
+    std::printf("%s\n", DumpJsonLine(j).c_str());
+  }
+  return kExitUsage;
 }
 
 }  // namespace
@@ -87,13 +68,13 @@ int RunCheckCommand(int argc, char** argv) {
   auto* grid = app.add_option("--pdf-grid", pdf_grid, "pdf tabulated on a grid (see below)");
   cmd->excludes(grid);
   app.add_option("--pdf-timeout", timeout, "seconds the pdf program may take per batch")
-      ->check(CLI::Range(0.01, 1e6))
+      ->check(FiniteRange(0.01, 1e6))
       ->capture_default_str();
   app.add_option("--res", options.res, "grid cells along y (cos theta); x gets 2x on the sphere")
       ->check(CLI::Range(2, 4096))
       ->capture_default_str();
   app.add_option("--alpha", options.alpha, "significance level")
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(FiniteRange(1e-12, 0.5))
       ->capture_default_str();
   app.add_option("--name", name, "test name (image file names; default: the sample file's stem)");
   app.add_option("--images", images_dir, "write <DIR>/<name>.png and .csv");
@@ -104,7 +85,7 @@ int RunCheckCommand(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
-    return kExitBadInput;
+    return kExitUsage;
   }
   if (pdf_cmd.empty() == pdf_grid.empty())
     return Error(json, "give the pdf as --pdf-cmd PROGRAM or --pdf-grid FILE (one of them)");
@@ -126,26 +107,57 @@ int RunCheckCommand(int argc, char** argv) {
     if (!st.ok()) return Error(json, st.message());
   }
   if (name.empty()) name = std::filesystem::path(samples_path).stem().string();
+  if (!images_dir.empty()) {  // before the test: its images may not replace an input
+    OutputGuard guard;
+    guard.AddInput(samples_path, "--samples");
+    guard.AddInput(pdf_grid, "--pdf-grid");
+    const std::string stem = (std::filesystem::path(images_dir) / Chi2FileStem(name)).string();
+    guard.AddOutput(stem + ".png", "--images");
+    guard.AddOutput(stem + ".csv", "--images");
+    std::string error;
+    int code = PrepareOutputFolder(images_dir, &error);
+    if (code == kExitOk) code = guard.Check(&error);
+    if (code != kExitOk) {
+      Error(json, "--images: " + error);
+      return code;
+    }
+  }
   options.images_dir = images_dir;
   chi2::Result r;
   st = chi2::TestPoints(name, domain, points.data(), int64_t(points.size()), pdf, options, &r);
-  if (!st.ok()) return Error(json, st.message());
+  if (!st.ok()) {
+    // "sample N is (x, y): outside the domain ...": name the file and line of sample N.
+    const std::string& m = st.message();
+    int64_t index = 0;
+    const size_t digits = m.rfind("sample ", 0) == 0 ? m.find(' ', 7) : std::string::npos;
+    if (digits != std::string::npos &&
+        ParseNumberQuietly<int64_t>(std::string_view(m).substr(7, digits - 7), 0, INT64_MAX,
+                                    &index) == NumberError::kOk)
+      return Error(json, SampleLocation(samples_path, dims != 0, domain.dims(), index) + ": " + m);
+    return Error(json, m);
+  }
   if (json) {
-    std::printf(
-        "{\"name\": %s, \"domain\": %s, \"samples\": %lld, \"res\": %d, \"passed\": %s, "
-        "\"chi2\": %s, \"dof\": %d, \"p_value\": %s, \"alpha\": %s, \"alpha_corrected\": %s, "
-        "\"pdf_integral\": %s, \"pdf_evals\": %lld, \"failures\": %s, \"notes\": %s}\n",
-        JsonString(name).c_str(), JsonString(chi2::DomainName(domain)).c_str(),
-        static_cast<long long>(r.samples), options.res, r.passed ? "true" : "false",
-        JsonNumber(r.chi2).c_str(), r.dof, JsonNumber(r.p_value).c_str(),
-        JsonNumber(options.alpha).c_str(), JsonNumber(r.alpha).c_str(),
-        JsonNumber(r.pdf_integral).c_str(), static_cast<long long>(r.pdf_evals),
-        JsonList(r.failures).c_str(), JsonList(r.notes).c_str());
+    Json j;
+    j["name"] = name;
+    j["domain"] = chi2::DomainName(domain);
+    j["samples"] = r.samples;
+    j["res"] = options.res;
+    j["passed"] = r.passed;
+    j["chi2"] = JsonNumberOrNull(r.chi2);
+    j["dof"] = r.dof;
+    j["p_value"] = JsonNumberOrNull(r.p_value);
+    j["alpha"] = JsonNumberOrNull(options.alpha);
+    j["alpha_corrected"] = JsonNumberOrNull(r.alpha);
+    j["pdf_integral"] = JsonNumberOrNull(r.pdf_integral);
+    j["pdf_evals"] = r.pdf_evals;
+    j["failures"] = r.failures;
+    j["notes"] = r.notes;
+    std::printf("%s\n", DumpJsonLine(j).c_str());
   } else {
     std::printf("%s\n", chi2::FormatResult(name, r).c_str());
     for (const std::string& note : r.notes) std::printf("       . %s\n", note.c_str());
   }
-  return r.passed ? kExitPass : kExitFail;
+  return r.passed ? kExitOk : kExitFailed;
 }
 
 }  // namespace ptlab

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,8 @@
 #include <cstring>
 #include <thread>
 #include <vector>
+
+#include "engine/core/parse_number.h"
 
 namespace ptlab {
 namespace {
@@ -64,13 +67,13 @@ chi2::Status ParseDensities(const std::string& who, const std::string& out, int6
     }
     size_t j = i;
     while (j < out.size() && !std::isspace(static_cast<unsigned char>(out[j]))) ++j;
-    const std::string token = out.substr(i, j - i);
-    char* end = nullptr;
-    const double v = std::strtod(token.c_str(), &end);
-    if (end != token.c_str() + token.size())
-      return chi2::Status::Error(who + " printed \"" + token.substr(0, 40) + "\" on line " +
+    const std::string_view token(out.data() + i, j - i);
+    double v = 0;
+    if (!ParseDoubleOrNonFinite(token, &v))
+      return chi2::Status::Error(who + " printed " + QuoteForMessage(token) + " on line " +
                                  std::to_string(line) +
                                  " of its output: expected one density (a number) per line");
+    // NaN, Inf and 1e400 stay what they are: the test reports non-finite densities.
     if (count < n) densities[count] = v;
     ++count;
     i = j;
@@ -120,7 +123,10 @@ chi2::Status RunBatch(const std::string& command, int dims, double timeout_secon
   };
   std::string output;
   size_t written = 0;
-  bool timed_out = false;
+  bool timed_out = false, too_much = false;
+  // A density per line needs at most ~32 bytes ("%.17g\n" is 25); more is a program that
+  // prints forever (or garbage), stopped before its output exhausts memory.
+  const size_t max_output = size_t(n) * 64 + 4096;
   for (;;) {
     pollfd fds[2] = {{out, POLLIN, 0}, {in, POLLOUT, 0}};
     const int nfds = in >= 0 ? 2 : 1;
@@ -142,6 +148,10 @@ chi2::Status RunBatch(const std::string& command, int dims, double timeout_secon
       char buf[65536];
       const ssize_t r = read(out, buf, sizeof(buf));
       if (r > 0) {
+        if (output.size() + size_t(r) > max_output) {
+          too_much = true;
+          break;
+        }
         output.append(buf, size_t(r));
       } else if (r == 0 || errno != EAGAIN) {
         break;  // end of its output
@@ -151,6 +161,13 @@ chi2::Status RunBatch(const std::string& command, int dims, double timeout_secon
   if (in >= 0) close(in);
   close(out);
   int status = 0;
+  if (too_much) {
+    kill(-pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    return chi2::Status::Error(who + " printed more than " + std::to_string(max_output) +
+                               " bytes for " + std::to_string(n) +
+                               " points (killed); expected one density per line");
+  }
   while (!timed_out) {
     const pid_t done = waitpid(pid, &status, WNOHANG);
     if (done == pid) break;

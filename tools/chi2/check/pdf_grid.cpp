@@ -4,15 +4,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
-#include <sstream>
+#include <string_view>
 #include <vector>
+
+#include "engine/core/line_reader.h"
+#include "engine/core/parse_number.h"
 
 namespace ptlab {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// Budgets of a grid file: a side, the nodes (8 bytes each: 2^26 nodes take 512 MiB) and a
+// density (integrals over the grid stay finite in double).
+constexpr int kMaxGridSide = 1 << 16;
+constexpr size_t kMaxGridNodes = size_t(1) << 26;
+constexpr double kMaxDensity = 1e300;
 
 struct Grid {
   int nx = 0, ny = 0;
@@ -41,8 +48,9 @@ struct Grid {
 }  // namespace
 
 chi2::Status ReadPdfGrid(const std::string& path, const chi2::Domain& domain, chi2::PdfFn* pdf) {
-  std::ifstream in(path);
-  if (!in) return chi2::Status::Error(path + ": cannot open the pdf grid");
+  LineReader in;
+  const Status opened = in.Open(path, "the pdf grid");
+  if (!opened.ok()) return chi2::Status::Error(opened.message());
   auto grid = std::make_shared<Grid>();
   switch (domain.kind) {
     case chi2::DomainKind::kBox:
@@ -58,40 +66,48 @@ chi2::Status ReadPdfGrid(const std::string& path, const chi2::Domain& domain, ch
       grid->spherical = true, grid->x0 = 0, grid->y0 = 0, grid->x1 = 2 * kPi, grid->y1 = 1;
       break;
   }
-  std::string line;
-  int64_t number = 0;
+  std::string_view line;
   size_t want = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    for (char& c : line)
-      if (c == ',') c = ' ';
-    const size_t start = line.find_first_not_of(" \t\r");
-    if (start == std::string::npos || line[start] == '#') continue;
-    std::istringstream tokens(line);
-    std::string token;
-    while (tokens >> token) {
-      char* end = nullptr;
-      const double v = std::strtod(token.c_str(), &end);
-      if (end != token.c_str() + token.size())
-        return chi2::Status::Error(path + ":" + std::to_string(number) + ": \"" + token +
-                                   "\" is not a number");
+  while (in.Next(&line)) {
+    const std::string where = path + ":" + std::to_string(in.line_number()) + ": ";
+    const size_t start = line.find_first_not_of(" \t,");
+    if (start == std::string_view::npos || line[start] == '#') continue;
+    size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == ',')) ++i;
+      if (i == line.size()) break;
+      size_t j = i;
+      while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != ',') ++j;
+      const std::string_view token = line.substr(i, j - i);
+      i = j;
       if (grid->nx == 0 || grid->ny == 0) {
-        if (v != std::floor(v) || v < 2 || v > 1e5)
-          return chi2::Status::Error(path + ":" + std::to_string(number) +
-                                     ": expected the grid size \"NX NY\" (integers >= 2) first");
-        (grid->nx == 0 ? grid->nx : grid->ny) = int(v);
-        if (grid->ny > 0) want = size_t(grid->nx) * size_t(grid->ny);
+        int size = 0;
+        const std::string error = ParseNumber<int>(token, 2, kMaxGridSide, &size);
+        if (!error.empty())
+          return chi2::Status::Error(where + "grid size " + error +
+                                     "; expected the grid size \"NX NY\" (integers) first");
+        (grid->nx == 0 ? grid->nx : grid->ny) = size;
+        if (grid->ny > 0) {
+          want = size_t(grid->nx) * size_t(grid->ny);
+          if (want > kMaxGridNodes)
+            return chi2::Status::Error(where + "grid " + std::to_string(grid->nx) + " x " +
+                                       std::to_string(grid->ny) + " has " +
+                                       std::to_string(want) + " nodes; expected at most " +
+                                       std::to_string(kMaxGridNodes));
+        }
         continue;
       }
-      if (!std::isfinite(v) || v < 0)
-        return chi2::Status::Error(path + ":" + std::to_string(number) + ": density " + token +
-                                   ", expected a finite number >= 0");
+      double v = 0;
+      const std::string error = ParseNumber<double>(token, 0, kMaxDensity, &v);
+      if (!error.empty())
+        return chi2::Status::Error(where + "density " + error);
       if (grid->values.size() == want)
-        return chi2::Status::Error(path + ":" + std::to_string(number) +
-                                   ": more than NX*NY = " + std::to_string(want) + " densities");
+        return chi2::Status::Error(where + "more than NX*NY = " + std::to_string(want) +
+                                   " densities");
       grid->values.push_back(v);
     }
   }
+  if (!in.status().ok()) return chi2::Status::Error(in.status().message());
   if (want == 0)
     return chi2::Status::Error(path + ": empty, expected \"NX NY\" and NY rows of NX densities");
   if (grid->values.size() != want)

@@ -16,4 +16,9 @@ namespace ptlab {
 chi2::Status ReadSampleFile(const std::string& path, bool raw, int dims,
                             std::vector<chi2::Point>* points);
 
+/// Where sample `index` (0-based, as ReadSampleFile numbers them) is in the file: "path:LINE"
+/// for text, "path: row R (byte B)" for raw files; "path" when the file no longer has it.
+/// For messages about a sample found bad after reading (outside the domain).
+std::string SampleLocation(const std::string& path, bool raw, int dims, int64_t index);
+
 }  // namespace ptlab
