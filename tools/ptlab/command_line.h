@@ -29,6 +29,7 @@ struct RenderArgs {
   bool stats = false;
   std::string tile_times;
   std::string sampler;  // empty: the scene's
+  std::vector<std::string> defines;  // -D name=value (Mitsuba scene parameters)
 };
 
 /// Every option of every subcommand, filled by CLI::App::parse.

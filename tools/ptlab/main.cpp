@@ -249,6 +249,7 @@ Status ParseAdaptiveFlag(const std::vector<std::string>& values, AdaptiveSamplin
 int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   LoadOptions load_options;
   if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
+  load_options.defines = args.defines;
   StatusOr<Scene> loaded = LoadSceneFile(args.scene, load_options);
   // Under mpirun every rank loads the scene; all stop if one cannot, or reads other bytes.
   Status agreed = mpi.Agree(loaded.status());
