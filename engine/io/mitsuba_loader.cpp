@@ -60,6 +60,14 @@ Status MitsubaSceneBuilder::Build() {
   PTLAB_RETURN_IF_ERROR(root->Expect({}));
   for (const MitsubaNode* child : root->children()) PTLAB_RETURN_IF_ERROR(SceneChild(*child));
   if (!have_sensor_) return doc_.root.Error("no <sensor> in the scene; expected one");
+  // Mitsuba 3's direct integrator weights each sample of a delta emitter (point, directional)
+  // by 1 instead of 1 / emitter_samples, so its images count those lights emitter_samples
+  // times; ptlab's direct_mis does not, and would not match them.
+  if (multi_sample_direct_ &&
+      scene_.point_lights.size() + scene_.directional_lights.size() > 0)
+    return Unsupported(*multi_sample_direct_,
+                       "emitter_samples > 1 with point or directional emitters: Mitsuba 3 counts "
+                       "each such sample with weight 1, not 1 / emitter_samples");
   if (!have_integrator_) {  // Mitsuba's default: path, unbounded depth
     scene_.integrator = IntegratorDesc{};
     scene_.integrator.type = IntegratorDesc::Type::kPathMis;
@@ -137,8 +145,7 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
     if (f->type() != "hdrfilm") return Unsupported(*film);
     PTLAB_RETURN_IF_ERROR(f->Expect({"width", "height", "pixel_format", "component_format",
                                      "file_format", "crop_offset_x", "crop_offset_y",
-                                     "crop_width", "crop_height", "sample_border", "banner",
-                                     "rfilter"}));
+                                     "crop_width", "crop_height", "sample_border", "banner"}));
     for (const char* crop : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
       if (f->Has(crop)) return f->Error(crop, "unsupported: film \"hdrfilm\" property " +
                                                   std::string(crop) + " (crop windows)");
@@ -342,6 +349,7 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
                         "direct_mis takes one BSDF sample)");
     desc.type = IntegratorDesc::Type::kDirectMis;
     desc.light_samples = emitter;
+    if (emitter > 1) multi_sample_direct_ = &node;
     PTLAB_RETURN_IF_ERROR(obj->Boolean("hide_emitters", &hide));
   } else {
     return Unsupported(node);

@@ -21,15 +21,17 @@ std::string Join(const std::vector<const char*>& names) {
   return s.empty() ? "none" : s;
 }
 
+// "toWorld" -> "to_world", "intIOR" -> "int_ior": an underscore where an upper-case letter
+// follows a lower-case letter or a digit.
 std::string CamelToSnake(const std::string& name) {
   std::string out;
-  for (const char c : name) {
-    if (std::isupper(static_cast<unsigned char>(c))) {
-      if (!out.empty()) out.push_back('_');
-      out.push_back(char(std::tolower(static_cast<unsigned char>(c))));
-    } else {
-      out.push_back(c);
-    }
+  for (size_t i = 0; i < name.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(name[i]);
+    if (std::isupper(c) && i > 0 &&
+        (std::islower(static_cast<unsigned char>(name[i - 1])) ||
+         std::isdigit(static_cast<unsigned char>(name[i - 1]))))
+      out.push_back('_');
+    out.push_back(char(std::tolower(c)));
   }
   return out;
 }

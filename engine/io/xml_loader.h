@@ -25,7 +25,7 @@ struct LoadOptions {
   LookatConvention lookat = LookatConvention::kNori;
   /// Mitsuba scene parameters, "name=value" each (`-D name=value`): they override the scene's
   /// <default>s (engine/io/mitsuba_document.h). Nori scenes have no parameters.
-  std::vector<std::string> defines;
+  std::vector<std::string> defines = {};
 };
 
 /// Loads a Nori-format XML scene. Relative file names inside it resolve against the directory
