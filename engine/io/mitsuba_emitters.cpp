@@ -142,6 +142,9 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
     return Status::Ok();
   }
   if (type == "area") return node.Error("an area emitter must be inside a <shape>");
+  if (type == "spot")
+    return Unsupported(node, "Mitsuba's spot falls off linearly in angle from beam_width to "
+                             "cutoff_angle; ptlab's spot is cos^exponent with a hard cutoff");
   if (IsUnsupportedEmitter(type)) return Unsupported(node);
   return node.Error("unknown emitter type '" + type +
                     "'; expected point, directional, constant, envmap (area inside a shape)");
