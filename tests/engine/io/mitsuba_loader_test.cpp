@@ -517,3 +517,57 @@ TEST_F(MitsubaLoader, SceneFileChoosesTheFormat) {
 
 }  // namespace
 }  // namespace ptlab
+
+namespace ptlab {
+namespace {
+
+// Damaged scenes (cut short, or one byte replaced by a character that matters to XML, numbers
+// or parameters) load or fail with a message naming the file: never a crash or a check failure.
+TEST(MitsubaLoaderRobustness, DamagedScenesFailCleanly) {
+  const std::string scene =
+      "<scene version=\"3.0.0\">\n"
+      "  <default name=\"spp\" value=\"4\"/>\n"
+      "  <integrator type=\"moment\"><integrator type=\"path\"><integer name=\"max_depth\" "
+      "value=\"3\"/></integrator></integrator>\n"
+      "  <sensor type=\"thinlens\"><float name=\"aperture_radius\" value=\"0.1\"/>"
+      "<float name=\"fov\" value=\"40\"/><string name=\"fov_axis\" value=\"y\"/>"
+      "<transform name=\"to_world\"><lookat origin=\"0, -5, 1\" target=\"0, 0, 1\" up=\"0, 0, "
+      "1\"/></transform><sampler type=\"independent\"><integer name=\"sample_count\" "
+      "value=\"$spp\"/></sampler><film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/>"
+      "<integer name=\"height\" value=\"6\"/><rfilter type=\"gaussian\"/></film></sensor>\n"
+      "  <bsdf type=\"diffuse\" id=\"b\"><spectrum name=\"reflectance\" value=\"400:0.2, "
+      "700:0.8\"/></bsdf>\n"
+      "  <shape type=\"rectangle\"><ref id=\"b\"/><transform name=\"to_world\"><scale x=\"2\"/>"
+      "<rotate z=\"1\" angle=\"30\"/><translate value=\"0 1 0\"/></transform></shape>\n"
+      "  <shape type=\"sphere\"><float name=\"radius\" value=\"0.5\"/><bsdf "
+      "type=\"dielectric\"><string name=\"int_ior\" value=\"bk7\"/></bsdf></shape>\n"
+      "  <shape type=\"disk\"><emitter type=\"area\"><rgb name=\"radiance\" value=\"1, 2, "
+      "3\"/></emitter></shape>\n"
+      "  <emitter type=\"point\"><point name=\"position\" x=\"1\" y=\"2\" z=\"3\"/></emitter>\n"
+      "  <emitter type=\"directional\"><vector name=\"direction\" value=\"0, 0, -1\"/></emitter>\n"
+      "</scene>\n";
+  const std::string base = fs::temp_directory_path().string();
+  ASSERT_TRUE(LoadMitsubaSceneFromString(scene, base, "damaged.xml").ok());
+  int loaded = 0, failed = 0;
+  const auto check = [&](const std::string& text) {
+    StatusOr<ptlab::Scene> s = LoadMitsubaSceneFromString(text, base, "damaged.xml");
+    if (s.ok()) {
+      ++loaded;
+    } else {
+      ++failed;
+      EXPECT_EQ(s.status().message().rfind("damaged.xml", 0), 0u) << s.status().message();
+    }
+  };
+  for (size_t i = 0; i < scene.size(); i += 7) check(scene.substr(0, i));
+  for (size_t i = 0; i < scene.size(); i += 3)
+    for (const char c : {'<', '"', '$', '-', '9', ','}) {
+      std::string text = scene;
+      text[i] = c;
+      check(text);
+    }
+  EXPECT_GT(failed, 0);
+  EXPECT_GT(loaded, 0);
+}
+
+}  // namespace
+}  // namespace ptlab
