@@ -246,7 +246,13 @@ bool LooksLikeMitsubaScene(const std::string& xml) {
   const std::string head = xml.substr(0, 65536);
   doc.load_buffer(head.data(), head.size(), pugi::parse_default, pugi::encoding_utf8);
   const pugi::xml_node root = doc.document_element();
-  return root && std::string_view(root.name()) == "scene" && root.attribute("version");
+  if (!root || std::string_view(root.name()) != "scene") return false;
+  if (root.attribute("version")) return true;
+  for (const pugi::xml_node child : root.children()) {
+    const std::string_view tag = child.name();
+    if (tag == "sensor" || tag == "default" || tag == "include" || tag == "path") return true;
+  }
+  return false;
 }
 
 }  // namespace ptlab::internal

@@ -61,7 +61,8 @@ std::string ResolveMitsubaPath(const std::vector<std::string>& search_paths,
                                const std::string& name);
 
 /// True when the root element of `xml` is a <scene> with a `version` attribute (a Mitsuba 2/3
-/// or 0.6 scene), looking at the first 64 KiB only.
+/// or 0.6 scene) or with a Mitsuba-only child element (<sensor>, <default>, <include>, <path>),
+/// looking at the first 64 KiB only.
 bool LooksLikeMitsubaScene(const std::string& xml);
 
 }  // namespace ptlab::internal

@@ -49,11 +49,7 @@ SceneFormat SceneFormatOf(const std::string& path) {
   const std::string head = Head(path);
   const std::string root = RootElementName(head);
   if (root == "COLLADA") return SceneFormat::kCollada;
-  if (root == "scene") {
-    if (internal::LooksLikeMitsubaScene(head)) return SceneFormat::kMitsuba;
-    for (const char* tag : {"<sensor", "<default ", "<include ", "<path ", "<film"})
-      if (head.find(tag) != std::string::npos) return SceneFormat::kMitsuba;
-  }
+  if (root == "scene" && internal::LooksLikeMitsubaScene(head)) return SceneFormat::kMitsuba;
   return SceneFormat::kNoriXml;
 }
 

@@ -13,7 +13,7 @@ enum class SceneFormat { kNoriXml, kCollada, kMitsuba };
 
 /// The format of the file at `path`: ".dae" (any case) is COLLADA; otherwise, by the head of
 /// the document: a <COLLADA> root is COLLADA, a <scene> root with a `version` attribute or
-/// with Mitsuba-only elements (<sensor>, <default>, <include>, <path>, <film>) is Mitsuba
+/// with a Mitsuba-only child (<sensor>, <default>, <include>, <path>) is Mitsuba
 /// (engine/io/mitsuba_loader.h), anything else Nori XML.
 SceneFormat SceneFormatOf(const std::string& path);
 

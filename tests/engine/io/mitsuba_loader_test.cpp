@@ -506,6 +506,11 @@ TEST_F(MitsubaLoader, SceneFileChoosesTheFormat) {
       "n.xml", "<scene><integrator type=\"normals\"/><camera type=\"perspective\"/></scene>");
   EXPECT_EQ(SceneFormatOf(nori), SceneFormat::kNoriXml);
   EXPECT_TRUE(LoadSceneFile(nori).ok());
+  // Mitsuba words in a Nori scene's comment or strings do not change its format.
+  const std::string commented = Write(
+      "c.xml", "<scene><!-- <sensor> <default name=\"a\"/> --><integrator type=\"normals\"/>"
+               "<camera type=\"perspective\"/></scene>");
+  EXPECT_EQ(SceneFormatOf(commented), SceneFormat::kNoriXml);
   // A Mitsuba file without a version is still recognised by its tags, and told what is missing.
   const std::string unversioned =
       Write("u.xml", "<scene><sensor type=\"perspective\"/></scene>");
