@@ -33,7 +33,8 @@ Status MitsubaSceneBuilder::AreaEmitter(const MitsubaNode& node, Color3f* radian
     if (IsUnsupportedEmitter(obj->type())) return Unsupported(node);
     return node.Error("emitter type '" + obj->type() + "' inside a shape; expected area");
   }
-  PTLAB_RETURN_IF_ERROR(obj->Expect({"radiance"}));
+  PTLAB_RETURN_IF_ERROR(obj->Expect({"radiance", "sampling_weight"}));
+  PTLAB_RETURN_IF_ERROR(obj->SamplingWeight());
   PTLAB_RETURN_IF_ERROR(obj->Require("radiance"));
   PTLAB_RETURN_IF_ERROR(obj->Color("radiance", SpectrumUse::kEmission, radiance));
   return CheckEmission(*obj, "radiance", *radiance);
@@ -62,7 +63,8 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
   if (!obj.children().empty() && type != "envmap")
     return Unsupported(*obj.children()[0], "inside " + DescribeMitsuba(node));
   if (type == "point") {
-    PTLAB_RETURN_IF_ERROR(obj.Expect({"intensity", "position", "to_world"}));
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"intensity", "position", "to_world", "sampling_weight"}));
+    PTLAB_RETURN_IF_ERROR(obj.SamplingWeight());
     Color3f intensity{1, 1, 1};
     PTLAB_RETURN_IF_ERROR(obj.Color("intensity", SpectrumUse::kEmission, &intensity));
     PTLAB_RETURN_IF_ERROR(CheckEmission(obj, "intensity", intensity));
@@ -82,7 +84,8 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
     return Status::Ok();
   }
   if (type == "directional") {
-    PTLAB_RETURN_IF_ERROR(obj.Expect({"irradiance", "direction", "to_world"}));
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"irradiance", "direction", "to_world", "sampling_weight"}));
+    PTLAB_RETURN_IF_ERROR(obj.SamplingWeight());
     Color3f irradiance{1, 1, 1};
     PTLAB_RETURN_IF_ERROR(obj.Color("irradiance", SpectrumUse::kEmission, &irradiance));
     PTLAB_RETURN_IF_ERROR(CheckEmission(obj, "irradiance", irradiance));
@@ -102,7 +105,8 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
     return Status::Ok();
   }
   if (type == "constant") {
-    PTLAB_RETURN_IF_ERROR(obj.Expect({"radiance"}));
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"radiance", "sampling_weight"}));
+    PTLAB_RETURN_IF_ERROR(obj.SamplingWeight());
     Color3f radiance{1, 1, 1};
     PTLAB_RETURN_IF_ERROR(obj.Color("radiance", SpectrumUse::kEmission, &radiance));
     PTLAB_RETURN_IF_ERROR(CheckEmission(obj, "radiance", radiance));
@@ -114,7 +118,11 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
   }
   if (type == "envmap") {
     if (!obj.children().empty()) return Unsupported(*obj.children()[0], "inside an envmap");
-    PTLAB_RETURN_IF_ERROR(obj.Expect({"filename", "scale", "to_world", "mis_compensation"}));
+    PTLAB_RETURN_IF_ERROR(obj.Expect(
+        {"filename", "scale", "to_world", "mis_compensation", "sampling_weight", "gamma"}));
+    PTLAB_RETURN_IF_ERROR(obj.SamplingWeight());
+    if (obj.Has("gamma"))  // Mitsuba 0.6: a gamma for LDR maps
+      return obj.Error("gamma", "unsupported: emitter \"envmap\" with gamma");
     PTLAB_RETURN_IF_ERROR(obj.Require("filename"));
     std::string filename;
     PTLAB_RETURN_IF_ERROR(obj.String("filename", &filename));

@@ -110,7 +110,8 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
   if (type == "perspective") {
     PTLAB_RETURN_IF_ERROR(obj->Expect({"fov", "fov_axis", "focal_length", "near_clip",
                                        "far_clip", "focus_distance", "to_world",
-                                       "shutter_open", "shutter_close"}));
+                                       "shutter_open", "shutter_close",
+                                       "principal_point_offset_x", "principal_point_offset_y"}));
   } else if (type == "thinlens") {
     PTLAB_RETURN_IF_ERROR(obj->Expect({"fov", "fov_axis", "focal_length", "near_clip",
                                        "far_clip", "focus_distance", "aperture_radius",
@@ -145,7 +146,10 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
     if (f->type() != "hdrfilm") return Unsupported(*film);
     PTLAB_RETURN_IF_ERROR(f->Expect({"width", "height", "pixel_format", "component_format",
                                      "file_format", "crop_offset_x", "crop_offset_y",
-                                     "crop_width", "crop_height", "sample_border", "banner"}));
+                                     "crop_width", "crop_height", "sample_border", "banner",
+                                     "high_quality_edges", "attach_log"}));
+    PTLAB_RETURN_IF_ERROR(f->OnlyDefault("sample_border", false));
+    PTLAB_RETURN_IF_ERROR(f->OnlyDefault("high_quality_edges", false));
     for (const char* crop : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
       if (f->Has(crop)) return f->Error(crop, "unsupported: film \"hdrfilm\" property " +
                                                   std::string(crop) + " (crop windows)");
@@ -217,6 +221,12 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
     if (!(camera.focus_distance > 0))
       return obj->Error("focus_distance", "focus_distance must be > 0");
   }
+  for (const char* name : {"principal_point_offset_x", "principal_point_offset_y"}) {
+    float offset = 0;
+    PTLAB_RETURN_IF_ERROR(obj->Float(name, &offset));
+    if (offset != 0)
+      return obj->Error(name, "unsupported: sensor \"" + type + "\" with " + name + " != 0");
+  }
   float open = 0, close = 0;
   PTLAB_RETURN_IF_ERROR(obj->Float("shutter_open", &open));
   PTLAB_RETURN_IF_ERROR(obj->Float("shutter_close", &close));
@@ -284,8 +294,9 @@ Status MitsubaSceneBuilder::Sampler(const MitsubaNode& node) {
     return node.Error("unknown sampler type '" + type + "'; expected independent, stratified, "
                       "multijitter, orthogonal or ldsampler");
   }
-  PTLAB_RETURN_IF_ERROR(obj->Expect({"sample_count", "seed", "jitter", "strength"}));
-  int count = 4, seed = 0;
+  PTLAB_RETURN_IF_ERROR(obj->Expect({"sample_count", "seed", "jitter", "strength", "dimension"}));
+  int count = 4, seed = 0, dimension = 0;  // 0.6's `dimension`: ignored
+  PTLAB_RETURN_IF_ERROR(obj->Integer("dimension", &dimension));
   bool jitter = true;
   float strength = 0;
   PTLAB_RETURN_IF_ERROR(obj->Integer("sample_count", &count));
@@ -316,7 +327,9 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
                                      "> is not allowed inside " + DescribeMitsuba(node));
   bool hide = false;
   if (type == "path") {
-    PTLAB_RETURN_IF_ERROR(obj->Expect({"max_depth", "rr_depth", "hide_emitters"}));
+    PTLAB_RETURN_IF_ERROR(
+        obj->Expect({"max_depth", "rr_depth", "hide_emitters", "strict_normals"}));
+    PTLAB_RETURN_IF_ERROR(obj->OnlyDefault("strict_normals", false));
     int max_depth = -1, rr_depth = 5;
     PTLAB_RETURN_IF_ERROR(obj->Integer("max_depth", &max_depth));
     PTLAB_RETURN_IF_ERROR(obj->Integer("rr_depth", &rr_depth));
@@ -336,7 +349,9 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
                                      "roulette (from depth 3); the expected image is the same");
   } else if (type == "direct") {
     PTLAB_RETURN_IF_ERROR(
-        obj->Expect({"shading_samples", "emitter_samples", "bsdf_samples", "hide_emitters"}));
+        obj->Expect({"shading_samples", "emitter_samples", "bsdf_samples", "hide_emitters",
+                     "strict_normals"}));
+    PTLAB_RETURN_IF_ERROR(obj->OnlyDefault("strict_normals", false));
     int shading = 1;
     PTLAB_RETURN_IF_ERROR(obj->Integer("shading_samples", &shading));
     int emitter = shading, bsdf = shading;

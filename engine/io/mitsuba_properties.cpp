@@ -517,6 +517,21 @@ Status MitsubaObject::Color(const char* name, SpectrumUse use, Color3f* v) const
   return Status::Ok();
 }
 
+Status MitsubaObject::OnlyDefault(const char* name, bool fallback) const {
+  bool value = fallback;
+  PTLAB_RETURN_IF_ERROR(Boolean(name, &value));
+  if (value == fallback) return Status::Ok();
+  return Error(name, "unsupported: " + node_->tag + " \"" + type_ + "\" with " + name + " = " +
+                         (value ? "true" : "false"));
+}
+
+Status MitsubaObject::SamplingWeight() const {
+  float weight = 1;
+  PTLAB_RETURN_IF_ERROR(Float("sampling_weight", &weight));
+  if (!(weight > 0)) return Error("sampling_weight", "sampling_weight must be > 0");
+  return Status::Ok();
+}
+
 Status MitsubaObject::Error(const char* name, const std::string& message) const {
   const MitsubaProperty* p = Get(name);
   return (p ? *p->node : *node_).Error(message);

@@ -82,6 +82,13 @@ class MitsubaObject {
   /// as Mitsuba's rgb variant does for `use`); a texture is reported as unsupported.
   Status Color(const char* name, SpectrumUse use, Color3f* v) const;
 
+  /// Boolean `name` is accepted only at its default `fallback` (other values change the image
+  /// in a way ptlab does not render): "unsupported: <tag> \"type\" with name = value".
+  Status OnlyDefault(const char* name, bool fallback) const;
+  /// Mitsuba's `sampling_weight` of an emitter (> 0): it changes how often emitter sampling
+  /// picks the emitter, not the image; ptlab picks uniformly, so it is checked and ignored.
+  Status SamplingWeight() const;
+
   /// An error located at property `name` if present, else at the object.
   Status Error(const char* name, const std::string& message) const;
   Status Require(const char* name) const;

@@ -241,6 +241,10 @@ TEST_F(MitsubaLoader, SensorLookatFovAxesAndFilm) {
                         "value=\"z\"/><float name=\"fov\" value=\"30\"/></sensor>"))
                 .find(":3:1: unknown fov_axis 'z'"),
             std::string::npos);
+  EXPECT_NE(Error(Scene("<sensor type=\"perspective\"><float name=\"principal_point_offset_x\" "
+                        "value=\"0.1\"/></sensor>"))
+                .find("unsupported: sensor \"perspective\" with principal_point_offset_x != 0"),
+            std::string::npos);
   EXPECT_NE(Error(Scene("<sensor type=\"perspective\"><transform name=\"to_world\"><scale "
                         "value=\"2\"/></transform></sensor>"))
                 .find("the sensor's to_world scales or shears"),
@@ -307,6 +311,10 @@ TEST_F(MitsubaLoader, Integrators) {
   EXPECT_NE(Error(Scene("<integrator type=\"path\">\n  <boolean name=\"hide_emitters\" "
                         "value=\"true\"/></integrator>"))
                 .find(":4:3: unsupported: integrator \"path\" with hide_emitters = true"),
+            std::string::npos);
+  EXPECT_NE(Error(Scene("<integrator type=\"path\"><boolean name=\"strict_normals\" "
+                        "value=\"true\"/></integrator>"))
+                .find("unsupported: integrator \"path\" with strict_normals = true"),
             std::string::npos);
   EXPECT_NE(Error(Scene("<integrator type=\"path\"><integer name=\"max_depth\" value=\"0\"/>"
                         "</integrator>"))
@@ -452,6 +460,13 @@ TEST_F(MitsubaLoader, Emitters) {
                         "</emitter>"))
                 .find("file 'sky.exr' of <emitter type=\"envmap\"> not found"),
             std::string::npos);
+  // sampling_weight only changes how often an emitter is picked: accepted, checked.
+  EXPECT_TRUE(Load(Scene("<emitter type=\"constant\"><float name=\"sampling_weight\" "
+                         "value=\"2\"/></emitter>")).ok());
+  EXPECT_NE(Error(Scene("<emitter type=\"point\"><float name=\"sampling_weight\" "
+                        "value=\"0\"/></emitter>"))
+                .find("sampling_weight must be > 0"),
+            std::string::npos);
   EXPECT_NE(Error(Scene("<emitter type=\"area\"/>")).find("an area emitter must be inside a "
                                                          "<shape>"),
             std::string::npos);
@@ -465,7 +480,8 @@ TEST_F(MitsubaLoader, LegacyVersion06) {
       "<sensor type=\"perspective\"><float name=\"nearClip\" value=\"0.5\"/>"
       "<transform name=\"toWorld\"><lookat origin=\"0,0,-1\" target=\"0,0,0\" up=\"0,1,0\"/>"
       "</transform><sampler type=\"ldsampler\"><integer name=\"sampleCount\" value=\"12\"/>"
-      "</sampler></sensor>\n"
+      "</sampler><film type=\"hdrfilm\"><boolean name=\"highQualityEdges\" value=\"false\"/>"
+      "</film></sensor>\n"
       "<shape type=\"cube\"><bsdf type=\"dielectric\"><float name=\"intIOR\" value=\"1.7\"/>"
       "</bsdf><transform name=\"toWorld\"><translate x=\"4\"/></transform></shape>\n"
       "<shape type=\"cube\"><bsdf type=\"diffuse\"><srgb name=\"reflectance\" value=\"0.5\"/>"
