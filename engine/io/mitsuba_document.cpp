@@ -44,16 +44,16 @@ class Preprocessor {
     if (result.status == pugi::status_no_document_element)
       return Status::Error(at->AtOffset(0) + ": no root element; expected a <scene> element");
     if (!result)
-      return Status::Error(at->AtOffset(result.offset) + ": XML syntax error: " +
-                           result.description());
+      return Status::Error(at->AtOffset(result.offset) +
+                           ": XML syntax error: " + result.description());
     pugi::xml_node root;
     PTLAB_RETURN_IF_ERROR(at->FindSingleRoot(doc, "scene", &root));
     if (std::string_view(root.name()) != "scene")
       return at->Error(root, "root element <" + std::string(root.name()) + ">; expected <scene>");
     for (const pugi::xml_attribute a : root.attributes()) {
       if (std::string_view(a.name()) != "version")
-        return at->Error(root, "unknown attribute '" + std::string(a.name()) +
-                                   "' on <scene>; expected version");
+        return at->Error(
+            root, "unknown attribute '" + std::string(a.name()) + "' on <scene>; expected version");
     }
     if (!root.attribute("version"))
       return at->Error(root, "<scene> is missing the attribute 'version' (a Mitsuba scene)");
@@ -121,8 +121,8 @@ class Preprocessor {
       if (!read.ok()) return at.Error(node, "<include>: " + read.message());
       files.push_back(path);
       include_stack.push_back(canonical);
-      Status s = ReadScene(text, fs::path(path).parent_path().string(), path, depth + 1, out,
-                           nullptr);
+      Status s =
+          ReadScene(text, fs::path(path).parent_path().string(), path, depth + 1, out, nullptr);
       include_stack.pop_back();
       return s;
     }
@@ -187,8 +187,8 @@ class Preprocessor {
     if (node.first_child()) return at.Error(node, "<default> takes no children");
     *name = node.attribute("name").value();
     if (name->empty() || !std::all_of(name->begin(), name->end(), IsNameChar))
-      return at.Error(node, "malformed parameter name '" + *name +
-                                "'; expected letters, digits and _");
+      return at.Error(node,
+                      "malformed parameter name '" + *name + "'; expected letters, digits and _");
     return Substitute(at, node, node.attribute("value").value(), value);
   }
 
@@ -199,8 +199,8 @@ class Preprocessor {
         return at.Error(node, "unknown attribute '" + std::string(a.name()) + "' on <" +
                                   node.name() + ">; expected " + attribute);
     if (!node.attribute(attribute))
-      return at.Error(node, "<" + std::string(node.name()) + "> is missing the attribute '" +
-                                attribute + "'");
+      return at.Error(
+          node, "<" + std::string(node.name()) + "> is missing the attribute '" + attribute + "'");
     if (node.first_child())
       return at.Error(node, "<" + std::string(node.name()) + "> takes no children");
     return Substitute(at, node, node.attribute(attribute).value(), value);

@@ -3,9 +3,9 @@
 #include <numbers>
 
 #include "engine/image/image_io.h"
+#include "engine/io/mitsuba_scene_builder.h"
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
-#include "engine/io/mitsuba_scene_builder.h"
 #include "engine/scene/scene_limits.h"
 
 namespace ptlab::internal {
@@ -15,8 +15,8 @@ Status CheckEmission(const MitsubaObject& obj, const char* name, const Color3f& 
   if (c.r >= 0 && c.g >= 0 && c.b >= 0 && c.r <= kMaxRadiance && c.g <= kMaxRadiance &&
       c.b <= kMaxRadiance)
     return Status::Ok();
-  return obj.Error(name, std::string("'") + name +
-                             "' is out of range; expected components in [0, 1e20]");
+  return obj.Error(name,
+                   std::string("'") + name + "' is out of range; expected components in [0, 1e20]");
 }
 
 bool IsUnsupportedEmitter(const std::string& type) {
@@ -98,8 +98,8 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
     if (obj.Has("to_world")) direction = to_world.ApplyVector({0, 0, 1});
     if (!(Length(direction) > 0))
       return obj.Error("direction", "the direction must be a non-zero vector");
-    scene_.emitters.push_back(EmitterRef::Make(EmitterTag::kDirectional,
-                                               uint32_t(scene_.directional_lights.size())));
+    scene_.emitters.push_back(
+        EmitterRef::Make(EmitterTag::kDirectional, uint32_t(scene_.directional_lights.size())));
     scene_.directional_lights.direction.push_back(Normalize(direction));
     scene_.directional_lights.radiance.push_back(irradiance);  // irradiance, per its table
     return Status::Ok();
@@ -132,8 +132,9 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
     bool compensation = false;
     PTLAB_RETURN_IF_ERROR(obj.Boolean("mis_compensation", &compensation));
     if (compensation)
-      return obj.Error("mis_compensation", "unsupported: emitter \"envmap\" with "
-                                           "mis_compensation = true");
+      return obj.Error("mis_compensation",
+                       "unsupported: emitter \"envmap\" with "
+                       "mis_compensation = true");
     Transform to_world;
     PTLAB_RETURN_IF_ERROR(obj.TransformProperty("to_world", &to_world));
     PTLAB_RETURN_IF_ERROR(Rotation(obj, to_world, &desc.to_world));
@@ -151,8 +152,9 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
   }
   if (type == "area") return node.Error("an area emitter must be inside a <shape>");
   if (type == "spot")
-    return Unsupported(node, "Mitsuba's spot falls off linearly in angle from beam_width to "
-                             "cutoff_angle; ptlab's spot is cos^exponent with a hard cutoff");
+    return Unsupported(node,
+                       "Mitsuba's spot falls off linearly in angle from beam_width to "
+                       "cutoff_angle; ptlab's spot is cos^exponent with a hard cutoff");
   if (IsUnsupportedEmitter(type)) return Unsupported(node);
   return node.Error("unknown emitter type '" + type +
                     "'; expected point, directional, constant, envmap (area inside a shape)");

@@ -8,6 +8,7 @@
 #include "engine/io/mitsuba_scene_builder.h"
 #include "engine/io/mitsuba_spectrum.h"
 #include "engine/io/text_parsing.h"
+#include "engine/io/xml_properties.h"
 #include "engine/scene/scene_limits.h"
 
 namespace ptlab {
@@ -15,12 +16,6 @@ namespace internal {
 namespace {
 
 constexpr double kPiD = 3.141592653589793238463;
-
-std::string Number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
 
 // Mitsuba's film aspect rule for `fov_axis` (and `focal_length`, a 35 mm film diagonal):
 // the horizontal field of view in degrees.
@@ -63,8 +58,7 @@ Status MitsubaSceneBuilder::Build() {
   // Mitsuba 3's direct integrator weights each sample of a delta emitter (point, directional)
   // by 1 instead of 1 / emitter_samples, so its images count those lights emitter_samples
   // times; ptlab's direct_mis does not, and would not match them.
-  if (multi_sample_direct_ &&
-      scene_.point_lights.size() + scene_.directional_lights.size() > 0)
+  if (multi_sample_direct_ && scene_.point_lights.size() + scene_.directional_lights.size() > 0)
     return Unsupported(*multi_sample_direct_,
                        "emitter_samples > 1 with point or directional emitters: Mitsuba 3 counts "
                        "each such sample with weight 1, not 1 / emitter_samples");
@@ -98,7 +92,8 @@ Status MitsubaSceneBuilder::SceneChild(const MitsubaNode& node) {
   }
   if (tag == "texture" || tag == "medium" || tag == "phase" || tag == "volume")
     return Unsupported(node);
-  return node.Error("<" + tag + "> is not allowed directly inside <scene>; expected shape, "
+  return node.Error("<" + tag +
+                    "> is not allowed directly inside <scene>; expected shape, "
                     "emitter, bsdf, texture, sensor or integrator");
 }
 
@@ -108,14 +103,13 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
   const std::string& type = obj->type();
   CameraDesc camera;
   if (type == "perspective") {
-    PTLAB_RETURN_IF_ERROR(obj->Expect({"fov", "fov_axis", "focal_length", "near_clip",
-                                       "far_clip", "focus_distance", "to_world",
-                                       "shutter_open", "shutter_close",
-                                       "principal_point_offset_x", "principal_point_offset_y"}));
+    PTLAB_RETURN_IF_ERROR(obj->Expect(
+        {"fov", "fov_axis", "focal_length", "near_clip", "far_clip", "focus_distance", "to_world",
+         "shutter_open", "shutter_close", "principal_point_offset_x", "principal_point_offset_y"}));
   } else if (type == "thinlens") {
-    PTLAB_RETURN_IF_ERROR(obj->Expect({"fov", "fov_axis", "focal_length", "near_clip",
-                                       "far_clip", "focus_distance", "aperture_radius",
-                                       "to_world", "shutter_open", "shutter_close"}));
+    PTLAB_RETURN_IF_ERROR(
+        obj->Expect({"fov", "fov_axis", "focal_length", "near_clip", "far_clip", "focus_distance",
+                     "aperture_radius", "to_world", "shutter_open", "shutter_close"}));
     PTLAB_RETURN_IF_ERROR(obj->Require("aperture_radius"));
   } else if (type == "orthographic" || type == "radiancemeter" || type == "irradiancemeter" ||
              type == "batch" || type == "distant") {
@@ -125,11 +119,13 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
   }
   const MitsubaNode *film = nullptr, *sampler = nullptr, *filter = nullptr;
   for (const MitsubaNode* child : obj->children()) {
-    const MitsubaNode** slot = child->tag == "film" ? &film : child->tag == "sampler" ? &sampler
-                                                                                   : nullptr;
+    const MitsubaNode** slot = child->tag == "film"      ? &film
+                               : child->tag == "sampler" ? &sampler
+                                                         : nullptr;
     if (!slot) {
       if (child->tag == "medium") return Unsupported(*child);
-      return child->Error("<" + child->tag + "> is not allowed inside <sensor>; expected film "
+      return child->Error("<" + child->tag +
+                          "> is not allowed inside <sensor>; expected film "
                           "or sampler");
     }
     if (*slot) return child->Error("a second <" + child->tag + "> in the sensor");
@@ -144,15 +140,16 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
     StatusOr<MitsubaObject> f = Read(*film);
     if (!f.ok()) return f.status();
     if (f->type() != "hdrfilm") return Unsupported(*film);
-    PTLAB_RETURN_IF_ERROR(f->Expect({"width", "height", "pixel_format", "component_format",
-                                     "file_format", "crop_offset_x", "crop_offset_y",
-                                     "crop_width", "crop_height", "sample_border", "banner",
-                                     "high_quality_edges", "attach_log"}));
+    PTLAB_RETURN_IF_ERROR(
+        f->Expect({"width", "height", "pixel_format", "component_format", "file_format",
+                   "crop_offset_x", "crop_offset_y", "crop_width", "crop_height", "sample_border",
+                   "banner", "high_quality_edges", "attach_log"}));
     PTLAB_RETURN_IF_ERROR(f->OnlyDefault("sample_border", false));
     PTLAB_RETURN_IF_ERROR(f->OnlyDefault("high_quality_edges", false));
     for (const char* crop : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
-      if (f->Has(crop)) return f->Error(crop, "unsupported: film \"hdrfilm\" property " +
-                                                  std::string(crop) + " (crop windows)");
+      if (f->Has(crop))
+        return f->Error(crop, "unsupported: film \"hdrfilm\" property " + std::string(crop) +
+                                  " (crop windows)");
     PTLAB_RETURN_IF_ERROR(f->Integer("width", &camera.width));
     PTLAB_RETURN_IF_ERROR(f->Integer("height", &camera.height));
     if (const std::string size = FilmSizeError(camera.width, camera.height); !size.empty())
@@ -201,10 +198,10 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
     }
   }
   if (!(fov > 0 && fov < 180))
-    return obj->Error("fov", "fov = " + Number(fov) + " is out of range; expected (0, 180)");
+    return obj->Error("fov", "fov = " + FormatNumber(fov) + " is out of range; expected (0, 180)");
   camera.fov_deg = float(HorizontalFov(fov, axis, aspect));
   if (!(camera.fov_deg > 0 && camera.fov_deg < 180))
-    return obj->Error("fov", "the horizontal field of view " + Number(camera.fov_deg) +
+    return obj->Error("fov", "the horizontal field of view " + FormatNumber(camera.fov_deg) +
                                  " is out of range; expected (0, 180)");
   camera.near_clip = 1e-2f, camera.far_clip = 1e4f;  // Mitsuba's defaults
   PTLAB_RETURN_IF_ERROR(obj->Float("near_clip", &camera.near_clip));
@@ -230,9 +227,10 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
   float open = 0, close = 0;
   PTLAB_RETURN_IF_ERROR(obj->Float("shutter_open", &open));
   PTLAB_RETURN_IF_ERROR(obj->Float("shutter_close", &close));
-  if (close != open) return obj->Error("shutter_close", "unsupported: sensor \"" + type +
-                                                            "\" motion blur (shutter_close != "
-                                                            "shutter_open)");
+  if (close != open)
+    return obj->Error("shutter_close", "unsupported: sensor \"" + type +
+                                           "\" motion blur (shutter_close != "
+                                           "shutter_open)");
   PTLAB_RETURN_IF_ERROR(obj->TransformProperty("to_world", &camera.camera_to_world));
   // Mitsuba refuses scale in a camera's to_world: its upper 3x3 must be orthonormal.
   const Matrix4& m = camera.camera_to_world.matrix();
@@ -240,8 +238,9 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
     for (int j = 0; j < 3; ++j) {
       const float dot = m.m[0][i] * m.m[0][j] + m.m[1][i] * m.m[1][j] + m.m[2][i] * m.m[2][j];
       if (!(std::fabs(dot - (i == j ? 1.0f : 0.0f)) <= 1e-4f))
-        return obj->Error("to_world", "the sensor's to_world scales or shears; expected a "
-                                      "rotation and translation (lookat, rotate, translate)");
+        return obj->Error("to_world",
+                          "the sensor's to_world scales or shears; expected a "
+                          "rotation and translation (lookat, rotate, translate)");
     }
   scene_.camera = camera;
   return Status::Ok();
@@ -274,8 +273,9 @@ Status MitsubaSceneBuilder::Filter(const MitsubaNode& node) {
   }
   if (!(filter.radius > 0 && filter.radius <= kMaxFilterRadius))
     return obj->Error(type == "gaussian" ? "stddev" : "radius",
-                      "filter radius " + Number(filter.radius) + " is out of range; expected (0, " +
-                          Number(kMaxFilterRadius) + "] pixels");
+                      "filter radius " + FormatNumber(filter.radius) +
+                          " is out of range; expected (0, " + FormatNumber(kMaxFilterRadius) +
+                          "] pixels");
   scene_.filter = filter;
   return Status::Ok();
 }
@@ -291,7 +291,8 @@ Status MitsubaSceneBuilder::Sampler(const MitsubaNode& node) {
     // Stratified and low-discrepancy samplers: ptlab's best one (Owen-scrambled Sobol').
     scene_.sampler.type = SamplerType::kSobol;
   } else {
-    return node.Error("unknown sampler type '" + type + "'; expected independent, stratified, "
+    return node.Error("unknown sampler type '" + type +
+                      "'; expected independent, stratified, "
                       "multijitter, orthogonal or ldsampler");
   }
   PTLAB_RETURN_IF_ERROR(obj->Expect({"sample_count", "seed", "jitter", "strength", "dimension"}));
@@ -313,7 +314,7 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
   if (!obj.ok()) return obj.status();
   const std::string& type = obj->type();
   IntegratorDesc desc;
-  desc.power_heuristic = true;                     // Mitsuba's MIS weights
+  desc.power_heuristic = true;                      // Mitsuba's MIS weights
   desc.light_selection = LightSelection::kUniform;  // Mitsuba picks emitters uniformly
   desc.triangle_sampling = TriangleSampling::kArea;
   if (type == "moment") {  // a wrapper that adds second moments: render what it wraps
@@ -323,8 +324,8 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
     return Integrator(*obj->children()[0]);
   }
   if (!obj->children().empty())
-    return obj->children()[0]->Error("<" + obj->children()[0]->tag +
-                                     "> is not allowed inside " + DescribeMitsuba(node));
+    return obj->children()[0]->Error("<" + obj->children()[0]->tag + "> is not allowed inside " +
+                                     DescribeMitsuba(node));
   bool hide = false;
   if (type == "path") {
     PTLAB_RETURN_IF_ERROR(
@@ -335,8 +336,9 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(obj->Integer("rr_depth", &rr_depth));
     if (max_depth < -1) return obj->Error("max_depth", "max_depth must be >= 0, or -1 (unbounded)");
     if (max_depth == 0)
-      return obj->Error("max_depth", "unsupported: integrator \"path\" with max_depth 0 (an "
-                                     "all-black image)");
+      return obj->Error("max_depth",
+                        "unsupported: integrator \"path\" with max_depth 0 (an "
+                        "all-black image)");
     if (rr_depth < 1) return obj->Error("rr_depth", "rr_depth must be >= 1");
     // Mitsuba counts vertices (1 = emitters seen directly, 2 = direct light); ptlab counts
     // bounces as CS184 (0 = emitted only, 1 = direct).
@@ -348,9 +350,8 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
                                      ": rr_depth is accepted but ptlab applies its own Russian "
                                      "roulette (from depth 3); the expected image is the same");
   } else if (type == "direct") {
-    PTLAB_RETURN_IF_ERROR(
-        obj->Expect({"shading_samples", "emitter_samples", "bsdf_samples", "hide_emitters",
-                     "strict_normals"}));
+    PTLAB_RETURN_IF_ERROR(obj->Expect(
+        {"shading_samples", "emitter_samples", "bsdf_samples", "hide_emitters", "strict_normals"}));
     PTLAB_RETURN_IF_ERROR(obj->OnlyDefault("strict_normals", false));
     int shading = 1;
     PTLAB_RETURN_IF_ERROR(obj->Integer("shading_samples", &shading));
@@ -370,8 +371,8 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
     return Unsupported(node);
   }
   if (hide)
-    return obj->Error("hide_emitters", "unsupported: integrator \"" + type +
-                                           "\" with hide_emitters = true");
+    return obj->Error("hide_emitters",
+                      "unsupported: integrator \"" + type + "\" with hide_emitters = true");
   scene_.integrator = desc;
   return Status::Ok();
 }
@@ -402,8 +403,8 @@ StatusOr<Scene> LoadMitsubaScene(const std::string& path, const LoadOptions& opt
   return scene;
 }
 
-Status LookupMitsubaConductor(const std::vector<std::string>& search_paths,
-                              const std::string& name, Color3f* eta, Color3f* k) {
+Status LookupMitsubaConductor(const std::vector<std::string>& search_paths, const std::string& name,
+                              Color3f* eta, Color3f* k) {
   if (name == "none") {
     *eta = {0, 0, 0};
     *k = {1, 1, 1};

@@ -28,7 +28,7 @@ StatusOr<Scene> LoadMitsubaSceneFromString(const std::string& xml, const std::st
 /// parent folders) that holds them, converted to RGB as Mitsuba's rgb variant does
 /// (SpectrumToRgb, SpectrumUse::kUnbounded). "none" is η = 0, k = 1 (Mitsuba's perfect
 /// mirror).
-Status LookupMitsubaConductor(const std::vector<std::string>& search_paths,
-                              const std::string& name, Color3f* eta, Color3f* k);
+Status LookupMitsubaConductor(const std::vector<std::string>& search_paths, const std::string& name,
+                              Color3f* eta, Color3f* k);
 
 }  // namespace ptlab

@@ -11,9 +11,9 @@
 namespace ptlab::internal {
 namespace {
 
-constexpr const char* kObjectTags[] = {"bsdf",   "emitter", "shape",  "sensor",     "film",
+constexpr const char* kObjectTags[] = {"bsdf",    "emitter", "shape",   "sensor",     "film",
                                        "sampler", "rfilter", "texture", "integrator", "medium",
-                                       "phase",  "volume",  "scene"};
+                                       "phase",   "volume",  "scene"};
 
 std::string Join(const std::vector<const char*>& names) {
   std::string s;
@@ -51,8 +51,8 @@ Status CheckAttributes(const MitsubaNode& node, const std::vector<const char*>& 
 
 Status Leaf(const MitsubaNode& node) {
   if (!node.children.empty())
-    return node.children[0].Error("unexpected <" + node.children[0].tag + "> inside <" +
-                                  node.tag + ">; expected no child elements");
+    return node.children[0].Error("unexpected <" + node.children[0].tag + "> inside <" + node.tag +
+                                  ">; expected no child elements");
   return Status::Ok();
 }
 
@@ -65,8 +65,8 @@ Status Numbers(const MitsubaNode& node, const char* attribute, std::vector<doubl
   for (const std::string_view item : items) {
     float v = 0;
     if (!ParseFloat(item, &v))
-      return node.Error("malformed number '" + std::string(item) + "' in attribute '" +
-                        attribute + "'; expected finite decimal numbers");
+      return node.Error("malformed number '" + std::string(item) + "' in attribute '" + attribute +
+                        "'; expected finite decimal numbers");
     out->push_back(v);
   }
   return Status::Ok();
@@ -123,7 +123,8 @@ Status ParseColor(const MitsubaNode& node, bool srgb, Color3f* c) {
           return std::isxdigit(static_cast<unsigned char>(ch));
         }))
       return node.Error("malformed colour '" + text + "'; expected #rrggbb");
-    for (int i = 0; i < 3; ++i) n.push_back(std::stoi(text.substr(1 + 2 * i, 2), nullptr, 16) / 255.0);
+    for (int i = 0; i < 3; ++i)
+      n.push_back(std::stoi(text.substr(1 + 2 * i, 2), nullptr, 16) / 255.0);
   } else {
     PTLAB_RETURN_IF_ERROR(Numbers(node, "value", &n));
   }
@@ -141,7 +142,8 @@ Status ParseSpectrum(const MitsubaNode& node, MitsubaProperty* p) {
   const std::string& text = *node.Attribute("value");
   std::vector<std::string_view> items;
   if (!SplitList(text, &items) || items.empty())
-    return node.Error("malformed spectrum '" + text + "'; expected a number or "
+    return node.Error("malformed spectrum '" + text +
+                      "'; expected a number or "
                       "'wavelength:value, ...' pairs");
   if (items.size() == 1 && items[0].find(':') == std::string_view::npos) {
     float v = 0;
@@ -170,16 +172,26 @@ Status ParseSpectrum(const MitsubaNode& node, MitsubaProperty* p) {
 const char* TypeTag(MitsubaProperty::Type t) {
   using T = MitsubaProperty::Type;
   switch (t) {
-    case T::kBoolean: return "boolean";
-    case T::kInteger: return "integer";
-    case T::kFloat: return "float";
-    case T::kString: return "string";
-    case T::kPoint: return "point";
-    case T::kVector: return "vector";
-    case T::kRgb: return "rgb";
-    case T::kSpectrum: return "spectrum";
-    case T::kTransform: return "transform";
-    case T::kObject: return "texture (or other object)";
+    case T::kBoolean:
+      return "boolean";
+    case T::kInteger:
+      return "integer";
+    case T::kFloat:
+      return "float";
+    case T::kString:
+      return "string";
+    case T::kPoint:
+      return "point";
+    case T::kVector:
+      return "vector";
+    case T::kRgb:
+      return "rgb";
+    case T::kSpectrum:
+      return "spectrum";
+    case T::kTransform:
+      return "transform";
+    case T::kObject:
+      return "texture (or other object)";
   }
   return "?";
 }
@@ -245,7 +257,8 @@ Status ParseMitsubaTransform(const MitsubaNode& node, Transform* result) {
       if (!Inverse(m, &inv)) return step.Error("singular <matrix>; expected an invertible matrix");
       s = Transform(m, inv);
     } else if (step.tag == "lookat") {
-      PTLAB_RETURN_IF_ERROR(CheckAttributes(step, {"origin", "target", "up"}, {"origin", "target"}));
+      PTLAB_RETURN_IF_ERROR(
+          CheckAttributes(step, {"origin", "target", "up"}, {"origin", "target"}));
       Vec3f origin, target, up{0, 0, 0};
       PTLAB_RETURN_IF_ERROR(ParseVec3Attribute(step, "origin", &origin));
       PTLAB_RETURN_IF_ERROR(ParseVec3Attribute(step, "target", &target));
@@ -255,8 +268,8 @@ Status ParseMitsubaTransform(const MitsubaNode& node, Transform* result) {
       const Vec3f dir = Normalize(target - origin);
       if (!(Length(up) > 0)) {
         // Mitsuba picks some up vector perpendicular to dir.
-        up = std::fabs(dir.x) > std::fabs(dir.y) ? Vec3f{-dir.z, 0, dir.x}
-                                                 : Vec3f{0, dir.z, -dir.y};
+        up =
+            std::fabs(dir.x) > std::fabs(dir.y) ? Vec3f{-dir.z, 0, dir.x} : Vec3f{0, dir.z, -dir.y};
       }
       const Vec3f left_raw = Cross(Normalize(up), dir);
       if (!(Length(left_raw) > 1e-6f))
@@ -285,8 +298,7 @@ Status ParseMitsubaTransform(const MitsubaNode& node, Transform* result) {
   return Status::Ok();
 }
 
-Status CollectMitsubaIds(const MitsubaNode& root,
-                         std::map<std::string, const MitsubaNode*>* ids) {
+Status CollectMitsubaIds(const MitsubaNode& root, std::map<std::string, const MitsubaNode*>* ids) {
   for (const MitsubaNode& child : root.children) {
     if (child.tag != "ref" && IsMitsubaObjectTag(child.tag))
       if (const std::string* id = child.Attribute("id")) {
@@ -395,8 +407,8 @@ StatusOr<MitsubaObject> MitsubaObject::Read(const MitsubaNode& node,
     p.name = legacy ? CamelToSnake(*name) : *name;
     for (const MitsubaProperty& q : obj.props_)
       if (q.name == p.name)
-        return child.Error("duplicate property '" + p.name + "' (first given at " +
-                           q.node->where + "); expected each property at most once");
+        return child.Error("duplicate property '" + p.name + "' (first given at " + q.node->where +
+                           "); expected each property at most once");
     obj.props_.push_back(std::move(p));
   }
   return obj;
@@ -405,10 +417,9 @@ StatusOr<MitsubaObject> MitsubaObject::Read(const MitsubaNode& node,
 Status MitsubaObject::Expect(const std::vector<const char*>& names) const {
   for (const MitsubaProperty& p : props_)
     if (std::none_of(names.begin(), names.end(), [&](const char* n) { return p.name == n; }))
-      return p.node->Error("unknown property '" + p.name + "' for " + DescribeMitsuba(*node_) +
-                           "; expected " +
-                           (names.empty() ? std::string("no properties")
-                                          : "one of: " + Join(names)));
+      return p.node->Error(
+          "unknown property '" + p.name + "' for " + DescribeMitsuba(*node_) + "; expected " +
+          (names.empty() ? std::string("no properties") : "one of: " + Join(names)));
   return Status::Ok();
 }
 
@@ -423,8 +434,8 @@ Status MitsubaObject::Find(const char* name, std::initializer_list<MitsubaProper
   *found = Get(name);
   if (*found && std::find(types.begin(), types.end(), (*found)->type) == types.end()) {
     if ((*found)->type == MitsubaProperty::Type::kObject)
-      return Unsupported(*(*found)->object, std::string("as property '") + name + "' of " +
-                                                DescribeMitsuba(*node_));
+      return Unsupported(*(*found)->object,
+                         std::string("as property '") + name + "' of " + DescribeMitsuba(*node_));
     return (*found)->node->Error(std::string("property '") + name + "' of " +
                                  DescribeMitsuba(*node_) + " has the wrong type <" +
                                  TypeTag((*found)->type) + ">; expected " + expected);
@@ -448,8 +459,8 @@ Status MitsubaObject::Integer(const char* name, int* v) const {
 
 Status MitsubaObject::Float(const char* name, float* v) const {
   const MitsubaProperty* p;
-  PTLAB_RETURN_IF_ERROR(Find(name, {MitsubaProperty::Type::kFloat, MitsubaProperty::Type::kInteger},
-                             "<float>", &p));
+  PTLAB_RETURN_IF_ERROR(
+      Find(name, {MitsubaProperty::Type::kFloat, MitsubaProperty::Type::kInteger}, "<float>", &p));
   if (p) *v = p->type == MitsubaProperty::Type::kFloat ? float(p->number) : float(p->integer);
   return Status::Ok();
 }
@@ -463,16 +474,16 @@ Status MitsubaObject::String(const char* name, std::string* v) const {
 
 Status MitsubaObject::Point(const char* name, Vec3f* v) const {
   const MitsubaProperty* p;
-  PTLAB_RETURN_IF_ERROR(Find(name, {MitsubaProperty::Type::kPoint, MitsubaProperty::Type::kVector},
-                             "<point>", &p));
+  PTLAB_RETURN_IF_ERROR(
+      Find(name, {MitsubaProperty::Type::kPoint, MitsubaProperty::Type::kVector}, "<point>", &p));
   if (p) *v = p->vec;
   return Status::Ok();
 }
 
 Status MitsubaObject::Vector(const char* name, Vec3f* v) const {
   const MitsubaProperty* p;
-  PTLAB_RETURN_IF_ERROR(Find(name, {MitsubaProperty::Type::kVector, MitsubaProperty::Type::kPoint},
-                             "<vector>", &p));
+  PTLAB_RETURN_IF_ERROR(
+      Find(name, {MitsubaProperty::Type::kVector, MitsubaProperty::Type::kPoint}, "<vector>", &p));
   if (p) *v = p->vec;
   return Status::Ok();
 }
@@ -491,7 +502,9 @@ Status MitsubaObject::Color(const char* name, SpectrumUse use, Color3f* v) const
                              "<rgb>, <spectrum> or <float>", &p));
   if (!p) return Status::Ok();
   switch (p->type) {
-    case T::kRgb: *v = p->rgb; break;
+    case T::kRgb:
+      *v = p->rgb;
+      break;
     case T::kFloat:
     case T::kInteger: {
       const float x = p->type == T::kFloat ? float(p->number) : float(p->integer);
@@ -512,7 +525,8 @@ Status MitsubaObject::Color(const char* name, SpectrumUse use, Color3f* v) const
         *v = {x, x, x};
       }
       break;
-    default: break;
+    default:
+      break;
   }
   return Status::Ok();
 }
@@ -539,8 +553,7 @@ Status MitsubaObject::Error(const char* name, const std::string& message) const 
 
 Status MitsubaObject::Require(const char* name) const {
   if (Has(name)) return Status::Ok();
-  return node_->Error(DescribeMitsuba(*node_) + " is missing the required property '" + name +
-                      "'");
+  return node_->Error(DescribeMitsuba(*node_) + " is missing the required property '" + name + "'");
 }
 
 }  // namespace ptlab::internal

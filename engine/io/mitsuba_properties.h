@@ -34,8 +34,18 @@ Status ParseMitsubaTransform(const MitsubaNode& node, Transform* result);
 Status CollectMitsubaIds(const MitsubaNode& root, std::map<std::string, const MitsubaNode*>* ids);
 
 struct MitsubaProperty {
-  enum class Type { kBoolean, kInteger, kFloat, kString, kPoint, kVector, kRgb, kSpectrum,
-                    kTransform, kObject };
+  enum class Type {
+    kBoolean,
+    kInteger,
+    kFloat,
+    kString,
+    kPoint,
+    kVector,
+    kRgb,
+    kSpectrum,
+    kTransform,
+    kObject
+  };
   std::string name;  // snake_case (camelCase names of version < 2 scenes are converted)
   Type type = Type::kFloat;
   const MitsubaNode* node = nullptr;    // the property element

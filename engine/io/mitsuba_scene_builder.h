@@ -56,8 +56,8 @@ class MitsubaSceneBuilder {
   Scene scene_;
   bool have_sensor_ = false, have_integrator_ = false;
   const MitsubaNode* multi_sample_direct_ = nullptr;  // a direct integrator, emitter_samples > 1
-  std::map<const MitsubaNode*, MaterialRef> bsdfs_;  // one row per <bsdf> element
-  std::map<std::string, MeshData> meshes_;           // one read per mesh file
+  std::map<const MitsubaNode*, MaterialRef> bsdfs_;   // one row per <bsdf> element
+  std::map<std::string, MeshData> meshes_;            // one read per mesh file
 };
 
 }  // namespace ptlab::internal

@@ -21,8 +21,7 @@ void ComputeAngleWeightedNormals(MeshData* mesh) {
   std::vector<Vec3f> sum(mesh->positions.size(), Vec3f{0, 0, 0});
   for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3) {
     const uint32_t idx[3] = {mesh->indices[t], mesh->indices[t + 1], mesh->indices[t + 2]};
-    const Vec3f p[3] = {mesh->positions[idx[0]], mesh->positions[idx[1]],
-                        mesh->positions[idx[2]]};
+    const Vec3f p[3] = {mesh->positions[idx[0]], mesh->positions[idx[1]], mesh->positions[idx[2]]};
     const Vec3f n = Cross(p[1] - p[0], p[2] - p[0]);
     if (!(Length(n) > 0)) continue;
     const Vec3f face = Normalize(n);
@@ -71,8 +70,8 @@ Status MitsubaSceneBuilder::MeshFile(const MitsubaObject& obj, MeshData* mesh, s
   if (it == meshes_.end()) {
     StatusOr<MeshData> loaded = LoadObj(*path);
     if (!loaded.ok())
-      return obj.Error("filename", "cannot load the mesh of " + DescribeMitsuba(obj.node()) +
-                                       ": " + loaded.status().message());
+      return obj.Error("filename", "cannot load the mesh of " + DescribeMitsuba(obj.node()) + ": " +
+                                       loaded.status().message());
     it = meshes_.emplace(*path, std::move(*loaded)).first;
     scene_.input_files.push_back(*path);
   }
@@ -115,8 +114,9 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
 
   const MitsubaNode *bsdf = nullptr, *emitter = nullptr;
   for (const MitsubaNode* child : obj.children()) {
-    const MitsubaNode** slot =
-        child->tag == "bsdf" ? &bsdf : child->tag == "emitter" ? &emitter : nullptr;
+    const MitsubaNode** slot = child->tag == "bsdf"      ? &bsdf
+                               : child->tag == "emitter" ? &emitter
+                                                         : nullptr;
     if (!slot) {
       if (child->tag == "medium" || child->tag == "texture") return Unsupported(*child);
       return child->Error("<" + child->tag + "> is not allowed inside " + DescribeMitsuba(node) +
@@ -159,8 +159,10 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
   }
   if (mesh_file) {
     PTLAB_RETURN_IF_ERROR(MeshFile(obj, &mesh, &name));
-    if (face_normals) mesh.normals.clear();
-    else if (mesh.normals.empty()) ComputeAngleWeightedNormals(&mesh);
+    if (face_normals)
+      mesh.normals.clear();
+    else if (mesh.normals.empty())
+      ComputeAngleWeightedNormals(&mesh);
     if (flip_tex_coords)
       for (Vec2f& uv : mesh.uvs) uv.y = 1.0f - uv.y;
   } else {

@@ -1,10 +1,10 @@
 // `ptlab render` on Mitsuba scenes as a user runs it: -D parameters, and exit status 2 with a
 // file:line:col "unsupported" message for a plugin ptlab cannot render.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "tests/tools/command_test_util.h"
 
@@ -35,9 +35,9 @@ TEST(MitsubaCli, DefinesAndUnsupportedExitTwo) {
   EXPECT_EQ(RunShell(render, log), 0) << ReadFile(log);
   EXPECT_TRUE(fs::exists(dir / "out.exr"));
   EXPECT_EQ(RunShell(render + " -D bsdf=roughplastic", log), 2);
-  EXPECT_NE(ReadFile(log).find((dir / "scene.xml").string() +
-                               ":6:5: unsupported: bsdf \"roughplastic\""),
-            std::string::npos)
+  EXPECT_NE(
+      ReadFile(log).find((dir / "scene.xml").string() + ":6:5: unsupported: bsdf \"roughplastic\""),
+      std::string::npos)
       << ReadFile(log);
   EXPECT_EQ(RunShell(render + " -D bsdf", log), 2);
   EXPECT_NE(ReadFile(log).find("malformed parameter definition 'bsdf' (-D)"), std::string::npos)

@@ -1,14 +1,15 @@
 // The Mitsuba scene loader: parameters, includes, search paths, references, transforms, values,
 // the plugins it maps to ptlab, and a file:line:col message for each error.
+#include "engine/io/mitsuba_loader.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
 
-#include <gtest/gtest.h>
-
-#include "engine/io/mitsuba_loader.h"
 #include "engine/io/mitsuba_document.h"
 #include "engine/io/scene_file.h"
 
@@ -22,9 +23,8 @@ class MitsubaLoader : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("ptlab_mitsuba_" + std::string(::testing::UnitTest::GetInstance()
-                                               ->current_test_info()
-                                               ->name()));
+           ("ptlab_mitsuba_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -83,8 +83,9 @@ TEST_F(MitsubaLoader, DefaultsSubstitutionAndDefines) {
 }
 
 TEST_F(MitsubaLoader, BadParameters) {
-  const std::string text = Scene("<integrator type=\"path\">\n  <integer name=\"max_depth\" "
-                                 "value=\"$depth\"/></integrator>");
+  const std::string text = Scene(
+      "<integrator type=\"path\">\n  <integer name=\"max_depth\" "
+      "value=\"$depth\"/></integrator>");
   EXPECT_EQ(Error(text), Path("scene.xml") +
                              ":4:3: unknown parameter '$depth' in '$depth'; expected a name set "
                              "by <default name=\"depth\" value=...> or -D depth=...");
@@ -101,8 +102,9 @@ TEST_F(MitsubaLoader, IncludeAndSearchPaths) {
   Write("fragments/shape.xml",
         "<scene version=\"3.0.0\">\n  <shape type=\"obj\"><string name=\"filename\" "
         "value=\"meshes/tri.obj\"/></shape>\n</scene>\n");
-  StatusOr<ptlab::Scene> s = Load(Scene("<path value=\"data\"/>\n"
-                                        "<include filename=\"fragments/shape.xml\"/>"));
+  StatusOr<ptlab::Scene> s =
+      Load(Scene("<path value=\"data\"/>\n"
+                 "<include filename=\"fragments/shape.xml\"/>"));
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->triangles.size(), 1u);
   // Without the <path>, the mesh is not found; the message says where it looked.
@@ -113,8 +115,9 @@ TEST_F(MitsubaLoader, IncludeAndSearchPaths) {
       << error;
   EXPECT_NE(Error(Scene("<path value=\"nowhere\"/>")).find(":3:1: <path>: folder"),
             std::string::npos);
-  EXPECT_NE(Error(Scene("<include filename=\"missing.xml\"/>")).find(":3:1: <include>: file "
-                                                                     "'missing.xml' not found"),
+  EXPECT_NE(Error(Scene("<include filename=\"missing.xml\"/>"))
+                .find(":3:1: <include>: file "
+                      "'missing.xml' not found"),
             std::string::npos);
   EXPECT_NE(Error(Scene("<shape type=\"cube\"><include filename=\"x.xml\"/></shape>"))
                 .find("<include> is only allowed directly inside <scene>"),
@@ -144,17 +147,18 @@ TEST_F(MitsubaLoader, IncludeCycleAndDepth) {
 }
 
 TEST_F(MitsubaLoader, ReferencesShareOneMaterialRow) {
-  StatusOr<ptlab::Scene> s = Load(Scene(
-      "<bsdf type=\"diffuse\" id=\"white\"><rgb name=\"reflectance\" value=\"0.8\"/></bsdf>\n"
-      "<shape type=\"rectangle\"><ref id=\"white\"/></shape>\n"
-      "<shape type=\"cube\"><ref id=\"white\"/></shape>"));
+  StatusOr<ptlab::Scene> s = Load(
+      Scene("<bsdf type=\"diffuse\" id=\"white\"><rgb name=\"reflectance\" value=\"0.8\"/></bsdf>\n"
+            "<shape type=\"rectangle\"><ref id=\"white\"/></shape>\n"
+            "<shape type=\"cube\"><ref id=\"white\"/></shape>"));
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->materials.diffuse.size(), 1u);
   EXPECT_EQ(s->meshes.material[0], s->meshes.material[1]);
   EXPECT_FLOAT_EQ(s->materials.diffuse.albedo_g[0], 0.8f);
   EXPECT_EQ(Error(Scene("<shape type=\"cube\">\n  <ref id=\"nothing\"/></shape>")),
-            Path("scene.xml") + ":4:3: <ref id=\"nothing\"> names no object; expected the id "
-                                "of an object in the scene");
+            Path("scene.xml") +
+                ":4:3: <ref id=\"nothing\"> names no object; expected the id "
+                "of an object in the scene");
   EXPECT_NE(Error(Scene("<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"diffuse\" id=\"a\"/>"))
                 .find(":4:1: duplicate id 'a'"),
             std::string::npos);
@@ -164,26 +168,28 @@ TEST_F(MitsubaLoader, ReferencesShareOneMaterialRow) {
 // for <scale/><rotate/><translate/>, and a different result in the other order.
 TEST_F(MitsubaLoader, TransformStepsApplyInOrder) {
   const auto corner = [&](const std::string& steps) {
-    StatusOr<ptlab::Scene> s = Load(Scene(
-        "<shape type=\"rectangle\"><transform name=\"to_world\">" + steps + "</transform></shape>"));
+    StatusOr<ptlab::Scene> s =
+        Load(Scene("<shape type=\"rectangle\"><transform name=\"to_world\">" + steps +
+                   "</transform></shape>"));
     EXPECT_TRUE(s.ok()) << s.status().message();
     return s.ok() ? s->triangles.V1(0) : Vec3f{};  // object-space corner (1, -1, 0)
   };
-  const Transform expected = Transform::Translate({1, 2, 3}) *
-                             Transform::Rotate({0, 0, 1}, 90) * Transform::Scale({2, 1, 1});
+  const Transform expected = Transform::Translate({1, 2, 3}) * Transform::Rotate({0, 0, 1}, 90) *
+                             Transform::Scale({2, 1, 1});
   const Vec3f want = expected.ApplyPoint({1, -1, 0});
-  const Vec3f got = corner(
-      "<scale x=\"2\"/><rotate z=\"1\" angle=\"90\"/><translate value=\"1, 2, 3\"/>");
+  const Vec3f got =
+      corner("<scale x=\"2\"/><rotate z=\"1\" angle=\"90\"/><translate value=\"1, 2, 3\"/>");
   EXPECT_NEAR(got.x, want.x, 1e-5f);
   EXPECT_NEAR(got.y, want.y, 1e-5f);
   EXPECT_NEAR(got.z, want.z, 1e-5f);
   EXPECT_NEAR(want.x, 2.0f, 1e-5f);  // (2, -1) rotated a quarter turn: (1, 2), then + (1, 2)
   EXPECT_NEAR(want.y, 4.0f, 1e-5f);
-  const Vec3f reversed = corner(
-      "<translate value=\"1, 2, 3\"/><rotate z=\"1\" angle=\"90\"/><scale x=\"2\"/>");
+  const Vec3f reversed =
+      corner("<translate value=\"1, 2, 3\"/><rotate z=\"1\" angle=\"90\"/><scale x=\"2\"/>");
   EXPECT_GT(std::fabs(reversed.x - want.x) + std::fabs(reversed.y - want.y), 1.0f);
   // matrix (row-major, 9 or 16 numbers) and a uniform scale value.
-  const Vec3f m = corner("<scale value=\"3\"/><matrix value=\"0 -1 0 0  1 0 0 0  0 0 1 5  0 0 0 1\"/>");
+  const Vec3f m =
+      corner("<scale value=\"3\"/><matrix value=\"0 -1 0 0  1 0 0 0  0 0 1 5  0 0 0 1\"/>");
   EXPECT_NEAR(m.x, 3.0f, 1e-5f);
   EXPECT_NEAR(m.y, 3.0f, 1e-5f);
   EXPECT_NEAR(m.z, 5.0f, 1e-5f);
@@ -202,8 +208,12 @@ TEST_F(MitsubaLoader, SensorLookatFovAxesAndFilm) {
     return Load(Scene("<sensor type=\"perspective\">" + props +
                       "<transform name=\"to_world\"><lookat origin=\"0, -5, 1\" target=\"0, 0, "
                       "1\" up=\"0, 0, 1\"/></transform><film type=\"hdrfilm\"><integer "
-                      "name=\"width\" value=\"" + std::to_string(w) + "\"/><integer "
-                      "name=\"height\" value=\"" + std::to_string(h) + "\"/><rfilter "
+                      "name=\"width\" value=\"" +
+                      std::to_string(w) +
+                      "\"/><integer "
+                      "name=\"height\" value=\"" +
+                      std::to_string(h) +
+                      "\"/><rfilter "
                       "type=\"box\"/></film></sensor>"));
   };
   StatusOr<ptlab::Scene> s = sensor("<float name=\"fov\" value=\"40\"/>", 64, 32);
@@ -222,8 +232,11 @@ TEST_F(MitsubaLoader, SensorLookatFovAxesAndFilm) {
   const double deg = 180.0 / std::numbers::pi;
   const double half = std::tan(20.0 / deg);
   const auto fov_for = [&](const std::string& axis, int w, int h) {
-    StatusOr<ptlab::Scene> r = sensor("<float name=\"fov\" value=\"40\"/><string "
-                                      "name=\"fov_axis\" value=\"" + axis + "\"/>", w, h);
+    StatusOr<ptlab::Scene> r = sensor(
+        "<float name=\"fov\" value=\"40\"/><string "
+        "name=\"fov_axis\" value=\"" +
+            axis + "\"/>",
+        w, h);
     EXPECT_TRUE(r.ok()) << r.status().message();
     return r.ok() ? double(r->camera.fov_deg) : 0.0;
   };
@@ -250,13 +263,15 @@ TEST_F(MitsubaLoader, SensorLookatFovAxesAndFilm) {
                 .find("the sensor's to_world scales or shears"),
             std::string::npos);
   // thinlens: aperture and focus distance (default: far_clip).
-  s = Load(Scene("<sensor type=\"thinlens\"><float name=\"aperture_radius\" value=\"0.1\"/>"
+  s =
+      Load(Scene("<sensor type=\"thinlens\"><float name=\"aperture_radius\" value=\"0.1\"/>"
                  "<float name=\"far_clip\" value=\"50\"/></sensor>"));
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_FLOAT_EQ(s->camera.aperture_radius, 0.1f);
   EXPECT_FLOAT_EQ(s->camera.focus_distance, 50.0f);
-  EXPECT_NE(Error(Scene("<sensor type=\"thinlens\"/>")).find("missing the required property "
-                                                            "'aperture_radius'"),
+  EXPECT_NE(Error(Scene("<sensor type=\"thinlens\"/>"))
+                .find("missing the required property "
+                      "'aperture_radius'"),
             std::string::npos);
 }
 
@@ -271,13 +286,13 @@ TEST_F(MitsubaLoader, FiltersSamplersAndFilm) {
   EXPECT_EQ(s->sampler.sample_count, 9u);
   EXPECT_EQ(s->filter.type, FilterDesc::Type::kGaussian);
   EXPECT_FLOAT_EQ(s->filter.radius, 1.0f);  // 4 standard deviations, as Mitsuba
-  EXPECT_EQ(s->camera.width, 768);           // Mitsuba's default film
+  EXPECT_EQ(s->camera.width, 768);          // Mitsuba's default film
   EXPECT_EQ(s->camera.height, 576);
-  const std::string crop = Error(Scene("<sensor type=\"perspective\"><film type=\"hdrfilm\">\n"
-                                       "<integer name=\"crop_width\" value=\"4\"/></film>"
-                                       "</sensor>"));
-  EXPECT_NE(crop.find(":3:1: unsupported: film \"hdrfilm\" property crop_width"),
-            std::string::npos)
+  const std::string crop =
+      Error(Scene("<sensor type=\"perspective\"><film type=\"hdrfilm\">\n"
+                  "<integer name=\"crop_width\" value=\"4\"/></film>"
+                  "</sensor>"));
+  EXPECT_NE(crop.find(":3:1: unsupported: film \"hdrfilm\" property crop_width"), std::string::npos)
       << crop;
   EXPECT_NE(Error(Scene("<sensor type=\"perspective\"><film type=\"hdrfilm\">\n  <rfilter "
                         "type=\"lanczos\"/></film></sensor>"))
@@ -286,9 +301,9 @@ TEST_F(MitsubaLoader, FiltersSamplersAndFilm) {
 }
 
 TEST_F(MitsubaLoader, Integrators) {
-  StatusOr<ptlab::Scene> s = Load(Scene(
-      "<integrator type=\"moment\"><integrator type=\"path\"><integer name=\"max_depth\" "
-      "value=\"2\"/></integrator></integrator>"));
+  StatusOr<ptlab::Scene> s = Load(
+      Scene("<integrator type=\"moment\"><integrator type=\"path\"><integer name=\"max_depth\" "
+            "value=\"2\"/></integrator></integrator>"));
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->integrator.type, IntegratorDesc::Type::kPathMis);
   EXPECT_EQ(s->integrator.max_depth, 1);  // Mitsuba's 2 = direct light = ptlab's 1
@@ -298,12 +313,14 @@ TEST_F(MitsubaLoader, Integrators) {
   ASSERT_TRUE(s.ok());
   EXPECT_EQ(s->integrator.type, IntegratorDesc::Type::kPathMis);
   EXPECT_EQ(s->integrator.max_depth, -1);
-  s = Load(Scene("<integrator type=\"direct\"><integer name=\"emitter_samples\" value=\"4\"/>"
+  s =
+      Load(Scene("<integrator type=\"direct\"><integer name=\"emitter_samples\" value=\"4\"/>"
                  "</integrator>"));
   ASSERT_TRUE(s.ok());
   EXPECT_EQ(s->integrator.type, IntegratorDesc::Type::kDirectMis);
   EXPECT_EQ(s->integrator.light_samples, 4);
-  s = Load(Scene("<integrator type=\"path\"><integer name=\"rr_depth\" value=\"3\"/></integrator>"));
+  s = Load(
+      Scene("<integrator type=\"path\"><integer name=\"rr_depth\" value=\"3\"/></integrator>"));
   ASSERT_TRUE(s.ok());
   EXPECT_EQ(s->load_warnings.size(), 1u);
   EXPECT_EQ(Error(Scene("<integrator type=\"ptracer\"/>")),
@@ -339,35 +356,38 @@ TEST_F(MitsubaLoader, Shapes) {
       "<shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/><boolean "
       "name=\"face_normals\" value=\"true\"/></shape>"
       "<shape type=\"sphere\"><float name=\"radius\" value=\"2\"/><transform name=\"to_world\">"
-      "<scale value=\"0.5\"/><rotate x=\"1\" angle=\"30\"/><translate x=\"3\"/></transform></shape>"));
+      "<scale value=\"0.5\"/><rotate x=\"1\" angle=\"30\"/><translate "
+      "x=\"3\"/></transform></shape>"));
   ASSERT_TRUE(s.ok()) << s.status().message();
   ASSERT_EQ(s->meshes.size(), 5u);
   EXPECT_EQ(s->meshes.triangle_count[0], 2u);
   EXPECT_EQ(s->meshes.triangle_count[1], 12u);
   EXPECT_EQ(s->meshes.triangle_count[2], 1024u);  // the loader's fine disk
-  EXPECT_TRUE(s->meshes.has_normals[3]);   // computed, as Mitsuba does for meshes without
-  EXPECT_FALSE(s->meshes.has_normals[4]);  // face_normals: flat
+  EXPECT_TRUE(s->meshes.has_normals[3]);          // computed, as Mitsuba does for meshes without
+  EXPECT_FALSE(s->meshes.has_normals[4]);         // face_normals: flat
   // flip_normals reverses the winding: the triangle's geometric normal is -z.
   const uint32_t t = s->meshes.first_triangle[3];
-  const Vec3f n = Cross(s->triangles.V1(t) - s->triangles.V0(t),
-                        s->triangles.V2(t) - s->triangles.V0(t));
+  const Vec3f n =
+      Cross(s->triangles.V1(t) - s->triangles.V0(t), s->triangles.V2(t) - s->triangles.V0(t));
   EXPECT_LT(n.z, 0.0f);
   // The sphere stays analytic: centre (3, 0, 0), radius 1.
   ASSERT_EQ(s->spheres.size(), 1u);
   EXPECT_NEAR(s->spheres.radius[0], 1.0f, 1e-6f);
   EXPECT_NEAR(s->spheres.Center(0).x, 3.0f, 1e-6f);
   EXPECT_EQ(s->materials.diffuse.size(), 6u);  // Mitsuba's default diffuse for each
-  EXPECT_EQ(Error(Scene("<shape type=\"sphere\"><transform name=\"to_world\"><scale x=\"2\"/>"
-                        "</transform></shape>")),
-            Path("scene.xml") +
-                ":3:1: unsupported: shape \"sphere\" (a sphere under a non-uniform scale or shear)");
+  EXPECT_EQ(
+      Error(Scene("<shape type=\"sphere\"><transform name=\"to_world\"><scale x=\"2\"/>"
+                  "</transform></shape>")),
+      Path("scene.xml") +
+          ":3:1: unsupported: shape \"sphere\" (a sphere under a non-uniform scale or shear)");
   EXPECT_EQ(Error(Scene("\n<shape type=\"cylinder\"/>")),
             Path("scene.xml") + ":4:1: unsupported: shape \"cylinder\"");
   EXPECT_NE(Error(Scene("<shape type=\"ply\"><string name=\"filename\" value=\"a.ply\"/></shape>"))
                 .find(":3:1: unsupported: shape \"ply\""),
             std::string::npos);
-  EXPECT_NE(Error(Scene("<shape type=\"shapegroup\" id=\"g\"/>")).find("unsupported: shape "
-                                                                      "\"shapegroup\""),
+  EXPECT_NE(Error(Scene("<shape type=\"shapegroup\" id=\"g\"/>"))
+                .find("unsupported: shape "
+                      "\"shapegroup\""),
             std::string::npos);
   EXPECT_NE(Error(Scene("<shape type=\"teapot\"/>")).find(":3:1: unknown shape type 'teapot'"),
             std::string::npos);
@@ -424,16 +444,16 @@ TEST_F(MitsubaLoader, BsdfsAndValues) {
 }
 
 TEST_F(MitsubaLoader, Emitters) {
-  StatusOr<ptlab::Scene> s = Load(Scene(
-      "<emitter type=\"point\"><rgb name=\"intensity\" value=\"2\"/><point name=\"position\" "
-      "x=\"1\" y=\"2\" z=\"3\"/></emitter>"
-      "<emitter type=\"point\"><transform name=\"to_world\"><translate z=\"10\"/></transform>"
-      "</emitter>"
-      "<emitter type=\"directional\"><vector name=\"direction\" value=\"0, 0, -2\"/><rgb "
-      "name=\"irradiance\" value=\"3\"/></emitter>"
-      "<emitter type=\"constant\"><spectrum name=\"radiance\" value=\"2\"/></emitter>"
-      "<shape type=\"rectangle\"><emitter type=\"area\"><float name=\"radiance\" "
-      "value=\"5\"/></emitter></shape>"));
+  StatusOr<ptlab::Scene> s = Load(
+      Scene("<emitter type=\"point\"><rgb name=\"intensity\" value=\"2\"/><point name=\"position\" "
+            "x=\"1\" y=\"2\" z=\"3\"/></emitter>"
+            "<emitter type=\"point\"><transform name=\"to_world\"><translate z=\"10\"/></transform>"
+            "</emitter>"
+            "<emitter type=\"directional\"><vector name=\"direction\" value=\"0, 0, -2\"/><rgb "
+            "name=\"irradiance\" value=\"3\"/></emitter>"
+            "<emitter type=\"constant\"><spectrum name=\"radiance\" value=\"2\"/></emitter>"
+            "<shape type=\"rectangle\"><emitter type=\"area\"><float name=\"radiance\" "
+            "value=\"5\"/></emitter></shape>"));
   ASSERT_TRUE(s.ok()) << s.status().message();
   ASSERT_EQ(s->point_lights.size(), 2u);
   const float four_pi = 4.0f * std::numbers::pi_v<float>;
@@ -451,8 +471,9 @@ TEST_F(MitsubaLoader, Emitters) {
   ASSERT_EQ(s->area_lights.size(), 1u);
   EXPECT_FLOAT_EQ(s->area_lights.radiance[0].g, 5.0f);  // a float is grey
   EXPECT_EQ(s->emitters.size(), 5u);
-  EXPECT_NE(Error(Scene("\n\n<emitter type=\"spot\"/>")).find(":5:1: unsupported: emitter "
-                                                                 "\"spot\" (Mitsuba's spot"),
+  EXPECT_NE(Error(Scene("\n\n<emitter type=\"spot\"/>"))
+                .find(":5:1: unsupported: emitter "
+                      "\"spot\" (Mitsuba's spot"),
             std::string::npos);
   EXPECT_EQ(Error(Scene("<emitter type=\"projector\"/>")),
             Path("scene.xml") + ":3:1: unsupported: emitter \"projector\"");
@@ -462,13 +483,15 @@ TEST_F(MitsubaLoader, Emitters) {
             std::string::npos);
   // sampling_weight only changes how often an emitter is picked: accepted, checked.
   EXPECT_TRUE(Load(Scene("<emitter type=\"constant\"><float name=\"sampling_weight\" "
-                         "value=\"2\"/></emitter>")).ok());
+                         "value=\"2\"/></emitter>"))
+                  .ok());
   EXPECT_NE(Error(Scene("<emitter type=\"point\"><float name=\"sampling_weight\" "
                         "value=\"0\"/></emitter>"))
                 .find("sampling_weight must be > 0"),
             std::string::npos);
-  EXPECT_NE(Error(Scene("<emitter type=\"area\"/>")).find("an area emitter must be inside a "
-                                                         "<shape>"),
+  EXPECT_NE(Error(Scene("<emitter type=\"area\"/>"))
+                .find("an area emitter must be inside a "
+                      "<shape>"),
             std::string::npos);
 }
 
@@ -500,11 +523,13 @@ TEST_F(MitsubaLoader, DocumentErrors) {
             Path("scene.xml") + ":3:3: XML syntax error: Start-end tags mismatch");
   EXPECT_NE(Error("<scene version=\"3.0.0\"/>").find(":1:1: no <sensor> in the scene"),
             std::string::npos);
-  EXPECT_NE(Error(Scene("<medium type=\"homogeneous\"/>")).find(":3:1: unsupported: medium "
-                                                               "\"homogeneous\""),
+  EXPECT_NE(Error(Scene("<medium type=\"homogeneous\"/>"))
+                .find(":3:1: unsupported: medium "
+                      "\"homogeneous\""),
             std::string::npos);
-  EXPECT_NE(Error(Scene("<film type=\"hdrfilm\"/>")).find("<film> is not allowed directly "
-                                                         "inside <scene>"),
+  EXPECT_NE(Error(Scene("<film type=\"hdrfilm\"/>"))
+                .find("<film> is not allowed directly "
+                      "inside <scene>"),
             std::string::npos);
   EXPECT_NE(Error(Scene("<widget/>")).find(":3:1: unknown tag <widget> inside <scene>"),
             std::string::npos);
@@ -518,18 +543,18 @@ TEST_F(MitsubaLoader, SceneFileChoosesTheFormat) {
   StatusOr<ptlab::Scene> s = LoadSceneFile(mitsuba);
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->meshes.size(), 1u);
-  const std::string nori = Write(
-      "n.xml", "<scene><integrator type=\"normals\"/><camera type=\"perspective\"/></scene>");
+  const std::string nori =
+      Write("n.xml", "<scene><integrator type=\"normals\"/><camera type=\"perspective\"/></scene>");
   EXPECT_EQ(SceneFormatOf(nori), SceneFormat::kNoriXml);
   EXPECT_TRUE(LoadSceneFile(nori).ok());
   // Mitsuba words in a Nori scene's comment or strings do not change its format.
-  const std::string commented = Write(
-      "c.xml", "<scene><!-- <sensor> <default name=\"a\"/> --><integrator type=\"normals\"/>"
-               "<camera type=\"perspective\"/></scene>");
+  const std::string commented =
+      Write("c.xml",
+            "<scene><!-- <sensor> <default name=\"a\"/> --><integrator type=\"normals\"/>"
+            "<camera type=\"perspective\"/></scene>");
   EXPECT_EQ(SceneFormatOf(commented), SceneFormat::kNoriXml);
   // A Mitsuba file without a version is still recognised by its tags, and told what is missing.
-  const std::string unversioned =
-      Write("u.xml", "<scene><sensor type=\"perspective\"/></scene>");
+  const std::string unversioned = Write("u.xml", "<scene><sensor type=\"perspective\"/></scene>");
   EXPECT_EQ(SceneFormatOf(unversioned), SceneFormat::kMitsuba);
   StatusOr<ptlab::Scene> u = LoadSceneFile(unversioned);
   ASSERT_FALSE(u.ok());

@@ -2,13 +2,13 @@
 // BSDF, a directional emitter, the direct integrator in a moment wrapper) rendered and compared
 // with Mitsuba's reference at tolerances derived from the reference's variance image. Label
 // `image` (suite name *ImageParity*). The proper per-pixel Z test comes with `imgdiff --ztest`.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <thread>
-
-#include <gtest/gtest.h>
 
 #include "engine/image/image_io.h"
 #include "engine/io/scene_file.h"

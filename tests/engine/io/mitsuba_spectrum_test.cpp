@@ -1,15 +1,16 @@
 // Spectra to RGB as Mitsuba's rgb variant converts them, .spd files, named IORs, and named
 // conductors checked against an independent integration (an analytic CIE fit, another rule).
+#include "engine/io/mitsuba_spectrum.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "engine/io/mitsuba_loader.h"
-#include "engine/io/mitsuba_spectrum.h"
 
 namespace ptlab {
 namespace {
