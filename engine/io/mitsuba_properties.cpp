@@ -39,10 +39,12 @@ std::string CamelToSnake(const std::string& name) {
 // Checks that the node's attributes are among `allowed`, each of `required` present.
 Status CheckAttributes(const MitsubaNode& node, const std::vector<const char*>& allowed,
                        const std::vector<const char*>& required) {
-  for (const auto& [name, value] : node.attributes)
+  for (const auto& attribute : node.attributes) {
+    const std::string& name = attribute.first;  // a plain name: lambdas capture it (clang 14)
     if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return name == a; }))
       return node.Error("unknown attribute '" + name + "' on <" + node.tag + ">; expected " +
                         Join(allowed));
+  }
   for (const char* r : required)
     if (!node.Attribute(r))
       return node.Error("<" + node.tag + "> is missing the attribute '" + r + "'");
