@@ -8,18 +8,24 @@
 #include <string_view>
 
 #include "engine/io/collada_loader.h"
+#include "engine/io/mitsuba_document.h"
+#include "engine/io/mitsuba_loader.h"
 
 namespace ptlab {
 namespace {
 
-// The name of the first element of the document at `path` ("" if none is found in its head).
-std::string RootElementName(const std::string& path) {
+// The first 64 KiB of the file at `path` ("" if unreadable).
+std::string Head(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) return "";
-  char buffer[4096];
-  const size_t n = std::fread(buffer, 1, sizeof buffer, file);
+  std::string buffer(65536, '\0');
+  buffer.resize(std::fread(buffer.data(), 1, buffer.size(), file));
   std::fclose(file);
-  const std::string_view head(buffer, n);
+  return buffer;
+}
+
+// The name of the first element of `head` ("" if none is found).
+std::string RootElementName(std::string_view head) {
   for (size_t i = head.find('<'); i != std::string_view::npos; i = head.find('<', i + 1)) {
     if (i + 1 >= head.size()) break;
     const char c = head[i + 1];
@@ -40,12 +46,19 @@ SceneFormat SceneFormatOf(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".dae") return SceneFormat::kCollada;
-  if (ext == ".xml") return SceneFormat::kNoriXml;
-  return RootElementName(path) == "COLLADA" ? SceneFormat::kCollada : SceneFormat::kNoriXml;
+  const std::string head = Head(path);
+  const std::string root = RootElementName(head);
+  if (root == "COLLADA") return SceneFormat::kCollada;
+  if (root == "scene" && internal::LooksLikeMitsubaScene(head)) return SceneFormat::kMitsuba;
+  return SceneFormat::kNoriXml;
 }
 
 StatusOr<Scene> LoadSceneFile(const std::string& path, const LoadOptions& options) {
-  if (SceneFormatOf(path) == SceneFormat::kCollada) return LoadColladaScene(path);
+  switch (SceneFormatOf(path)) {
+    case SceneFormat::kCollada: return LoadColladaScene(path);
+    case SceneFormat::kMitsuba: return LoadMitsubaScene(path, options);
+    case SceneFormat::kNoriXml: break;
+  }
   return LoadScene(path, options);
 }
 

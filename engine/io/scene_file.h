@@ -9,14 +9,17 @@
 
 namespace ptlab {
 
-enum class SceneFormat { kNoriXml, kCollada };
+enum class SceneFormat { kNoriXml, kCollada, kMitsuba };
 
-/// The format of the file at `path`: ".dae" is COLLADA and ".xml" Nori/Mitsuba XML (any
-/// case); for other names, COLLADA when the document's root element is <COLLADA>, else XML.
+/// The format of the file at `path`: ".dae" (any case) is COLLADA; otherwise, by the head of
+/// the document: a <COLLADA> root is COLLADA, a <scene> root with a `version` attribute or
+/// with a Mitsuba-only child (<sensor>, <default>, <include>, <path>) is Mitsuba
+/// (engine/io/mitsuba_loader.h), anything else Nori XML.
 SceneFormat SceneFormatOf(const std::string& path);
 
 /// Loads `path` with the loader of SceneFormatOf(path): LoadScene (engine/io/xml_loader.h,
-/// with `options`) or LoadColladaScene (engine/io/collada_loader.h).
+/// with `options`), LoadMitsubaScene (engine/io/mitsuba_loader.h, with `options`) or
+/// LoadColladaScene (engine/io/collada_loader.h).
 StatusOr<Scene> LoadSceneFile(const std::string& path, const LoadOptions& options = {});
 
 }  // namespace ptlab

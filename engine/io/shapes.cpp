@@ -83,8 +83,11 @@ MeshData MakeCube() {
   return mesh;
 }
 
-MeshData MakeDisk() {
-  constexpr int n = kDiskSegments;
+MeshData MakeDisk() { return MakeDisk(kDiskSegments); }
+
+MeshData MakeDisk(int segments) {
+  PTLAB_CHECK(segments >= 3);
+  const int n = segments;
   MeshData mesh;
   mesh.positions.push_back({0, 0, 0});
   for (int i = 0; i < n; ++i) {

@@ -40,4 +40,7 @@ MeshData MakeCube();
 /// n = 64); uv = ((x+1)/2, (y+1)/2).
 MeshData MakeDisk();
 
+/// As MakeDisk with `segments` (>= 3) rim vertices: the Mitsuba loader's finer disk.
+MeshData MakeDisk(int segments);
+
 }  // namespace ptlab

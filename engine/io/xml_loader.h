@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/core/status.h"
 #include "engine/scene/scene.h"
@@ -22,6 +23,9 @@ enum class LookatConvention : uint8_t {
 
 struct LoadOptions {
   LookatConvention lookat = LookatConvention::kNori;
+  /// Mitsuba scene parameters, "name=value" each (`-D name=value`): they override the scene's
+  /// <default>s (engine/io/mitsuba_document.h). Nori scenes have no parameters.
+  std::vector<std::string> defines = {};
 };
 
 /// Loads a Nori-format XML scene. Relative file names inside it resolve against the directory

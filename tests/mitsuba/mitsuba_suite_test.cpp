@@ -2,6 +2,8 @@
 // at Mitsuba's spp and judged by Mitsuba's Z test, or expected to stop as its row says.
 #include <gtest/gtest.h>
 
+#include "tests/test_data.h"
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -21,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kTable = PTLAB_SOURCE_DIR "/tests/mitsuba/suite.txt";
-const std::string kScenes = PTLAB_SOURCE_DIR "/../shared/data/mitsuba3/tests/scenes";
+const std::string kScenes = ptlab::test_data::Path("mitsuba3/tests/scenes");
 const std::string kPtlab = PTLAB_BINARY_DIR "/bin/ptlab";
 
 struct SuiteRow {
@@ -87,11 +89,10 @@ std::string ReferenceStem(const std::string& scene) {
   return (fs::path(kScenes) / p.parent_path() / "refs" / stem).string();
 }
 
-bool HaveData() { return fs::is_directory(kScenes); }
 
 TEST(MitsubaSuiteTable, IsWellFormedAndListsEverySceneOnce) {
   for (const std::string& e : Table().errors) ADD_FAILURE() << e;
-  if (!HaveData()) GTEST_SKIP() << kScenes << " is missing";
+  PTLAB_REQUIRE_DATA(kScenes);
   std::set<std::string> listed, names;
   for (const SuiteRow& r : Table().rows) {
     EXPECT_TRUE(listed.insert(r.scene).second)
@@ -124,7 +125,7 @@ void WriteFailure(const ZTestResult& r, const fs::path& prefix) {
 
 TEST_P(MitsubaSuite, Renders) {
   const SuiteRow& row = GetParam();
-  if (!HaveData()) GTEST_SKIP() << kScenes << " is missing";
+  PTLAB_REQUIRE_DATA(kScenes);
   const std::string ref_path = ReferenceStem(row.scene) + "_ref_rgb.exr";
   const StatusOr<Image> ref = ReadImage(ref_path);
   ASSERT_TRUE(ref.ok()) << ref.status().message();

@@ -37,6 +37,7 @@ CLI::App* AddConvergeCommand(CLI::App* app, ConvergeArgs* a) {
       ->check(CLI::Range(1, 16384));
   cmd->add_option("--lookat", a->lookat, "lookat convention, as for render: nori or nori2015")
       ->check(CLI::IsMember({"nori", "nori2015"}));
+  cmd->add_option("-D,--define", a->defines, "Mitsuba scene parameter name=value (as render)");
   return cmd;
 }
 
@@ -109,6 +110,8 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
       ->check(CLI::Range(1, 65536))
       ->excludes(resolution_opt);
   cmd->add_flag("-q,--quiet", cl->render.quiet, "No progress output");
+  cmd->add_option("-D,--define", cl->render.defines,
+                  "Mitsuba scene parameter name=value (overrides the scene's <default>)");
   cmd->add_option("--lookat", cl->render.lookat,
                   "lookat convention: nori (current) or nori2015 (the mirrored, unnormalised "
                   "frame of the 2015-16 Nori that rendered the eth2015 references)")

@@ -181,6 +181,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     ls->stem = fs::path(ls->path).stem().string();
     LoadOptions load_options;
     if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
+    load_options.defines = args.defines;
     StatusOr<Scene> loaded = LoadSceneFile(ls->path, load_options);
     if (!loaded.ok()) {
       std::fprintf(stderr, "error: %s\n", loaded.status().message().c_str());

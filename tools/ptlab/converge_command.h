@@ -22,6 +22,7 @@ struct ConvergeArgs {
   std::string lookat = "nori";  // or nori2015 (the eth2015 references' camera frame)
   int width = 0;                // > 0: image width (height keeps the aspect); with --ref auto
   bool no_plots = false;
+  std::vector<std::string> defines;  // -D name=value (Mitsuba scene parameters)
 };
 
 /// Registers the `converge` subcommand on app, filling *args (in command_line.cpp).

@@ -276,6 +276,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (args.max_memory_gib > 0) SetMemoryBudgetBytes(uint64_t(args.max_memory_gib * double(1 << 30)));
   LoadOptions load_options;
   if (args.lookat == "nori2015") load_options.lookat = LookatConvention::kNori2015;
+  load_options.defines = args.defines;
   StatusOr<Scene> loaded = LoadSceneFile(args.scene, load_options);
   // Under mpirun every rank loads the scene; all stop if one cannot, or reads other bytes.
   Status agreed = mpi.Agree(loaded.status());

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_data.h"
+
 #include <cmath>
 #include <string>
 
@@ -13,7 +15,7 @@
 namespace ptlab {
 namespace {
 
-const std::string kMitsubaData = PTLAB_SOURCE_DIR "/../shared/data/mitsuba3";
+const std::string kMitsubaData = ptlab::test_data::Path("mitsuba3");
 
 // Whether a and b describe the same triangles: corner by corner, equal positions, normals and
 // uvs (to 1e-6), in the same order.

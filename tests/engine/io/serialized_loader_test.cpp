@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_data.h"
+
 #include <string>
 
 #include "engine/io/obj_loader.h"
@@ -12,7 +14,7 @@
 namespace ptlab {
 namespace {
 
-const std::string kMitsubaData = PTLAB_SOURCE_DIR "/../shared/data/mitsuba3";
+const std::string kMitsubaData = ptlab::test_data::Path("mitsuba3");
 
 void ExpectSameMesh(const MeshData& a, const MeshData& b) {
   ASSERT_EQ(a.indices, b.indices);

@@ -3,6 +3,8 @@
 #include "tools/imgdiff/ztest.h"
 
 #include <gtest/gtest.h>
+
+#include "tests/test_data.h"
 #include <unistd.h>
 
 #include <cmath>
@@ -187,9 +189,8 @@ TEST(ZTest, XyzConversionMatchesPrimariesAndWhitePoint) {
 // Mitsuba's _var.exr holds an XYZ variance stored through the XYZ->RGB matrix: read as RGB it
 // has negative values, converted back to XYZ (as ZTest does) none (floating_sphere's reference).
 TEST(ZTest, MitsubaVarianceFilesAreXyzVariances) {
-  const std::string path = PTLAB_SOURCE_DIR
-      "/../shared/data/mitsuba3/tests/scenes/floating_sphere/refs/test_directional_ref_rgb_var.exr";
-  if (!fs::exists(path)) GTEST_SKIP() << path << " is missing";
+  const std::string path = ptlab::test_data::Path("mitsuba3/tests/scenes/floating_sphere/refs/test_directional_ref_rgb_var.exr");
+  PTLAB_REQUIRE_DATA(path);
   const StatusOr<Image> var = ReadImage(path);
   ASSERT_TRUE(var.ok()) << var.status().message();
   int negative_rgb = 0, negative_xyz = 0;

@@ -1,0 +1,431 @@
+// Mitsuba scenes: entry points, the scene element, sensor, film, filter, sampler, integrator.
+#include "engine/io/mitsuba_loader.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "engine/io/mitsuba_document.h"
+#include "engine/io/mitsuba_scene_builder.h"
+#include "engine/io/mitsuba_spectrum.h"
+#include "engine/io/text_parsing.h"
+#include "engine/io/xml_properties.h"
+#include "engine/scene/scene_limits.h"
+
+namespace ptlab {
+namespace internal {
+namespace {
+
+constexpr double kPiD = 3.141592653589793238463;
+
+// Mitsuba's film aspect rule for `fov_axis` (and `focal_length`, a 35 mm film diagonal):
+// the horizontal field of view in degrees.
+double HorizontalFov(double fov, const std::string& axis, double aspect) {
+  const auto from_half_tan = [](double t) { return 2.0 * std::atan(t) * 180.0 / kPiD; };
+  const double half_tan = std::tan(0.5 * fov * kPiD / 180.0);
+  if (axis == "y") return from_half_tan(half_tan * aspect);
+  if (axis == "diagonal") return from_half_tan(half_tan / std::sqrt(1.0 + 1.0 / (aspect * aspect)));
+  return fov;  // "x"
+}
+
+}  // namespace
+
+StatusOr<std::string> MitsubaSceneBuilder::Resolve(const MitsubaObject& obj, const char* property,
+                                                   const std::string& filename) const {
+  const std::string path = ResolveMitsubaPath(doc_.search_paths, filename);
+  if (path.empty()) {
+    std::string where;
+    for (const std::string& dir : doc_.search_paths) where += (where.empty() ? "" : ", ") + dir;
+    return obj.Error(property, "file '" + filename + "' of " + DescribeMitsuba(obj.node()) +
+                                   " not found; looked in " + where);
+  }
+  return path;
+}
+
+Status MitsubaSceneBuilder::Build() {
+  const std::string& v = doc_.version;
+  int major = 0;
+  const size_t dot = v.find('.');
+  if (!ParseInt(std::string_view(v).substr(0, dot), &major) || major < 0)
+    return doc_.root.Error("malformed scene version '" + v + "'; expected e.g. 3.0.0 or 0.6.0");
+  if (major > 3) return doc_.root.Error("scene version '" + v + "' is newer than 3.x");
+  legacy_ = major < 2;
+  PTLAB_RETURN_IF_ERROR(CollectMitsubaIds(doc_.root, &ids_));
+  StatusOr<MitsubaObject> root = Read(doc_.root);
+  if (!root.ok()) return root.status();
+  PTLAB_RETURN_IF_ERROR(root->Expect({}));
+  for (const MitsubaNode* child : root->children()) PTLAB_RETURN_IF_ERROR(SceneChild(*child));
+  if (!have_sensor_) return doc_.root.Error("no <sensor> in the scene; expected one");
+  // Mitsuba 3's direct integrator weights each sample of a delta emitter (point, directional)
+  // by 1 instead of 1 / emitter_samples, so its images count those lights emitter_samples
+  // times; ptlab's direct_mis does not, and would not match them.
+  if (multi_sample_direct_ && scene_.point_lights.size() + scene_.directional_lights.size() > 0)
+    return Unsupported(*multi_sample_direct_,
+                       "emitter_samples > 1 with point or directional emitters: Mitsuba 3 counts "
+                       "each such sample with weight 1, not 1 / emitter_samples");
+  if (!have_integrator_) {  // Mitsuba's default: path, unbounded depth
+    scene_.integrator = IntegratorDesc{};
+    scene_.integrator.type = IntegratorDesc::Type::kPathMis;
+    scene_.integrator.max_depth = -1;
+    scene_.integrator.power_heuristic = true;
+    scene_.integrator.light_selection = LightSelection::kUniform;
+  }
+  return Status::Ok();
+}
+
+Status MitsubaSceneBuilder::SceneChild(const MitsubaNode& node) {
+  const std::string& tag = node.tag;
+  if (tag == "shape") return Shape(node);
+  if (tag == "emitter") return SceneEmitter(node);
+  if (tag == "bsdf") {
+    StatusOr<MaterialRef> m = Bsdf(node);  // declared for <ref>s; built once, checked now
+    return m.ok() ? Status::Ok() : m.status();
+  }
+  if (tag == "sensor") {
+    if (have_sensor_) return Unsupported(node, "a second sensor; ptlab renders one");
+    have_sensor_ = true;
+    return Sensor(node);
+  }
+  if (tag == "integrator") {
+    if (have_integrator_) return node.Error("a second <integrator>; expected at most one");
+    have_integrator_ = true;
+    return Integrator(node);
+  }
+  if (tag == "texture" || tag == "medium" || tag == "phase" || tag == "volume")
+    return Unsupported(node);
+  return node.Error("<" + tag +
+                    "> is not allowed directly inside <scene>; expected shape, "
+                    "emitter, bsdf, texture, sensor or integrator");
+}
+
+Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
+  StatusOr<MitsubaObject> obj = Read(node);
+  if (!obj.ok()) return obj.status();
+  const std::string& type = obj->type();
+  CameraDesc camera;
+  if (type == "perspective") {
+    PTLAB_RETURN_IF_ERROR(obj->Expect(
+        {"fov", "fov_axis", "focal_length", "near_clip", "far_clip", "focus_distance", "to_world",
+         "shutter_open", "shutter_close", "principal_point_offset_x", "principal_point_offset_y"}));
+  } else if (type == "thinlens") {
+    PTLAB_RETURN_IF_ERROR(
+        obj->Expect({"fov", "fov_axis", "focal_length", "near_clip", "far_clip", "focus_distance",
+                     "aperture_radius", "to_world", "shutter_open", "shutter_close"}));
+    PTLAB_RETURN_IF_ERROR(obj->Require("aperture_radius"));
+  } else if (type == "orthographic" || type == "radiancemeter" || type == "irradiancemeter" ||
+             type == "batch" || type == "distant") {
+    return Unsupported(node);
+  } else {
+    return node.Error("unknown sensor type '" + type + "'; expected perspective or thinlens");
+  }
+  const MitsubaNode *film = nullptr, *sampler = nullptr, *filter = nullptr;
+  for (const MitsubaNode* child : obj->children()) {
+    const MitsubaNode** slot = child->tag == "film"      ? &film
+                               : child->tag == "sampler" ? &sampler
+                                                         : nullptr;
+    if (!slot) {
+      if (child->tag == "medium") return Unsupported(*child);
+      return child->Error("<" + child->tag +
+                          "> is not allowed inside <sensor>; expected film "
+                          "or sampler");
+    }
+    if (*slot) return child->Error("a second <" + child->tag + "> in the sensor");
+    *slot = child;
+  }
+  // Mitsuba's defaults: hdrfilm 768 x 576 with a gaussian filter, independent sampler, 4 spp.
+  camera.width = 768, camera.height = 576;
+  scene_.filter = FilterDesc{};  // gaussian, stddev 0.5, radius 2 (= 4 stddev, Mitsuba's)
+  scene_.sampler.type = SamplerType::kIndependent;
+  scene_.sampler.sample_count = 4;
+  if (film) {
+    StatusOr<MitsubaObject> f = Read(*film);
+    if (!f.ok()) return f.status();
+    if (f->type() != "hdrfilm") return Unsupported(*film);
+    PTLAB_RETURN_IF_ERROR(
+        f->Expect({"width", "height", "pixel_format", "component_format", "file_format",
+                   "crop_offset_x", "crop_offset_y", "crop_width", "crop_height", "sample_border",
+                   "banner", "high_quality_edges", "attach_log"}));
+    PTLAB_RETURN_IF_ERROR(f->OnlyDefault("sample_border", false));
+    PTLAB_RETURN_IF_ERROR(f->OnlyDefault("high_quality_edges", false));
+    for (const char* crop : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
+      if (f->Has(crop))
+        return f->Error(crop, "unsupported: film \"hdrfilm\" property " + std::string(crop) +
+                                  " (crop windows)");
+    PTLAB_RETURN_IF_ERROR(f->Integer("width", &camera.width));
+    PTLAB_RETURN_IF_ERROR(f->Integer("height", &camera.height));
+    if (const std::string size = FilmSizeError(camera.width, camera.height); !size.empty())
+      return f->Error("width", size);
+    for (const char* name : {"pixel_format", "component_format", "file_format"}) {
+      std::string ignored;
+      PTLAB_RETURN_IF_ERROR(f->String(name, &ignored));
+    }
+    for (const MitsubaNode* child : f->children()) {
+      if (child->tag != "rfilter")
+        return child->Error("<" + child->tag + "> is not allowed inside <film>; expected rfilter");
+      if (filter) return child->Error("a second <rfilter> in the film");
+      filter = child;
+    }
+  }
+  if (filter) PTLAB_RETURN_IF_ERROR(Filter(*filter));
+  if (sampler) PTLAB_RETURN_IF_ERROR(Sampler(*sampler));
+
+  const double aspect = double(camera.width) / camera.height;
+  float fov = 0;
+  std::string axis = "x";
+  if (obj->Has("fov") && obj->Has("focal_length"))
+    return obj->Error("focal_length", "give either 'fov' or 'focal_length', not both");
+  if (obj->Has("focal_length")) {
+    std::string text;
+    PTLAB_RETURN_IF_ERROR(obj->String("focal_length", &text));
+    if (text.size() > 2 && text.substr(text.size() - 2) == "mm") text.resize(text.size() - 2);
+    float mm = 0;
+    if (!ParseFloat(text, &mm) || !(mm > 0))
+      return obj->Error("focal_length", "malformed focal_length; expected e.g. 50mm (> 0)");
+    fov = float(2.0 * std::atan(std::sqrt(36.0 * 36 + 24 * 24) / (2.0 * mm)) * 180.0 / kPiD);
+    axis = "diagonal";
+  } else {
+    fov = float(2.0 * std::atan(std::sqrt(36.0 * 36 + 24 * 24) / 100.0) * 180.0 / kPiD);
+    axis = "diagonal";  // Mitsuba's default: a 50 mm lens
+    if (obj->Has("fov")) {
+      axis = "x";
+      PTLAB_RETURN_IF_ERROR(obj->Float("fov", &fov));
+      PTLAB_RETURN_IF_ERROR(obj->String("fov_axis", &axis));
+      for (char& c : axis) c = char(std::tolower(static_cast<unsigned char>(c)));
+      if (axis == "smaller") axis = aspect > 1 ? "y" : "x";
+      if (axis == "larger") axis = aspect > 1 ? "x" : "y";
+      if (axis != "x" && axis != "y" && axis != "diagonal")
+        return obj->Error("fov_axis", "unknown fov_axis '" + axis +
+                                          "'; expected x, y, diagonal, smaller or larger");
+    }
+  }
+  if (!(fov > 0 && fov < 180))
+    return obj->Error("fov", "fov = " + FormatNumber(fov) + " is out of range; expected (0, 180)");
+  camera.fov_deg = float(HorizontalFov(fov, axis, aspect));
+  if (!(camera.fov_deg > 0 && camera.fov_deg < 180))
+    return obj->Error("fov", "the horizontal field of view " + FormatNumber(camera.fov_deg) +
+                                 " is out of range; expected (0, 180)");
+  camera.near_clip = 1e-2f, camera.far_clip = 1e4f;  // Mitsuba's defaults
+  PTLAB_RETURN_IF_ERROR(obj->Float("near_clip", &camera.near_clip));
+  PTLAB_RETURN_IF_ERROR(obj->Float("far_clip", &camera.far_clip));
+  if (!(camera.near_clip > 0)) return obj->Error("near_clip", "near_clip must be > 0");
+  if (!(camera.far_clip > camera.near_clip))
+    return obj->Error("far_clip", "far_clip must be > near_clip");
+  camera.focus_distance = camera.far_clip;
+  PTLAB_RETURN_IF_ERROR(obj->Float("focus_distance", &camera.focus_distance));
+  if (type == "thinlens") {
+    PTLAB_RETURN_IF_ERROR(obj->Float("aperture_radius", &camera.aperture_radius));
+    if (!(camera.aperture_radius >= 0))
+      return obj->Error("aperture_radius", "aperture_radius must be >= 0");
+    if (!(camera.focus_distance > 0))
+      return obj->Error("focus_distance", "focus_distance must be > 0");
+  }
+  for (const char* name : {"principal_point_offset_x", "principal_point_offset_y"}) {
+    float offset = 0;
+    PTLAB_RETURN_IF_ERROR(obj->Float(name, &offset));
+    if (offset != 0)
+      return obj->Error(name, "unsupported: sensor \"" + type + "\" with " + name + " != 0");
+  }
+  float open = 0, close = 0;
+  PTLAB_RETURN_IF_ERROR(obj->Float("shutter_open", &open));
+  PTLAB_RETURN_IF_ERROR(obj->Float("shutter_close", &close));
+  if (close != open)
+    return obj->Error("shutter_close", "unsupported: sensor \"" + type +
+                                           "\" motion blur (shutter_close != "
+                                           "shutter_open)");
+  PTLAB_RETURN_IF_ERROR(obj->TransformProperty("to_world", &camera.camera_to_world));
+  // Mitsuba refuses scale in a camera's to_world: its upper 3x3 must be orthonormal.
+  const Matrix4& m = camera.camera_to_world.matrix();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const float dot = m.m[0][i] * m.m[0][j] + m.m[1][i] * m.m[1][j] + m.m[2][i] * m.m[2][j];
+      if (!(std::fabs(dot - (i == j ? 1.0f : 0.0f)) <= 1e-4f))
+        return obj->Error("to_world",
+                          "the sensor's to_world scales or shears; expected a "
+                          "rotation and translation (lookat, rotate, translate)");
+    }
+  scene_.camera = camera;
+  return Status::Ok();
+}
+
+Status MitsubaSceneBuilder::Filter(const MitsubaNode& node) {
+  StatusOr<MitsubaObject> obj = Read(node);
+  if (!obj.ok()) return obj.status();
+  const std::string& type = obj->type();
+  FilterDesc filter;
+  if (type == "box") {
+    PTLAB_RETURN_IF_ERROR(obj->Expect({}));
+    filter.type = FilterDesc::Type::kBox;
+    filter.radius = 0.5f;
+  } else if (type == "tent") {
+    PTLAB_RETURN_IF_ERROR(obj->Expect({"radius"}));
+    filter.type = FilterDesc::Type::kTent;
+    filter.radius = 1.0f;
+    PTLAB_RETURN_IF_ERROR(obj->Float("radius", &filter.radius));
+  } else if (type == "gaussian") {
+    PTLAB_RETURN_IF_ERROR(obj->Expect({"stddev"}));
+    filter.type = FilterDesc::Type::kGaussian;
+    PTLAB_RETURN_IF_ERROR(obj->Float("stddev", &filter.stddev));
+    if (!(filter.stddev > 0)) return obj->Error("stddev", "stddev must be > 0");
+    filter.radius = 4 * filter.stddev;  // Mitsuba's truncation
+  } else if (type == "mitchell" || type == "catmullrom" || type == "lanczos") {
+    return Unsupported(node);
+  } else {
+    return node.Error("unknown rfilter type '" + type + "'; expected box, tent or gaussian");
+  }
+  if (!(filter.radius > 0 && filter.radius <= kMaxFilterRadius))
+    return obj->Error(type == "gaussian" ? "stddev" : "radius",
+                      "filter radius " + FormatNumber(filter.radius) +
+                          " is out of range; expected (0, " + FormatNumber(kMaxFilterRadius) +
+                          "] pixels");
+  scene_.filter = filter;
+  return Status::Ok();
+}
+
+Status MitsubaSceneBuilder::Sampler(const MitsubaNode& node) {
+  StatusOr<MitsubaObject> obj = Read(node);
+  if (!obj.ok()) return obj.status();
+  const std::string& type = obj->type();
+  if (type == "independent") {
+    scene_.sampler.type = SamplerType::kIndependent;
+  } else if (type == "stratified" || type == "multijitter" || type == "orthogonal" ||
+             type == "ldsampler") {
+    // Stratified and low-discrepancy samplers: ptlab's best one (Owen-scrambled Sobol').
+    scene_.sampler.type = SamplerType::kSobol;
+  } else {
+    return node.Error("unknown sampler type '" + type +
+                      "'; expected independent, stratified, "
+                      "multijitter, orthogonal or ldsampler");
+  }
+  PTLAB_RETURN_IF_ERROR(obj->Expect({"sample_count", "seed", "jitter", "strength", "dimension"}));
+  int count = 4, seed = 0, dimension = 0;  // 0.6's `dimension`: ignored
+  PTLAB_RETURN_IF_ERROR(obj->Integer("dimension", &dimension));
+  bool jitter = true;
+  float strength = 0;
+  PTLAB_RETURN_IF_ERROR(obj->Integer("sample_count", &count));
+  PTLAB_RETURN_IF_ERROR(obj->Integer("seed", &seed));  // ptlab's --seed sets the streams
+  PTLAB_RETURN_IF_ERROR(obj->Boolean("jitter", &jitter));
+  PTLAB_RETURN_IF_ERROR(obj->Float("strength", &strength));
+  if (count < 1) return obj->Error("sample_count", "sample_count must be >= 1");
+  scene_.sampler.sample_count = uint32_t(count);
+  return Status::Ok();
+}
+
+Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
+  StatusOr<MitsubaObject> obj = Read(node);
+  if (!obj.ok()) return obj.status();
+  const std::string& type = obj->type();
+  IntegratorDesc desc;
+  desc.power_heuristic = true;                      // Mitsuba's MIS weights
+  desc.light_selection = LightSelection::kUniform;  // Mitsuba picks emitters uniformly
+  desc.triangle_sampling = TriangleSampling::kArea;
+  if (type == "moment") {  // a wrapper that adds second moments: render what it wraps
+    PTLAB_RETURN_IF_ERROR(obj->Expect({}));
+    if (obj->children().size() != 1 || obj->children()[0]->tag != "integrator")
+      return node.Error("<integrator type=\"moment\"> must hold exactly one <integrator>");
+    return Integrator(*obj->children()[0]);
+  }
+  if (!obj->children().empty())
+    return obj->children()[0]->Error("<" + obj->children()[0]->tag + "> is not allowed inside " +
+                                     DescribeMitsuba(node));
+  bool hide = false;
+  if (type == "path") {
+    PTLAB_RETURN_IF_ERROR(
+        obj->Expect({"max_depth", "rr_depth", "hide_emitters", "strict_normals"}));
+    PTLAB_RETURN_IF_ERROR(obj->OnlyDefault("strict_normals", false));
+    int max_depth = -1, rr_depth = 5;
+    PTLAB_RETURN_IF_ERROR(obj->Integer("max_depth", &max_depth));
+    PTLAB_RETURN_IF_ERROR(obj->Integer("rr_depth", &rr_depth));
+    if (max_depth < -1) return obj->Error("max_depth", "max_depth must be >= 0, or -1 (unbounded)");
+    if (max_depth == 0)
+      return obj->Error("max_depth",
+                        "unsupported: integrator \"path\" with max_depth 0 (an "
+                        "all-black image)");
+    if (rr_depth < 1) return obj->Error("rr_depth", "rr_depth must be >= 1");
+    // Mitsuba counts vertices (1 = emitters seen directly, 2 = direct light); ptlab counts
+    // bounces as CS184 (0 = emitted only, 1 = direct).
+    desc.type = IntegratorDesc::Type::kPathMis;
+    desc.max_depth = max_depth < 0 ? -1 : max_depth - 1;
+    PTLAB_RETURN_IF_ERROR(obj->Boolean("hide_emitters", &hide));
+    if (obj->Has("rr_depth"))
+      scene_.load_warnings.push_back(obj->node().where +
+                                     ": rr_depth is accepted but ptlab applies its own Russian "
+                                     "roulette (from depth 3); the expected image is the same");
+  } else if (type == "direct") {
+    PTLAB_RETURN_IF_ERROR(obj->Expect(
+        {"shading_samples", "emitter_samples", "bsdf_samples", "hide_emitters", "strict_normals"}));
+    PTLAB_RETURN_IF_ERROR(obj->OnlyDefault("strict_normals", false));
+    int shading = 1;
+    PTLAB_RETURN_IF_ERROR(obj->Integer("shading_samples", &shading));
+    int emitter = shading, bsdf = shading;
+    PTLAB_RETURN_IF_ERROR(obj->Integer("emitter_samples", &emitter));
+    PTLAB_RETURN_IF_ERROR(obj->Integer("bsdf_samples", &bsdf));
+    if (emitter < 1) return obj->Error("emitter_samples", "emitter_samples must be >= 1");
+    if (bsdf != 1)
+      return obj->Error(obj->Has("bsdf_samples") ? "bsdf_samples" : "shading_samples",
+                        "unsupported: integrator \"direct\" with bsdf_samples != 1 (ptlab's "
+                        "direct_mis takes one BSDF sample)");
+    desc.type = IntegratorDesc::Type::kDirectMis;
+    desc.light_samples = emitter;
+    if (emitter > 1) multi_sample_direct_ = &node;
+    PTLAB_RETURN_IF_ERROR(obj->Boolean("hide_emitters", &hide));
+  } else {
+    return Unsupported(node);
+  }
+  if (hide)
+    return obj->Error("hide_emitters",
+                      "unsupported: integrator \"" + type + "\" with hide_emitters = true");
+  scene_.integrator = desc;
+  return Status::Ok();
+}
+
+}  // namespace internal
+
+StatusOr<Scene> LoadMitsubaSceneFromString(const std::string& xml, const std::string& base_dir,
+                                           const std::string& display_name,
+                                           const LoadOptions& options) {
+  StatusOr<internal::MitsubaDocument> doc =
+      internal::ReadMitsubaDocument(xml, base_dir, display_name, options);
+  if (!doc.ok()) return doc.status();
+  internal::MitsubaSceneBuilder builder(&*doc, options);
+  PTLAB_RETURN_IF_ERROR(builder.Build());
+  Scene scene = builder.TakeScene();
+  scene.source_path = display_name;
+  scene.input_files.insert(scene.input_files.begin(), doc->files.begin(), doc->files.end());
+  FinalizeAreaLights(&scene);
+  return scene;
+}
+
+StatusOr<Scene> LoadMitsubaScene(const std::string& path, const LoadOptions& options) {
+  std::string xml;
+  PTLAB_RETURN_IF_ERROR(ReadTextFile(path, "scene file", &xml));
+  StatusOr<Scene> scene = LoadMitsubaSceneFromString(
+      xml, std::filesystem::path(path).parent_path().string(), path, options);
+  if (scene.ok()) scene->input_files.insert(scene->input_files.begin(), path);
+  return scene;
+}
+
+Status LookupMitsubaConductor(const std::vector<std::string>& search_paths, const std::string& name,
+                              Color3f* eta, Color3f* k) {
+  if (name == "none") {
+    *eta = {0, 0, 0};
+    *k = {1, 1, 1};
+    return Status::Ok();
+  }
+  if (name.empty() || name.find('/') != std::string::npos || name.find('\\') != std::string::npos)
+    return Status::Error("unknown conductor '" + name + "'");
+  std::vector<std::string> dirs = search_paths;
+  for (const std::string& dir : search_paths)
+    dirs.push_back(std::filesystem::path(dir).parent_path().string());
+  const std::string eta_path = internal::ResolveMitsubaPath(dirs, "ior/" + name + ".eta.spd");
+  const std::string k_path = internal::ResolveMitsubaPath(dirs, "ior/" + name + ".k.spd");
+  if (eta_path.empty() || k_path.empty())
+    return Status::Error("unknown conductor '" + name + "': no ior/" + name +
+                         ".eta.spd and .k.spd in the search paths or their parent folders");
+  std::vector<double> w, v;
+  PTLAB_RETURN_IF_ERROR(ReadSpdFile(eta_path, &w, &v));
+  *eta = SpectrumToRgb(w, v, SpectrumUse::kUnbounded);
+  PTLAB_RETURN_IF_ERROR(ReadSpdFile(k_path, &w, &v));
+  *k = SpectrumToRgb(w, v, SpectrumUse::kUnbounded);
+  return Status::Ok();
+}
+
+}  // namespace ptlab
