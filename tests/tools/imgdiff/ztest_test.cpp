@@ -292,12 +292,21 @@ TEST_F(ImgdiffZTestCli, PassFailOutputsAndUsage) {
   EXPECT_EQ(Output().front(), '{') << Output();
   EXPECT_NE(Output().find("\"pass\": false}"), std::string::npos) << Output();
   EXPECT_TRUE(fs::exists(Path("custom_pvalue.exr")));
-  EXPECT_EQ(Run({"--ztest", ref, var, Path("small.exr"), "--spp", "4"}), 2) << Output();
-  EXPECT_EQ(Run({"--ztest", ref, var, Path("missing.exr"), "--spp", "4"}), 3) << Output();
-  EXPECT_EQ(Run({"--ztest", ref, var, Path("good.exr")}), 3) << Output();  // no --spp
-  EXPECT_EQ(Run({"--ztest", ref, var, Path("good.exr"), "--spp", "0"}), 3) << Output();
-  EXPECT_EQ(Run({"--ztest", ref, var}), 3) << Output();
-  EXPECT_EQ(Run({ref, "--ztest", ref, var, Path("good.exr"), "--spp", "4"}), 3) << Output();
+  // Exit codes of tools/common/exit_codes.h: another size is a failed verdict (1), bad usage or
+  // an unreadable image is 2.
+  EXPECT_EQ(Run({"--ztest", ref, var, Path("small.exr"), "--spp", "4"}), 1) << Output();
+  EXPECT_EQ(Run({"--ztest", ref, var, Path("missing.exr"), "--spp", "4"}), 2) << Output();
+  EXPECT_EQ(Run({"--ztest", ref, var, Path("good.exr")}), 2) << Output();  // no --spp
+  EXPECT_EQ(Run({"--ztest", ref, var, Path("good.exr"), "--spp", "0"}), 2) << Output();
+  EXPECT_EQ(Run({"--ztest", ref, var}), 2) << Output();
+  EXPECT_EQ(Run({ref, "--ztest", ref, var, Path("good.exr"), "--spp", "4"}), 2) << Output();
+  // The p-value image may not replace an input.
+  fs::copy_file(Path("bad.exr"), Path("x_pvalue.exr"));
+  EXPECT_EQ(Run({"--ztest", ref, var, Path("x_pvalue.exr"), "--spp", "1024", "--ztest-out",
+                 Path("x")}),
+            2)
+      << Output();
+  EXPECT_FALSE(fs::exists(Path("x_failed.exr")));
   // An unwritable output prefix is exit code 3.
   EXPECT_EQ(
       Run({"--ztest", ref, var, Path("bad.exr"), "--spp", "1024", "--ztest-out", Path("no/dir/x")}),
