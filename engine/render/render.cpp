@@ -37,8 +37,9 @@ using TileStats = TileSampleStats;
 uint32_t SamplesPerPass(uint32_t spp) { return std::min<uint32_t>(spp, 16); }
 
 bool PixelConverged(const PixelMoments& m, float tolerance) {
-  if (m.n < 2) return false;
+  if (m.n < kAdaptiveMinSamples) return false;
   const double n = double(m.n), mean = m.sum / n;
+  if (!(mean > 0)) return false;  // nothing seen yet: an all-black batch is not converged
   const double variance = std::max(0.0, (m.sum2 - n * mean * mean) / (n - 1));
   return 1.96 * std::sqrt(variance / n) <= double(tolerance) * mean;
 }

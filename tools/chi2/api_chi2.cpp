@@ -9,6 +9,7 @@
 #include "engine/core/rng.h"
 #include "ptlab/chi2.h"
 #include "tools/chi2/chi2.h"
+#include "tools/chi2/power.h"
 #include "tools/chi2/report.h"
 
 // PTLAB_RETURN_IF_ERROR for ptlab::chi2::Status.
@@ -71,6 +72,9 @@ Status CheckOptions(const Options& o) {
     return Status::Error("res must be in [2, 4096], got " + std::to_string(o.res));
   if (!(o.alpha > 0 && o.alpha < 1))
     return Status::Error("alpha must be in (0, 1), got " + std::to_string(o.alpha));
+  if (o.coarse_blocks < 0 || o.coarse_blocks > 64)
+    return Status::Error("coarse_blocks must be in [0, 64], got " +
+                         std::to_string(o.coarse_blocks));
   if (o.test_count < 1)
     return Status::Error("test_count must be >= 1, got " + std::to_string(o.test_count));
   if (!(o.integral_tol > 0))
@@ -126,6 +130,11 @@ Result ToPublic(const Domain& domain, const Chi2Result& r) {
   out.expected = r.expected;
   out.failures = r.failures;
   out.notes = r.notes;
+  out.coarse_blocks = r.coarse_blocks;
+  out.coarse_chi2 = r.coarse_chi2;
+  out.coarse_dof = r.coarse_dof;
+  out.coarse_p_value = r.coarse_p_value;
+  out.alpha_each = r.alpha_each;
   return out;
 }
 
@@ -226,9 +235,17 @@ Status TestPoints(const std::string& name, const Domain& domain, const Point* po
   o.alpha = options.alpha;
   o.test_count = options.test_count;
   o.integral_tol = options.integral_tol;
+  o.coarse_blocks = options.coarse_blocks;
   const Chi2Result r = RunChi2Test(s, o);
   if (!pdf_status.ok()) return Status::Error("the pdf failed: " + pdf_status.message());
   Result out = ToPublic(domain, r);
+  if (options.power) {
+    const Chi2Power power = EstimateChi2Power(r, /*defective=*/false, o);
+    out.power_epsilon = power.epsilon;
+    out.power_at_2 = power.power_at_2;
+    out.power_samples_for_2 = power.samples_for_2;
+    out.power_report = FormatChi2Power(power);
+  }
   if (!options.images_dir.empty())
     PTLAB_CHI2_RETURN_IF_ERROR(WriteImages(options.images_dir, name, out));
   *result = std::move(out);
@@ -278,6 +295,11 @@ std::string FormatResult(const std::string& name, const Result& result) {
   r.p_value = result.p_value;
   r.alpha = result.alpha;
   r.pdf_integral = result.pdf_integral;
+  r.coarse_blocks = result.coarse_blocks;
+  r.coarse_chi2 = result.coarse_chi2;
+  r.coarse_dof = result.coarse_dof;
+  r.coarse_p_value = result.coarse_p_value;
+  r.alpha_each = result.alpha_each;
   r.failures = result.failures;
   return FormatChi2Result(s, r);
 }

@@ -54,6 +54,9 @@ struct Chi2Subject {
   int uniform_dims = 2;      // 2, or 3 to also draw u1
   double albedo = 1.0;       // total mass of the distribution; < 1 (or unknown) = defective
   Chi2Expect expect = Chi2Expect::kPass;
+  // Samples drawn = options.samples × sample_scale: > 1 for subjects whose power at the default
+  // count falls short of the lab's target (a 2 % smooth error caught with 95 % probability).
+  double sample_scale = 1.0;
 
   bool defective() const { return !(albedo == 1.0); }
 };
@@ -71,6 +74,10 @@ struct Chi2Options {
   double alpha = 0.01;               // family-wise significance of the run
   int test_count = 1;          // tests in the run: Šidák gives each alpha' = SidakAlpha(...)
   double min_expected = 5.0;   // cells expecting fewer samples are pooled
+  // The second, coarse test: coarse_blocks × coarse_blocks blocks of equal marginal mass (see
+  // Chi2CoarseGrid), for smooth errors the fine grid dilutes over its many cells; each of the
+  // two tests gets SidakAlpha(alpha', 2). 0: the fine test only, at alpha'.
+  int coarse_blocks = 6;
   double integral_tol = 1e-3;  // |∫pdf - albedo| allowed
   Simpson2DOptions simpson;    // the nested cell integration (outer x, inner y)
   int64_t max_evals_per_cell = 200000;
@@ -89,7 +96,14 @@ struct Chi2Result {
   double chi2 = 0;
   int dof = 0;
   double p_value = std::numeric_limits<double>::quiet_NaN();
-  double alpha = 0;  // Šidák-corrected per-test significance
+  double alpha = 0;  // Šidák-corrected per-test significance (the subject's, both grids)
+  // The coarse test (blocks of equal mass; coarse_blocks = 0: not run) and the level each of the
+  // two tests is held to: alpha_each = SidakAlpha(alpha, 2) (alpha when there is one test).
+  int coarse_blocks = 0;
+  double coarse_chi2 = 0;
+  int coarse_dof = 0;
+  double coarse_p_value = std::numeric_limits<double>::quiet_NaN();
+  double alpha_each = 0;
   int pooled_cells = 0;
   int64_t pdf_evals = 0;
   bool pass = false;                  // the null hypothesis was accepted and every check held
@@ -105,6 +119,14 @@ struct Chi2Result {
 /// A defective subject's absorbed samples are one more Pearson cell (expected N (1 - ∫pdf)).
 /// Preconditions: samples >= 1, res >= 1, test_count >= 1, 0 < alpha < 1.
 Chi2Result RunChi2Test(const Chi2Subject& subject, const Chi2Options& options);
+
+/// The test again on fresh samples (options.seed), thinned by rejection: a sample in fine cell c
+/// is kept with probability keep[c], an absorbed one with keep_absorbed; judged against `base`'s
+/// expected counts scaled to the samples kept (no pdf evaluation). The power estimate uses it
+/// to give a sampler a known error. keep.size() == base.observed.size(), values in [0, 1].
+Chi2Result RerunChi2Thinned(const Chi2Subject& subject, const Chi2Options& options,
+                            const Chi2Result& base, const std::vector<double>& keep,
+                            double keep_absorbed);
 
 /// True when the result is what the subject expects (real: passed; broken: rejected).
 inline bool Chi2AsExpected(const Chi2Subject& subject, const Chi2Result& result) {

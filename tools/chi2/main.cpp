@@ -9,6 +9,7 @@
 
 #include "tools/chi2/check/check_command.h"
 #include "tools/chi2/chi2.h"
+#include "tools/chi2/power.h"
 #include "tools/chi2/report.h"
 #include "tools/chi2/subjects.h"
 #include "tools/cli_checks.h"
@@ -32,16 +33,38 @@ pdf values, and on a pdf integral off 1 (or the subject's albedo) by more than 1
 Significance: alpha for the whole run, Sidak-corrected per test: alpha' = 1 - (1 - alpha)^(1/n).
 Verdicts: PASS / FAIL for real subjects; XFAIL (rejected as expected) / XPASS for "broken/..."
 subjects, which exist to prove the test can fail.
+Each subject is tested twice on the same samples: on the fine grid (local errors) and on a
+coarse grid of 6x6 blocks of equal marginal mass (smooth errors), each at alpha'' = 1 - (1 - alpha')^(1/2).
+--power: the smallest smooth error (pdf x (1 + eps g), g a low-order ramp or harmonic of the pdf's
+own marginal CDFs) the test detects with 95 % probability, from the noncentral chi-square law;
+--power-seeds S also checks it by S runs of the sampler with the error applied by rejection.
 Exit codes (tools/common/exit_codes.h, shared with ptlab and imgdiff): 0 every subject as
   expected (real ones pass, broken ones fail), 1 otherwise, 2 bad usage or unknown subject,
   3 the image directory or an image could not be written.
 `chi2 check --help`: test samples from a file against a pdf program or grid (any language).)";
 
+// What --power and --power-seeds ask for (power_seeds: simulated runs per shape, 0 = none).
+struct PowerRequest {
+  bool power = false;
+  int seeds = 0;
+};
+
+// The power line of a subject's result ("" unless asked for; broken subjects have none).
+std::string PowerText(const ptlab::Chi2Subject& s, const ptlab::Chi2Options& options,
+                      const ptlab::Chi2Result& result, const PowerRequest& request) {
+  if (!request.power || s.expect != ptlab::Chi2Expect::kPass) return "";
+  ptlab::Chi2Power power = ptlab::EstimateChi2Power(result, s.defective(), options);
+  if (request.seeds > 0) ptlab::CheckChi2PowerBySeeds(s, options, result, request.seeds, &power);
+  return "       power: " + ptlab::FormatChi2Power(power) + "\n";
+}
+
 // One subject's verdict line (and notes): what a rank sends to rank 0.
 std::string RunOne(const ptlab::Chi2Subject& s, const ptlab::Chi2Options& options,
-                   const std::string& images_dir, bool verbose, bool* as_expected) {
+                   const std::string& images_dir, bool verbose, const PowerRequest& power,
+                   bool* as_expected) {
   const ptlab::Chi2Result result = ptlab::RunChi2Test(s, options);
-  std::string text = ptlab::FormatChi2Result(s, result) + "\n";
+  std::string text = ptlab::FormatChi2Result(s, result) + "\n" +
+                     PowerText(s, options, result, power);
   if (verbose) {
     for (const std::string& note : result.notes) text += "       . " + note + "\n";
     text += "       . " + std::to_string(result.pdf_evals) + " pdf evaluations\n";
@@ -58,7 +81,8 @@ std::string RunOne(const ptlab::Chi2Subject& s, const ptlab::Chi2Options& option
 // in subject order, so the output equals a one-process run's.
 int RunOverRanks(const ptlab::mpi::Session& mpi,
                  const std::vector<const ptlab::Chi2Subject*>& selected,
-                 const ptlab::Chi2Options& options, const std::string& images_dir, bool verbose) {
+                 const ptlab::Chi2Options& options, const std::string& images_dir, bool verbose,
+                 const PowerRequest& power) {
   if (mpi.root())
     std::printf(
         "chi2: %d tests, %lld samples, res %d, seed %llu, alpha %g (alpha' = %.3g per test), "
@@ -69,7 +93,7 @@ int RunOverRanks(const ptlab::mpi::Session& mpi,
   // The verdict travels as the text's first character.
   const std::vector<std::string> texts = mpi.MapInOrder(selected.size(), [&](size_t i) {
     bool ok = false;
-    const std::string text = RunOne(*selected[i], options, images_dir, verbose, &ok);
+    const std::string text = RunOne(*selected[i], options, images_dir, verbose, power, &ok);
     return (ok ? "+" : "-") + text;
   });
   if (!mpi.root()) return kExitOk;  // rank 0 gives the run's exit status
@@ -115,6 +139,16 @@ int main(int argc, char** argv) {
   app.add_option("--alpha", options.alpha, "significance level of the whole run")
       ->check(ptlab::FiniteRange(1e-12, 0.5))
       ->capture_default_str();
+  PowerRequest power;
+  app.add_flag("--power", power.power,
+               "also print the smallest smooth pdf error each subject detects (95 %)");
+  app.add_option("--power-seeds", power.seeds,
+                 "check --power by this many simulated runs per error shape")
+      ->check(CLI::Range(0, 10000));
+  app.add_option("--coarse", options.coarse_blocks,
+                 "coarse grid blocks per axis (0: fine grid only)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   app.add_option("--images", images_dir,
                  "write <DIR>/<name>.png (observed | expected | difference) and .csv per test");
   try {
@@ -159,7 +193,8 @@ int main(int argc, char** argv) {
     }
   }
   options.test_count = int(selected.size());
-  if (mpi.active()) return RunOverRanks(mpi, selected, options, images_dir, verbose);
+  if (power.seeds > 0) power.power = true;
+  if (mpi.active()) return RunOverRanks(mpi, selected, options, images_dir, verbose, power);
   std::printf(
       "chi2: %d tests, %lld samples, res %d, seed %llu, alpha %g (alpha' = %.3g per test)\n",
       options.test_count, static_cast<long long>(options.samples), options.res,
@@ -168,7 +203,8 @@ int main(int argc, char** argv) {
   int as_expected = 0, unexpected = 0;
   for (const ptlab::Chi2Subject* s : selected) {
     const ptlab::Chi2Result result = ptlab::RunChi2Test(*s, options);
-    std::printf("%s\n", ptlab::FormatChi2Result(*s, result).c_str());
+    std::printf("%s\n%s", ptlab::FormatChi2Result(*s, result).c_str(),
+                PowerText(*s, options, result, power).c_str());
     if (verbose) {
       for (const std::string& note : result.notes) std::printf("       . %s\n", note.c_str());
       std::printf("       . %lld pdf evaluations\n", static_cast<long long>(result.pdf_evals));

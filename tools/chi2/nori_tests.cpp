@@ -241,6 +241,9 @@ void RunChi2Tests(const NoriTestFile& file, const NoriTestOptions& options, int6
         o.alpha = p.significance_level;
         o.test_count = report->test_count;
         o.min_expected = p.min_exp_frequency;
+        // Nori's test as written: its grid is coarse already (10 × 20 cells by default), and
+        // its significance level is the file's, not split with a second grid.
+        o.coarse_blocks = 0;
         // Nori's cells are large (18° × 0.2 in cos θ), and in their far tails a peaked lobe's
         // pdf underflows float, where a purely relative tolerance can never be met: without an
         // absolute floor those cells exhaust the evaluation budget and the cells next to them

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/non_central_chi_squared.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <boost/math/special_functions/beta.hpp>
 #include <boost/math/special_functions/gamma.hpp>
@@ -50,6 +51,21 @@ double ChiSquarePValue(double chi2, int dof) {
   if (std::isinf(chi2)) return 0.0;
   const boost::math::chi_squared_distribution<double, NanPolicy> dist(dof);
   return boost::math::cdf(boost::math::complement(dist, chi2));
+}
+
+double ChiSquareUpperQuantile(double alpha, int dof) {
+  if (dof < 1 || !(alpha > 0 && alpha < 1)) return std::numeric_limits<double>::quiet_NaN();
+  const boost::math::chi_squared_distribution<double, NanPolicy> dist(dof);
+  return boost::math::quantile(boost::math::complement(dist, alpha));
+}
+
+double NoncentralChiSquareSf(double x, int dof, double lambda) {
+  if (dof < 1 || !(lambda >= 0) || std::isnan(x)) return std::numeric_limits<double>::quiet_NaN();
+  if (x <= 0) return 1.0;
+  if (std::isinf(x)) return 0.0;
+  if (lambda == 0) return ChiSquarePValue(x, dof);
+  const boost::math::non_central_chi_squared_distribution<double, NanPolicy> dist(dof, lambda);
+  return boost::math::cdf(boost::math::complement(dist, x));
 }
 
 double SidakAlpha(double alpha, int n) {

@@ -18,6 +18,14 @@ double RegularizedGammaQ(double a, double x);
 /// Probability that a χ² variable with `dof` degrees of freedom is >= `chi2`: Q(dof/2, chi2/2).
 double ChiSquarePValue(double chi2, int dof);
 
+/// The χ² value a variable with `dof` degrees of freedom exceeds with probability `alpha`
+/// (the test's critical value). dof >= 1, 0 < alpha < 1.
+double ChiSquareUpperQuantile(double alpha, int dof);
+
+/// Probability that a noncentral χ² variable (dof, noncentrality lambda >= 0) is > x: the
+/// asymptotic power of Pearson's test against an alternative with that noncentrality.
+double NoncentralChiSquareSf(double x, int dof, double lambda);
+
 /// Šidák per-test significance: n independent tests at this level reject a true hypothesis
 /// somewhere with probability `alpha`: 1 - (1 - alpha)^(1/n). n >= 1.
 double SidakAlpha(double alpha, int n);

@@ -6,6 +6,7 @@
 #include "tools/chi2/geometry_subjects.h"
 #include "tools/chi2/light_subjects.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/check.h"
@@ -31,6 +32,30 @@ float FixedTrianglePdf(const Vec2f& p) {
   const Vec2f &A = kChi2TriangleA, &B = kChi2TriangleB, &C = kChi2TriangleC;
   const bool inside = Cross(A, B, p) >= 0 && Cross(B, C, p) >= 0 && Cross(C, A, p) >= 0;
   return inside ? float(1.0 / kTriangleArea) : 0.0f;
+}
+
+// A smooth error of relative size delta in a uniform variable: u + delta u (1 - u) maps [0, 1]
+// onto itself with slope 1 + delta (1 - 2u), so the density of what follows is off by the ramp
+// -delta (1 - 2u) (to first order): a polar or planar "smooth" error of delta.
+float QuantileTilt(float u, float delta) { return u + delta * u * (1.0f - u); }
+
+// A direction with its azimuth moved by phi -> phi + delta sin(phi): the azimuthal density is
+// divided by 1 + delta cos(phi), an azimuthal smooth error of delta.
+Vec3f AzimuthTilt(const Vec3f& w, float delta) {
+  const float r = std::sqrt(w.x * w.x + w.y * w.y);
+  if (r == 0) return w;
+  const float phi = std::atan2(w.y, w.x);
+  const float moved = phi + delta * std::sin(phi);
+  return {r * std::cos(moved), r * std::sin(moved), w.z};
+}
+
+// The cosine hemisphere's z² is uniform: tilting it is a polar error of delta.
+Vec3f CosineHemispherePolarTilt(const Vec2f& u, float delta) {
+  const Vec3f w = SampleCosineHemisphere(u);
+  const float r = std::sqrt(w.x * w.x + w.y * w.y);
+  const float z2 = QuantileTilt(w.z * w.z, delta), r2 = std::sqrt(std::max(0.0f, 1.0f - z2));
+  if (r == 0) return {0, 0, std::sqrt(z2)};
+  return {w.x * r2 / r, w.y * r2 / r, std::sqrt(z2)};
 }
 
 }  // namespace
@@ -94,6 +119,53 @@ void RegisterBrokenSubjects(Chi2Registry* r) {
   r->Add(PlanarWarpSubject(
       "broken/tent_pdf_scaled", Chi2Domain::Box(-1, -1, 1, 1), SampleTent,
       [](const Vec2f& p) { return 1.1f * TentPdf(p); }, kFail));
+
+  // Small errors, each of a size the lab claims to catch (docs/chi2-power.md). Smooth: the
+  // density off by a low-order ramp or harmonic of relative size 1-3 %.
+  const Chi2Domain hemi = Chi2Domain::Hemisphere();
+  r->Add(DirectionWarpSubject(
+      "broken/cosine_hemisphere_azimuth_2pct", hemi,
+      [](const Vec2f& u) { return AzimuthTilt(SampleCosineHemisphere(u), 0.02f); },
+      CosineHemispherePdf, kFail));
+  r->Add(DirectionWarpSubject(
+      "broken/cosine_hemisphere_polar_2pct", hemi,
+      [](const Vec2f& u) { return CosineHemispherePolarTilt(u, 0.02f); }, CosineHemispherePdf,
+      kFail));
+  r->Add(PlanarWarpSubject(
+      "broken/tent_x_3pct", Chi2Domain::Box(-1, -1, 1, 1),
+      [](const Vec2f& u) { return SampleTent(Vec2f{QuantileTilt(u.x, 0.03f), u.y}); }, TentPdf,
+      kFail));
+  {
+    // 1 % is below what 10^6 samples catch: this subject draws 4x as many (see sample_scale).
+    Chi2Subject s = DirectionWarpSubject(
+        "broken/uniform_sphere_polar_1pct", Chi2Domain::Sphere(),
+        [](const Vec2f& u) { return SampleUniformSphere(Vec2f{QuantileTilt(u.x, 0.01f), u.y}); },
+        UniformSpherePdf, kFail);
+    s.sample_scale = 4;
+    r->Add(std::move(s));
+  }
+  // Local: 1-3 % of the samples misplaced within a small region. The first 3 % of the azimuth
+  // range squeezed into its first half (a wedge of twice the density next to an empty one).
+  r->Add(DirectionWarpSubject(
+      "broken/cosine_hemisphere_wedge_3pct", hemi,
+      [](const Vec2f& u) {
+        const Vec3f w = SampleCosineHemisphere(u);
+        const float phi = std::atan2(w.y, w.x), r = std::sqrt(w.x * w.x + w.y * w.y);
+        const float wedge = 0.03f * 2.0f * kPi;
+        if (!(phi >= 0 && phi < wedge)) return w;
+        return Vec3f{r * std::cos(0.5f * phi), r * std::sin(0.5f * phi), w.z};
+      },
+      CosineHemispherePdf, kFail));
+  // The samples in a patch of 1 % of the disk's area (radius 0.1 around (0.3, 0.2)) reflected
+  // through the centre: 1 % of the samples misplaced, an empty patch next to a doubled one.
+  r->Add(PlanarWarpSubject(
+      "broken/uniform_disk_patch_1pct", Chi2Domain::Disk(),
+      [](const Vec2f& u) {
+        const Vec2f p = SampleUniformDisk(u);
+        const float dx = p.x - 0.3f, dy = p.y - 0.2f;
+        return dx * dx + dy * dy < 0.01f ? Vec2f{-p.x, -p.y} : p;
+      },
+      UniformDiskPdf, kFail));
 }
 
 Chi2Registry DefaultChi2Registry() {

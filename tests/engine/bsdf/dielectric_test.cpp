@@ -148,6 +148,53 @@ TEST(Dielectric, RefractionObeysSnellAndLobesSumToOne) {
     }
 }
 
+// Schlick against values worked by hand, not against its own code: η = 1.5 gives R0 =
+// (0.5/2.5)² = 0.04 exactly, so F(c) = 0.04 + 0.96 (1 − c)^5 at c = 0.5: 0.04 + 0.96/32 = 0.07;
+// c = 0.2: 0.04 + 0.96 · 0.32768 = 0.3545728; c = 0.8: 0.04 + 0.96 · 0.00032 = 0.0403072;
+// c = 0.9: 0.04 + 0.96e-5 = 0.0400096. η = 1.33: R0 = (0.33/2.33)² = 0.0200593..., c = 0.5:
+// R0 + (1 − R0)/32. And the same law in long double at 101 cosines for three IORs.
+TEST(Dielectric, SchlickAtTabulatedValues) {
+  const struct {
+    float eta, cos, f;
+  } table[] = {{1.5f, 0.5f, 0.07f},       {1.5f, 0.2f, 0.3545728f}, {1.5f, 0.8f, 0.0403072f},
+               {1.5f, 0.9f, 0.0400096f},  {1.5f, -0.5f, 0.07f},     {1.5f, 1.0f, 0.04f},
+               {1.33f, 0.5f, 0.0506824f}, {1.33f, 0.0f, 1.0f}};
+  for (const auto& t : table) {
+    EXPECT_NEAR(FresnelSchlick(t.cos, t.eta), t.f, 2e-7) << "eta " << t.eta << " cos " << t.cos;
+  }
+  for (float eta : {1.5f, 1.33f, 2.4f}) {
+    for (int k = 0; k <= 100; ++k) {
+      const long double c = k / 100.0L, r = (eta - 1.0L) / (eta + 1.0L), r0 = r * r;
+      const long double ref = r0 + (1 - r0) * std::pow(1 - c, 5.0L);
+      EXPECT_NEAR(FresnelSchlick(float(c), eta), double(ref), 1e-6) << eta << " " << double(c);
+    }
+  }
+}
+
+// The exact reflectance against Fresnel's equations in their angle form (Born & Wolf §1.5.2:
+// Rs = sin²(θi − θt)/sin²(θi + θt), Rp = tan²(θi − θt)/tan²(θi + θt), θt from Snell's law), in
+// long double: a formulation independent of the cosine form the code and the other test use;
+// plus tabulated values (η = 1.5: 0.04 at normal incidence; at Brewster's angle tanθ = η, Rp = 0
+// so R = Rs/2 = ((η² − 1)/(η² + 1))²/2 = (1.25/3.25)²/2 = 0.0739645).
+TEST(Dielectric, FresnelMatchesTheAngleFormAndTabulatedValues) {
+  for (float eta : {1.5f, 1.33f, 2.4f}) {
+    for (int k = 1; k < 100; ++k) {  // θi in (0°, 90°): the angle form is 0/0 at normal incidence
+      const long double ti = k * 0.9L * 3.14159265358979323846L / 180.0L;
+      const long double tt = std::asin(std::sin(ti) / eta);
+      const long double rs = std::sin(ti - tt) / std::sin(ti + tt);
+      const long double rp = std::tan(ti - tt) / std::tan(ti + tt);
+      const long double ref = 0.5L * (rs * rs + rp * rp);
+      float cos_t;
+      EXPECT_NEAR(FresnelDielectric(float(std::cos(ti)), eta, &cos_t), double(ref), 2e-6)
+          << eta << " theta " << double(ti);
+    }
+  }
+  float cos_t;
+  EXPECT_NEAR(FresnelDielectric(1.0f, 1.5f, &cos_t), 0.04, 1e-7);
+  const float brewster_cos = float(1.0 / std::sqrt(1.0 + 1.5 * 1.5));
+  EXPECT_NEAR(FresnelDielectric(brewster_cos, 1.5f, &cos_t), 0.0739645, 1e-6);
+}
+
 TEST(Dielectric, SchlickAndRadianceScalingOptions) {
   const float eta = 1.5f;
   const Vec3f wo = bsdf_test::DirectionWithCos(0.6f, 0.0f);

@@ -19,16 +19,25 @@ PixelMoments MomentsOf(const std::vector<double>& samples) {
   return m;
 }
 
-TEST(AdaptiveSampling, StoppingRuleIsCs184s) {
-  // Mean 1, sample variance 1/3 (n = 4: 0.5, 0.5, 1.5, 1.5): I = 1.96 sqrt(1/12) = 0.5658.
-  const PixelMoments m = MomentsOf({0.5, 0.5, 1.5, 1.5});
-  EXPECT_TRUE(PixelConverged(m, 0.57f));
-  EXPECT_FALSE(PixelConverged(m, 0.56f));
-  EXPECT_FALSE(PixelConverged(MomentsOf({1.0}), 1.0f));  // one sample: no variance yet
-  EXPECT_TRUE(PixelConverged(MomentsOf({0.0, 0.0}), 0.05f));  // black: I = 0 <= 0
-  EXPECT_TRUE(PixelConverged(MomentsOf({2.0, 2.0, 2.0}), 1e-6f));
+// n copies of each value.
+std::vector<double> Repeat(const std::vector<double>& values, int n) {
+  std::vector<double> out;
+  for (int k = 0; k < n; ++k) out.insert(out.end(), values.begin(), values.end());
+  return out;
+}
+
+TEST(AdaptiveSampling, StoppingRuleIsCs184sWithAMinimumAndNoBlackStop) {
+  // 32 samples, mean 1, sample variance 0.25 · 32/31: I = 1.96 sqrt(0.25 / 31) = 0.17601.
+  const PixelMoments m = MomentsOf(Repeat({0.5, 1.5}, 16));
+  EXPECT_TRUE(PixelConverged(m, 0.177f));
+  EXPECT_FALSE(PixelConverged(m, 0.175f));
+  // Fewer than kAdaptiveMinSamples samples never stop, however tight.
+  EXPECT_FALSE(PixelConverged(MomentsOf(Repeat({2.0}, 31)), 1.0f));
+  EXPECT_TRUE(PixelConverged(MomentsOf(Repeat({2.0}, 32)), 1e-6f));
+  // A pixel that has seen no light does not stop (CS184's rule did: I = 0 <= 0).
+  EXPECT_FALSE(PixelConverged(MomentsOf(Repeat({0.0}, 1024)), 0.05f));
   // A non-finite sample is taken but not in the moments.
-  PixelMoments inf = MomentsOf({1.0, 1.0});
+  PixelMoments inf = MomentsOf(Repeat({1.0}, 32));
   ++inf.taken;
   EXPECT_TRUE(PixelConverged(inf, 0.01f));
 }
@@ -85,7 +94,7 @@ TEST(AdaptiveSampling, PixelsStopByTheRuleAndCountsAddUp) {
     const uint32_t n = r.pixel_samples[p];
     sum += n;
     EXPECT_EQ(n % 8, 0u) << p;
-    EXPECT_GE(n, 8u);
+    EXPECT_GE(n, kAdaptiveMinSamples);
     EXPECT_LE(n, 128u);
     EXPECT_EQ(run.moments[p].taken, n);
     if (n < r.spp_done) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tools/chi2/chi2.h"
+#include "tools/chi2/power.h"
 #include "tools/chi2/report.h"
 
 namespace ptlab {
@@ -50,6 +51,15 @@ TEST_P(StatChi2Subject, BehavesAsRegistered) {
   // bound, as Simpson integration does not resolve the spike closer than a few 1e-4.
   if (subject->expect == Chi2Expect::kPass && subject->name.rfind("warp/", 0) == 0) {
     EXPECT_NEAR(result.pdf_integral, subject->albedo, 1e-4);
+  }
+  // The lab's power target: every real subject catches a 2 % smooth error of its pdf (each shape
+  // of Chi2SmoothPerturbations) with probability >= 95 % at its sample count (docs/chi2-power.md).
+  if (subject->expect == Chi2Expect::kPass) {
+    for (const Chi2Perturbation& p : Chi2SmoothPerturbations(result)) {
+      EXPECT_GE(Chi2AnalyticPower(result, subject->defective(), options, p, 0.02), 0.95)
+          << p.shape << ": " << FormatChi2Power(EstimateChi2Power(result, subject->defective(),
+                                                                 options));
+    }
   }
 }
 

@@ -52,6 +52,13 @@ std::string Attribute(const fs::path& exr, const std::string& name) {
 
 #ifdef PTLAB_MPIEXEC
 
+// Shell text that waits (up to 120 s, polling every 0.1 s) until `log` shows the render's first
+// progress line, so a signal is sent to a render that has started, however slow the machine.
+std::string WaitForProgress(const fs::path& log) {
+  return "for i in $(seq 1200); do grep -q '^progress' " + log.string() +
+         " 2>/dev/null && break; sleep 0.1; done; ";
+}
+
 TEST(MpiRender, BitIdenticalToOneProcessForAnyRanksAndThreads) {
   // Two scenes, two integrators (cbox: direct_mis, table: path_mis), two passes of 16 spp.
   PTLAB_REQUIRE_DATA(kTable);
@@ -127,16 +134,17 @@ TEST(MpiRender, RankThatCannotLoadStopsTheJobNamingRankAndReason) {
 TEST(MpiRender, KilledRankEndsTheJobWithoutOutput) {
   const fs::path dir = TempDir("killed_rank");
   const fs::path out = dir / "killed.exr";
-  // A long render; after 2 s rank 1 (found by its OMPI_COMM_WORLD_RANK) is killed.
+  // A long render; once it reports progress, rank 1 (found by its OMPI_COMM_WORLD_RANK) is
+  // killed.
   const std::string command =
       kMpirun + " -np 2 " + kBin + "ptlab render " + kCbox +
-      " --spp 100000 --width 64 --height 48 --threads 1 -q -o " + out.string() +
-      " & job=$!; sleep 2; "
+      " --spp 3200 --width 64 --height 48 --threads 1 -o " + out.string() + " 2> " +
+      (dir / "job.err").string() + " & job=$!; " + WaitForProgress(dir / "job.err") +
       "for p in $(pgrep -f \"ptlab render .*killed.exr\"); do "
       "grep -qz OMPI_COMM_WORLD_RANK=1 /proc/$p/environ 2>/dev/null && kill -KILL $p; done; "
       "wait $job";
   const int rc = RunShell(command, dir / "log");
-  const std::string log = ReadFile(dir / "log");
+  const std::string log = ReadFile(dir / "log") + ReadFile(dir / "job.err");
   EXPECT_NE(rc, 0) << log;
   EXPECT_NE(log.find("rank 1"), std::string::npos) << log;
   EXPECT_NE(log.find("signal 9"), std::string::npos) << log;
@@ -145,21 +153,36 @@ TEST(MpiRender, KilledRankEndsTheJobWithoutOutput) {
         << "left behind: " << entry.path();
 }
 
+// SIGINT once the render has reported progress (polled, not a fixed sleep): the job ends with a
+// non-zero status (the ranks exit 130), the image holds whole passes, and it is bit for bit the
+// image one process renders with the recorded samples per pixel.
 TEST(MpiRender, InterruptWritesTheCompletedPasses) {
   const fs::path dir = TempDir("interrupt");
   const fs::path out = dir / "int.exr";
+  const std::string args = " --width 64 --height 48 --threads 1 ";
   const std::string command = kMpirun + " -np 2 " + kBin + "ptlab render " + kCbox +
-                              " --spp 100000 --width 64 --height 48 --threads 1 -q -o " +
-                              out.string() + " & job=$!; sleep 3; kill -INT $job; wait $job";
-  RunShell(command, dir / "log");  // mpirun's own status after a signal is Open MPI's
-  const std::string log = ReadFile(dir / "log");
+                              " --spp 3200" + args + "-o " + out.string() + " 2> " +
+                              (dir / "job.err").string() + " & job=$!; " +
+                              WaitForProgress(dir / "job.err") + "kill -INT $job; wait $job";
+  const int rc = RunShell(command, dir / "log");
+  const std::string log = ReadFile(dir / "log") + ReadFile(dir / "job.err");
+  EXPECT_NE(rc, 0) << "an interrupted job must not report success\n" << log;
   ASSERT_TRUE(fs::exists(out)) << log;
   EXPECT_TRUE(fs::exists(dir / "int.png"));
+  EXPECT_NE(log.find("interrupted, wrote partial image"), std::string::npos) << log;
   EXPECT_EQ(Attribute(out, "ptlab:interrupted"), "true");
   EXPECT_EQ(Attribute(out, "ptlab:ranks"), "2");
   const int spp = std::atoi(Attribute(out, "ptlab:spp").c_str());
   EXPECT_GT(spp, 0);
+  EXPECT_LT(spp, 3200);
   EXPECT_EQ(spp % 16, 0) << "only whole passes are kept";
+  const fs::path one = dir / "one.exr";
+  ASSERT_EQ(RunShell(kBin + "ptlab render " + kCbox + " --spp " + std::to_string(spp) + args +
+                         "-q -o " + one.string(),
+                     dir / "one.log"),
+            0)
+      << ReadFile(dir / "one.log");
+  ExpectSameBits(out, one);
 }
 
 TEST(MpiChi2, SameVerdictsAndPValuesAsOneProcess) {

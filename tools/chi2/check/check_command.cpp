@@ -79,6 +79,8 @@ int RunCheckCommand(int argc, char** argv) {
   app.add_option("--name", name, "test name (image file names; default: the sample file's stem)");
   app.add_option("--images", images_dir, "write <DIR>/<name>.png and .csv");
   app.add_flag("--json", json, "print the result as one JSON object");
+  app.add_flag("--power", options.power,
+               "also print the smallest smooth pdf error the test detects (95 %; text output)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -156,6 +158,7 @@ int RunCheckCommand(int argc, char** argv) {
   } else {
     std::printf("%s\n", chi2::FormatResult(name, r).c_str());
     for (const std::string& note : r.notes) std::printf("       . %s\n", note.c_str());
+    if (options.power) std::printf("       power: %s\n", r.power_report.c_str());
   }
   return r.passed ? kExitOk : kExitFailed;
 }

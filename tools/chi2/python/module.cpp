@@ -97,7 +97,7 @@ chi2::PdfFn WrapPdf(const py::function& pdf, int dims, PythonError* python_error
 chi2::Result Chi2Test(const std::string& domain_text, const py::object& sample,
                       const py::function& pdf, int64_t samples, int res, double alpha,
                       std::optional<std::string> images, const std::string& name, int uniform_dims,
-                      uint64_t seed, int test_count) {
+                      uint64_t seed, int test_count, bool power) {
   const chi2::Domain domain = ParseDomain(domain_text);
   const int dims = domain.dims();
   chi2::Options options;
@@ -106,6 +106,7 @@ chi2::Result Chi2Test(const std::string& domain_text, const py::object& sample,
   options.alpha = alpha;
   options.seed = seed;
   options.test_count = test_count;
+  options.power = power;
   if (images) options.images_dir = *images;
   PythonError python_error;
   chi2::Result result;
@@ -178,6 +179,14 @@ PYBIND11_MODULE(ptlab, m) {
       .def_readonly("pdf_evals", &chi2::Result::pdf_evals)
       .def_readonly("failures", &chi2::Result::failures)
       .def_readonly("notes", &chi2::Result::notes)
+      .def_readonly("coarse_chi2", &chi2::Result::coarse_chi2)
+      .def_readonly("coarse_dof", &chi2::Result::coarse_dof)
+      .def_readonly("coarse_p_value", &chi2::Result::coarse_p_value)
+      .def_readonly("alpha_each", &chi2::Result::alpha_each, "level of each of the two grids")
+      .def_readonly("power_epsilon", &chi2::Result::power_epsilon)
+      .def_readonly("power_at_2", &chi2::Result::power_at_2)
+      .def_readonly("power_samples_for_2", &chi2::Result::power_samples_for_2)
+      .def_readonly("power_report", &chi2::Result::power_report)
       .def_property_readonly("observed",
                              [](const chi2::Result& r) {
                                return DoubleArray({r.yres, r.xres}, r.observed.data());
@@ -206,7 +215,7 @@ PYBIND11_MODULE(ptlab, m) {
   m.def("chi2_test", &Chi2Test, py::arg("domain"), py::arg("sample"), py::arg("pdf"),
         py::arg("samples") = 1000000, py::arg("res") = 51, py::arg("alpha") = 0.01,
         py::arg("images") = py::none(), py::arg("name") = "sampler", py::arg("uniform_dims") = 2,
-        py::arg("seed") = chi2::kDefaultSeed, py::arg("test_count") = 1,
+        py::arg("seed") = chi2::kDefaultSeed, py::arg("test_count") = 1, py::arg("power") = false,
         R"(Chi-square test of a sampler against its pdf.
 
 domain: "square", "disk", "box:x0,y0,x1,y1", "sphere" or "hemisphere".
@@ -216,6 +225,8 @@ sample: f(u) mapping an (N, uniform_dims) float32 array of uniforms to an (N, 2|
 pdf: f(points) mapping an (M, 2|3) float64 array to M densities (per unit area / steradian);
   called a few times per test with every point the adaptive integration needs next.
 images: a directory for <name>.png (observed | expected | residual) and <name>.csv.
+power: also estimate the smallest smooth pdf error the test detects with 95 % probability
+  (result.power_epsilon, power_at_2, power_samples_for_2, power_report).
 Raises ValueError on bad input (shapes, NaN or out-of-domain samples); a callback's own
 exception propagates unchanged.)");
   m.def("t_test", &TTest, py::arg("values"), py::arg("reference") = py::none(),

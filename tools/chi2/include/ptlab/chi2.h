@@ -102,6 +102,12 @@ struct Options {
   int test_count = 1;
   double integral_tol = 1e-3;  // |∫pdf − 1| allowed
   std::string images_dir;      // non-empty: write <dir>/<name>.png and .csv (see WriteImages)
+  // The second test on the same samples: coarse_blocks² blocks of equal marginal mass, for
+  // smooth errors; each test at 1 − (1 − α′)^(1/2). 0: the fine test only, at α′.
+  int coarse_blocks = 6;
+  // Also estimate the test's power: the smallest smooth error of the pdf (pdf·(1 + ε g), g a
+  // ramp or harmonic of the pdf's marginal CDFs) detected with 95 % probability (Result::power_*).
+  bool power = false;
 };
 
 /// What a test found. Cell (ix, iy) is index iy * xres + ix; iy grows with y (cos θ).
@@ -119,6 +125,19 @@ struct Result {
   std::vector<double> observed, expected;
   std::vector<std::string> failures;  // why it was rejected
   std::vector<std::string> notes;     // information (pooled cells, pdf calls)
+  // The coarse test (coarse_blocks = 0: not run) and the level each of the two tests is held to.
+  int coarse_blocks = 0;
+  double coarse_chi2 = 0;
+  int coarse_dof = 0;
+  double coarse_p_value = std::numeric_limits<double>::quiet_NaN();
+  double alpha_each = 0;
+  // With Options::power: the smallest error ε detected with 95 % probability (worst shape), the
+  // probability of detecting a 2 % error, the samples that would detect it with 95 %, and the
+  // report line ("detects a 1.3 % error with 95 % probability (worst of: ...)"). NaN/empty without.
+  double power_epsilon = std::numeric_limits<double>::quiet_NaN();
+  double power_at_2 = std::numeric_limits<double>::quiet_NaN();
+  double power_samples_for_2 = std::numeric_limits<double>::quiet_NaN();
+  std::string power_report;
 };
 
 /// Draws options.samples rows of uniforms (PCG32, seeded by options.seed and the subject's name,
