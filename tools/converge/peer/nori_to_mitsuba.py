@@ -176,6 +176,12 @@ class Port:
             return {"type": "diffuse",
                     "reflectance": {"type": "rgb", "value": self.color(p, "albedo", [0.5] * 3)}}
         if kind == "dielectric":
+            # ptlab's extensions (Schlick's Fresnel, radiance scaling) are not Nori's model.
+            for name in ("schlick", "scaleRadiance"):
+                if name in p and p[name][1].strip().lower() == "true":
+                    raise PortError(f"{self.where(p[name][2])}: dielectric '{name}' = true is "
+                                    "not ported; Mitsuba's dielectric has exact Fresnel and "
+                                    "always scales radiance on refraction (docs/peer.md)")
             return {"type": "dielectric",
                     "int_ior": self.number(p, "intIOR", NORI_INT_IOR),
                     "ext_ior": self.number(p, "extIOR", NORI_EXT_IOR)}
