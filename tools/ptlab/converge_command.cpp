@@ -155,7 +155,8 @@ Status RunPeerOne(const LoadedScene& ls, const Variant& variant, const PeerVaria
   o.scene_path = ls.path;
   o.scene = &scene;
   o.lookat = args.lookat;
-  o.spp = args.time > 0 ? (1u << 20) : uint32_t(args.spp > 0 ? args.spp : scene.sampler.sample_count);
+  o.spp = args.time > 0 ? (1u << 20)
+                        : uint32_t(args.spp > 0 ? args.spp : scene.sampler.sample_count);
   o.time = args.time;
   o.seed = seed;
   o.threads = args.threads;
@@ -299,7 +300,8 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
   // --ref auto renders with ptlab's first variant (the scene as loaded if all are peers).
   size_t ref_variant = 0;
   while (ref_variant < variants.size() && peers[ref_variant]) ++ref_variant;
-  const Variant ref_spec = ref_variant < variants.size() ? variants[ref_variant] : Variant{"scene", {}};
+  const Variant ref_spec =
+      ref_variant < variants.size() ? variants[ref_variant] : Variant{"scene", {}};
   for (auto& ls : scenes) {
     if (!auto_ref) continue;
     // The reference: ptlab's first variant with kAutoReferenceFactor times the budget.

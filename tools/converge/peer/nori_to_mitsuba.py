@@ -144,9 +144,10 @@ class Port:
                 angle = math.radians(float(step.attrs.get("angle", "0")))
                 c, si = math.cos(angle), math.sin(angle)
                 x, y, z = axis
-                s = Matrix([[c + x * x * (1 - c), x * y * (1 - c) - z * si, x * z * (1 - c) + y * si, 0],
-                            [y * x * (1 - c) + z * si, c + y * y * (1 - c), y * z * (1 - c) - x * si, 0],
-                            [z * x * (1 - c) - y * si, z * y * (1 - c) + x * si, c + z * z * (1 - c), 0],
+                k = 1 - c  # Rodrigues' rotation about the unit axis, right-handed
+                s = Matrix([[c + x * x * k, x * y * k - z * si, x * z * k + y * si, 0],
+                            [y * x * k + z * si, c + y * y * k, y * z * k - x * si, 0],
+                            [z * x * k - y * si, z * y * k + x * si, c + z * z * k, 0],
                             [0, 0, 0, 1]])
             elif step.tag == "matrix":
                 v = _vec(step.attrs.get("value", ""), w, 16)
