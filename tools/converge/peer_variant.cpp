@@ -250,7 +250,7 @@ Status RunPeer(const PeerVariant& variant, const PeerRunOptions& o,
   bool done = false;
   while (child.ReadLine(&line)) {
     nlohmann::json j = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("event")) {
+    if (j.is_discarded() || !j.is_object() || !j.contains("event") || !j["event"].is_string()) {
       // Not the protocol (a library printing to stdout): pass it on.
       std::fprintf(stderr, "%s", line.c_str());
       continue;
