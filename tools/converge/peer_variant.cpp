@@ -249,9 +249,15 @@ Status RunPeer(const PeerVariant& variant, const PeerRunOptions& o,
   std::vector<float> rgbw;
   bool done = false;
   while (child.ReadLine(&line)) {
+    // The runner keeps its stdout for the protocol; should a library still print there, its
+    // text goes to stderr, also when it ran into a protocol line without a newline.
+    const size_t brace = line.find("{\"event\"");
+    if (brace != std::string::npos && brace > 0) {
+      std::fprintf(stderr, "%s\n", line.substr(0, brace).c_str());
+      line.erase(0, brace);
+    }
     nlohmann::json j = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
     if (j.is_discarded() || !j.is_object() || !j.contains("event") || !j["event"].is_string()) {
-      // Not the protocol (a library printing to stdout): pass it on.
       std::fprintf(stderr, "%s", line.c_str());
       continue;
     }

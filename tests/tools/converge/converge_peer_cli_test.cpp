@@ -105,5 +105,27 @@ TEST(PeerConverge, SceneMitsubaCannotRenderExits2AndKeepsTheOtherVariants) {
             std::string::npos);
 }
 
+// Mitsuba's orthogonal sampler rounds 16 samples to 25 and logs a warning on every pass: the
+// passes are what the sampler took, and the log does not disturb the protocol (it once ran
+// into a protocol line and left both processes waiting for each other).
+TEST(PeerConverge, OrthogonalSamplerPassesAreWhatItTakes) {
+  if (access(PeerPython().c_str(), X_OK) != 0)
+    GTEST_SKIP() << "Mitsuba 3 is not installed (no " << PeerPython()
+                 << "); `./lab peer-install` installs it";
+  const fs::path dir = test_util::TempDir("converge/peer_orthogonal");
+  const int rc = RunShell("timeout 300 " + kPtlab + " converge " + kCbox +
+                              " --ref auto --width 16 --spp 75 --threads 1 --no-plots --variant "
+                              "integrator=path_mis --variant renderer=mitsuba3,sampler=orthogonal "
+                              "-o " + (dir / "out").string(),
+                          dir / "log.txt");
+  const std::string log = ReadFile(dir / "log.txt");
+  ASSERT_EQ(rc, 0) << log;
+  const std::string csv = ReadFile(dir / "out" / "converge.csv");
+  for (const char* row : {"\"renderer=mitsuba3,sampler=orthogonal\",1,0,25,",
+                          "\"renderer=mitsuba3,sampler=orthogonal\",1,1,50,",
+                          "\"renderer=mitsuba3,sampler=orthogonal\",1,2,75,"})
+    EXPECT_NE(csv.find(row), std::string::npos) << row << "\n" << csv;
+}
+
 }  // namespace
 }  // namespace ptlab

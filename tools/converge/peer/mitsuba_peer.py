@@ -14,6 +14,7 @@ Times: seconds and cpu_seconds are cumulative over the passes' renders only; sce
 (load_seconds) and the first render that compiles the kernels (warmup_seconds) are reported
 apart, in the ready line.
 Seeds: pass k of seed S renders with Mitsuba's seed (S * 65536 + k) mod 2^32.
+Passes have --pass-spp samples, or what the sampler rounds that to (orthogonal: 25 for 16).
 """
 
 import argparse
@@ -30,10 +31,17 @@ import nori_to_mitsuba  # noqa: E402
 
 EXIT_INPUT, EXIT_NO_MITSUBA = 2, 3
 
+# The protocol gets a private copy of stdout, and fd 1 becomes stderr: Mitsuba's logger writes
+# its warnings to fd 1 (without a final newline before its colour reset), which would otherwise
+# run into the protocol's lines.
+PROTOCOL = os.fdopen(os.dup(1), "w")
+os.dup2(2, 1)
+sys.stdout = sys.stderr
+
 
 def emit(obj):
-    sys.stdout.write(json.dumps(obj) + "\n")
-    sys.stdout.flush()
+    PROTOCOL.write(json.dumps(obj) + "\n")
+    PROTOCOL.flush()
 
 
 def fail(message, status=EXIT_INPUT):
@@ -176,6 +184,10 @@ def main():
     except Exception as e:  # Mitsuba's own parse and load errors
         fail(f"Mitsuba cannot read {a.scene}: {str(e).strip().splitlines()[-1]}")
     load_seconds = time.perf_counter() - t0
+
+    # Samplers round the sample count to what they can stratify (orthogonal: the square of a
+    # prime, so 16 becomes 25): a pass is what the sampler takes, and the events say so.
+    a.pass_spp = int(sensor.sampler().sample_count())
 
     def render(seed):
         integrator.render(scene, sensor, seed=seed, spp=a.pass_spp, develop=False)
