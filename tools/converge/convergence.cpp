@@ -126,6 +126,20 @@ double TimeToQuality(const std::vector<ConvergencePoint>& run, double target) {
   return kNaN;
 }
 
+double RelMseAtSeconds(const VariantSummary& s, double seconds) {
+  const size_t n = std::min(s.seconds.size(), s.rel_mse.size());
+  if (n == 0 || !(seconds >= s.seconds[0]) || !(seconds <= s.seconds[n - 1])) return kNaN;
+  for (size_t i = 0; i < n; ++i) {
+    if (s.seconds[i] < seconds) continue;
+    if (i == 0 || s.seconds[i] == seconds) return s.rel_mse[i];
+    const double t0 = std::log(s.seconds[i - 1]), t1 = std::log(s.seconds[i]);
+    const double f = t1 > t0 ? (std::log(seconds) - t0) / (t1 - t0) : 1.0;
+    return std::exp(std::log(s.rel_mse[i - 1]) +
+                    f * (std::log(s.rel_mse[i]) - std::log(s.rel_mse[i - 1])));
+  }
+  return kNaN;
+}
+
 std::vector<VariantSummary> Summarize(const std::vector<ConvergencePoint>& points) {
   // (scene, variant) -> seed -> points in pass order.
   std::vector<std::pair<std::string, std::string>> order;
@@ -181,6 +195,19 @@ std::vector<VariantSummary> Summarize(const std::vector<ConvergencePoint>& point
     }
     s.slope_spp = FitLogLog(s.spp, s.rel_mse);
     out.push_back(std::move(s));
+  }
+  // Against the scene's first variant, at the time both runs reached.
+  for (VariantSummary& s : out) {
+    const VariantSummary* first = nullptr;
+    for (const VariantSummary& f : out)
+      if (f.scene == s.scene) {
+        first = &f;
+        break;
+      }
+    s.matched_seconds = std::min(first->final_seconds, s.final_seconds);
+    s.matched_ratio = &s == first ? 1.0
+                                  : RelMseAtSeconds(*first, s.matched_seconds) /
+                                        RelMseAtSeconds(s, s.matched_seconds);
   }
   return out;
 }
@@ -242,6 +269,8 @@ Status WriteConvergeJson(const std::string& path, const std::vector<std::string>
     j["seconds_to_rel_mse_1e-2"] = JsonNumberOrNull(s.seconds_to_1e2);
     j["seconds_to_rel_mse_1e-3"] = JsonNumberOrNull(s.seconds_to_1e3);
     j["estimate_over_true"] = JsonNumberOrNull(s.estimate_ratio);
+    j["efficiency_over_first_at_matched_time"] = JsonNumberOrNull(s.matched_ratio);
+    j["matched_seconds"] = JsonNumberOrNull(s.matched_seconds);
     o << "    " << DumpJsonLine(j) << (i + 1 < summary.size() ? "," : "") << "\n";
   }
   o << "  ]\n}\n";
@@ -251,8 +280,9 @@ Status WriteConvergeJson(const std::string& path, const std::vector<std::string>
 std::string SummaryTable(const std::vector<VariantSummary>& summary) {
   std::ostringstream o;
   o << "| scene | variant | seeds | spp | seconds | relMSE (± sd) | efficiency 1/(relMSE·s) | "
-       "slope vs spp | s to 1e-2 | s to 1e-3 | estimate / true |\n"
-    << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+       "slope vs spp | s to 1e-2 | s to 1e-3 | estimate / true | efficiency / first's at "
+       "matched s |\n"
+    << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   auto secs = [](double v) { return std::isfinite(v) ? Num(v) : std::string("not reached"); };
   for (const VariantSummary& s : summary) {
     char rel[96];
@@ -263,7 +293,8 @@ std::string SummaryTable(const std::vector<VariantSummary>& summary) {
     o << "| " << s.scene << " | " << s.variant << " | " << s.seeds << " | "
       << (s.spp.empty() ? 0.0 : s.spp.back()) << " | " << Num(s.final_seconds) << " | " << rel
       << " | " << Num(s.efficiency) << " | " << slope << " | " << secs(s.seconds_to_1e2)
-      << " | " << secs(s.seconds_to_1e3) << " | " << Num(s.estimate_ratio) << " |\n";
+      << " | " << secs(s.seconds_to_1e3) << " | " << Num(s.estimate_ratio) << " | "
+      << Num(s.matched_ratio) << " (at " << Num(s.matched_seconds) << " s) |\n";
   }
   return o.str();
 }

@@ -57,7 +57,16 @@ struct VariantSummary {
   LogLogFit slope_spp;    // relMSE against spp
   double seconds_to_1e2 = 0, seconds_to_1e3 = 0;  // NaN when not reached
   double estimate_ratio = 0;  // estimated / true relMSE at the last pass with an estimate
+  /// Efficiency against the scene's first variant at matched time: relMSE_first(t) /
+  /// relMSE(t) at t = the shorter of the two runs' last times (log-log interpolation of the
+  /// mean curves); 1 for the first variant, NaN when the runs' times do not overlap.
+  double matched_ratio = 0;
+  double matched_seconds = 0;  // that t
 };
+
+/// relMSE of a summary's mean curve at `seconds`, interpolated log-log between the passes that
+/// straddle it; NaN outside the curve's first and last times.
+double RelMseAtSeconds(const VariantSummary& s, double seconds);
 
 /// Groups points by (scene, variant) in first-seen order and summarises them.
 std::vector<VariantSummary> Summarize(const std::vector<ConvergencePoint>& points);

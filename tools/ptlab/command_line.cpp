@@ -15,11 +15,13 @@ CLI::App* AddConvergeCommand(CLI::App* app, ConvergeArgs* a) {
   cmd->add_option("scenes", a->scenes, "Scene files (.xml)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--ref", a->refs,
                   "Reference EXR per scene (in order), or 'auto': rendered by ptlab with the "
-                  "first variant at 16x the budget")
+                  "first ptlab (not peer) variant at 16x the budget")
       ->required();
   cmd->add_option("--variant", a->variants,
                   "Overrides key=value[,key=value] (keys: " + VariantKeys() +
-                      "); repeat for each variant; none: the scene as it is");
+                      "), or a peer renderer: renderer=mitsuba3[,variant=llvm_ad_rgb|scalar_rgb]"
+                      "[,sampler=...][,max_depth=N][,rr_depth=N] (docs/peer.md); repeat for "
+                      "each variant; none: the scene as it is");
   cmd->add_option("--spp", a->spp, "Samples per pixel of each run (default: the scene's)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--time", a->time, "Seconds of rendering per run (instead of --spp)")

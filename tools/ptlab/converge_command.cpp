@@ -7,7 +7,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <set>
 #include <thread>
+
+#include <unistd.h>
 
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
@@ -22,6 +26,7 @@
 #include "tools/common/exit_codes.h"
 #include "tools/common/output_guard.h"
 #include "tools/converge/convergence.h"
+#include "tools/converge/peer_variant.h"
 #include "tools/converge/variant.h"
 #include "tools/imgdiff/imgdiff.h"
 
@@ -142,6 +147,68 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
   return !r.interrupted;
 }
 
+// One progressive run of a peer renderer: its passes measured as RunOne's.
+Status RunPeerOne(const LoadedScene& ls, const Variant& variant, const PeerVariant& peer,
+                  const ConvergeArgs& args, uint64_t seed, const std::atomic<bool>* interrupted,
+                  std::vector<ConvergencePoint>* points, std::string* setup_note,
+                  bool* stopped) {
+  namespace fs = std::filesystem;
+  const Scene& scene = ls.scene;
+  PeerRunOptions o;
+  o.scene_path = ls.path;
+  o.scene = &scene;
+  o.lookat = args.lookat;
+  o.spp = args.time > 0 ? (1u << 20)
+                        : uint32_t(args.spp > 0 ? args.spp : scene.sampler.sample_count);
+  o.time = args.time;
+  o.seed = seed;
+  o.threads = args.threads;
+  o.cancel = interrupted;
+  o.work_dir = (fs::path(args.out_dir) / ("peer_passes_" + std::to_string(::getpid()))).string();
+  PeerFilm film(scene.camera.width, scene.camera.height);
+  ImageDiffOptions diff_options;
+  auto on_pass = [&](const PeerPass& pass) {
+    film.Add(pass);
+    const ImageDiff d = CompareImages(film.Resolve(), ls.reference, diff_options);
+    ConvergencePoint p;
+    p.scene = ls.stem;
+    p.variant = variant.name;
+    p.seed = seed;
+    p.pass = pass.index;
+    p.spp = pass.spp_done;
+    p.mean_spp = pass.spp_done;
+    p.seconds = pass.seconds;
+    p.cpu_seconds = pass.cpu_seconds;
+    p.rel_mse = d.rel_mse_all, p.rmse = d.rmse_all, p.mae = d.mae_all;
+    p.bias = d.mean_rel_diff;
+    p.parity_share = d.blocks.share;
+    p.estimated_rel_mse = pass.index % 2 == 1
+                              ? EstimateRelMseFromHalves(film.ResolveHalf(0), film.ResolveHalf(1))
+                              : std::nan("");
+    points->push_back(p);
+  };
+  PeerSetup setup;
+  const Status st = RunPeer(peer, o, on_pass, &setup, stopped);
+  std::error_code ec;
+  fs::remove_all(o.work_dir, ec);
+  if (st.ok()) {
+    char note[256];
+    std::snprintf(note, sizeof note,
+                  "%s, %s, seed %llu: %s; not in the times: scene load %.3g s, first render "
+                  "(kernel compilation or cache load, and one pass) %.3g s",
+                  ls.stem.c_str(), variant.name.c_str(), static_cast<unsigned long long>(seed),
+                  setup.version.c_str(), setup.load_seconds, setup.warmup_seconds);
+    *setup_note = note;
+    // The last image, to look at.
+    std::string name = ls.stem + "_" + variant.name + "_seed" + std::to_string(seed);
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+    return WriteExr((fs::path(args.out_dir) / (name + ".exr")).string(), film.Resolve(),
+                    {{"ptlab:note", *setup_note}});
+  }
+  return st;
+}
+
 }  // namespace
 
 int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) {
@@ -157,8 +224,20 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     return kExitUsage;
   }
   std::vector<Variant> variants;
+  std::vector<std::optional<PeerVariant>> peers;  // per variant: set for renderer=...
   for (const std::string& spec : args.variants.empty() ? std::vector<std::string>{""}
                                                        : args.variants) {
+    if (IsPeerSpec(spec)) {
+      StatusOr<PeerVariant> peer = ParsePeerVariant(spec);
+      if (!peer.ok()) {
+        std::fprintf(stderr, "error: %s\n", peer.status().message().c_str());
+        return kExitUsage;
+      }
+      variants.push_back(Variant{spec, {}});
+      peers.push_back(*peer);
+      continue;
+    }
+    peers.push_back(std::nullopt);
     StatusOr<Variant> v = ParseVariant(spec);
     if (!v.ok()) {
       std::fprintf(stderr, "error: %s\n", v.status().message().c_str());
@@ -204,7 +283,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
       std::fprintf(stderr, "error: %s: %s\n", ls->path.c_str(), sane.message().c_str());
       return kExitUsage;
     }
-    // Every variant must apply before anything renders.
+    // Every variant must apply before anything renders (peers take no ptlab keys).
     for (const Variant& v : variants) {
       Scene copy = ls->scene;
       VariantTarget t(&copy);
@@ -250,12 +329,17 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     return code;
   }
 
+  // --ref auto renders with ptlab's first variant (the scene as loaded if all are peers).
+  size_t ref_variant = 0;
+  while (ref_variant < variants.size() && peers[ref_variant]) ++ref_variant;
+  const Variant ref_spec =
+      ref_variant < variants.size() ? variants[ref_variant] : Variant{"scene", {}};
   for (auto& ls : scenes) {
     if (!auto_ref) continue;
-    // The reference: the first variant with kAutoReferenceFactor times the budget.
+    // The reference: ptlab's first variant with kAutoReferenceFactor times the budget.
     Scene scene = ls->scene;
     VariantTarget t(&scene);
-    (void)ApplyVariant(variants[0], &t);
+    (void)ApplyVariant(ref_spec, &t);
     RenderOptions o;
     const uint32_t spp = uint32_t(args.spp > 0 ? args.spp : scene.sampler.sample_count);
     o.spp = args.time > 0 ? (1u << 20) : spp * kAutoReferenceFactor;
@@ -265,11 +349,11 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     o.cancel = interrupted;
     o.kernels = ls->Kernels(t.scalar);
     std::fprintf(stderr, "converge: %s: rendering the reference (variant %s, %dx the budget)\n",
-                 ls->stem.c_str(), variants[0].name.c_str(), kAutoReferenceFactor);
+                 ls->stem.c_str(), ref_spec.name.c_str(), kAutoReferenceFactor);
     RenderResult r = Render(scene, ls->bvh, o);
     if (r.interrupted) return kExitInterrupted;
     ls->reference = std::move(r.image);
-    ls->reference_note = "auto: rendered by ptlab with variant " + variants[0].name + " at " +
+    ls->reference_note = "auto: rendered by ptlab with variant " + ref_spec.name + " at " +
                          std::to_string(r.spp_done) + " spp (seed " +
                          std::to_string(kAutoReferenceSeed) + ")";
     const std::string ref_path = (fs::path(args.out_dir) / (ls->stem + "_reference.exr")).string();
@@ -283,13 +367,32 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
   // Runs interleaved: seed by seed, every scene and variant, so that machine noise over time
   // falls on all variants alike.
   std::vector<ConvergencePoint> points;
+  std::vector<std::string> peer_notes, peer_errors;
+  std::set<std::pair<std::string, size_t>> peer_failed;  // (scene, variant): not run again
   bool stopped = false;
   for (int k = 0; k < args.seeds && !stopped; ++k) {
     for (auto& ls : scenes) {
-      for (const Variant& v : variants) {
+      for (size_t vi = 0; vi < variants.size(); ++vi) {
+        const Variant& v = variants[vi];
         std::string error;
+        if (peers[vi] && peer_failed.count({ls->path, vi})) continue;
         std::fprintf(stderr, "converge: %s  %s  seed %llu\n", ls->stem.c_str(), v.name.c_str(),
                      static_cast<unsigned long long>(args.seed + uint64_t(k)));
+        if (peers[vi]) {
+          // A peer that fails (not installed, cannot read the scene) costs only its own rows.
+          std::string note;
+          const Status st = RunPeerOne(*ls, v, *peers[vi], run_args, args.seed + uint64_t(k),
+                                       interrupted, &points, &note, &stopped);
+          if (!st.ok()) {
+            std::fprintf(stderr, "error: %s: %s\n", ls->path.c_str(), st.message().c_str());
+            peer_errors.push_back(ls->stem + ", " + v.name + ": " + st.message());
+            peer_failed.insert({ls->path, vi});
+          } else if (!note.empty()) {
+            peer_notes.push_back(note);
+          }
+          if (stopped) break;
+          continue;
+        }
         if (!RunOne(*ls, v, run_args, args.seed + uint64_t(k), interrupted, &points, &error)) {
           if (!error.empty()) {  // variants were checked before: an output failed
             std::fprintf(stderr, "error: %s\n", error.c_str());
@@ -313,6 +416,11 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
   std::string md = "References:\n\n";
   for (const std::string& n : notes) md += "- " + n + "\n";
   md += "\n" + table;
+  if (!peer_notes.empty() || !peer_errors.empty()) {
+    md += "\nPeer renderers (times are of the passes' renders only):\n\n";
+    for (const std::string& n : peer_notes) md += "- " + n + "\n";
+    for (const std::string& e : peer_errors) md += "- FAILED: " + e + "\n";
+  }
   if (st.ok()) st = WriteFileAtomically((fs::path(dir) / "summary.md").string(), md);
   if (st.ok() && !args.no_plots) {
     for (const auto& ls : scenes) {
@@ -330,7 +438,14 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
   }
   std::printf("wrote %s/converge.csv, converge.json, summary.md%s\n", dir.c_str(),
               args.no_plots ? "" : " and plots");
-  return stopped ? kExitInterrupted : kExitOk;
+  if (stopped) return kExitInterrupted;
+  if (!peer_errors.empty()) {
+    std::fprintf(stderr, "error: %zu peer run(s) failed (the other variants' results are "
+                 "written):\n", peer_errors.size());
+    for (const std::string& e : peer_errors) std::fprintf(stderr, "  %s\n", e.c_str());
+    return kExitUsage;
+  }
+  return kExitOk;
 }
 
 }  // namespace ptlab

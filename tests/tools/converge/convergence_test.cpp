@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -89,6 +90,30 @@ TEST(Convergence, SummaryAveragesSeedsAndFitsTheSlope) {
   EXPECT_NEAR(s[0].efficiency, 64.0 / 2.0, 1e-9);
   EXPECT_NEAR(s[0].estimate_ratio, 1.2, 1e-12);
   EXPECT_NEAR(s[0].final_rel_mse_sd, std::sqrt(2.0) * 0.1 / 64, 1e-12);
+}
+
+// Two variants with relMSE = c / seconds: efficiency 1/(relMSE·s) = 1/c at every time, so the
+// ratio at matched time is c_first / c_other wherever the curves overlap.
+TEST(Convergence, MatchedRatioComparesAtTheTimeBothRunsReached) {
+  std::vector<ConvergencePoint> points;
+  for (const auto& [variant, c, dt] : {std::tuple<const char*, double, double>{"a", 1.0, 1.0},
+                                       {"b", 4.0, 0.3}}) {
+    for (uint32_t k = 0; k < 5; ++k) {
+      ConvergencePoint p;
+      p.scene = std::string("s"), p.variant = std::string(variant);
+      p.pass = k, p.spp = p.mean_spp = 16 * (k + 1);
+      p.seconds = dt * (k + 1);
+      p.rel_mse = c / p.seconds;
+      points.push_back(p);
+    }
+  }
+  const std::vector<VariantSummary> s = Summarize(points);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_DOUBLE_EQ(s[0].matched_ratio, 1.0);
+  EXPECT_NEAR(s[1].matched_seconds, 1.5, 1e-12);  // b's last pass; a reached 5 s
+  EXPECT_NEAR(s[1].matched_ratio, 0.25, 1e-9);
+  EXPECT_NEAR(RelMseAtSeconds(s[0], 1.5), 1.0 / 1.5, 1e-9);  // between a's passes 1 and 2
+  EXPECT_TRUE(std::isnan(RelMseAtSeconds(s[0], 0.5)));       // before a's first pass
 }
 
 }  // namespace
