@@ -32,7 +32,7 @@
 #include "engine/render/wavefront.h"
 #include "hwy/targets.h"
 #include "simd/bvh8.h"
-#include "simd/wavefront_kernels.h"
+#include "simd/render_setup.h"
 #include "tests/engine/bvh/test_meshes.h"
 #include "tools/imgdiff/imgdiff.h"
 
@@ -959,11 +959,10 @@ void ExpectPacketRenderMatchesOracle(const std::string& path, int width) {
   const double aspect = double(scene.camera.width) / double(scene.camera.height);
   scene.camera.width = width;
   scene.camera.height = int(std::lround(width / aspect));
-  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-  const Bvh8 bvh8 = BuildBvh8(bvh);
-  const TriangleRows rows = BuildTriangleRows(scene);
-  const WavefrontKernels packets = SimdWavefrontKernels(bvh8, rows);
-  const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
+  const RenderSetup setup(scene, KernelChoice::kSimd);
+  const Bvh& bvh = setup.bvh();
+  const WavefrontKernels& packets = setup.simd_kernels();
+  const WavefrontKernels& oracle = setup.oracle_kernels();
   using Type = IntegratorDesc::Type;
   const Type own = scene.integrator.type;
   for (const SamplerType sampler : {SamplerType::kIndependent, SamplerType::kSobol}) {
@@ -1041,13 +1040,11 @@ TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   const Scene& scene = *loaded;
   ASSERT_EQ(scene.integrator.type, IntegratorDesc::Type::kPathMis);
-  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-  const Bvh8 bvh8 = BuildBvh8(bvh);
-  const TriangleRows rows = BuildTriangleRows(scene);
-  const WavefrontKernels packets = SimdWavefrontKernels(bvh8, rows);
+  const RenderSetup setup(scene, KernelChoice::kSimd);
+  const WavefrontKernels& packets = setup.kernels();
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
-  const RenderContext ctx{scene, bvh};
+  const RenderContext ctx{scene, setup.bvh()};
   FilmBlock block(300, 300, 40, 40);
   TileSampleStats stats;
   RenderTilePacket8(ctx, packets, camera, filter, 304, 304, 336, 336, 0, 16, 1, &block, &stats);
@@ -1130,8 +1127,9 @@ TEST(Traverse8Render, OracleWavefrontMatchesScalarWhenThroughputOverflows) {
   for (size_t i = 0; i < diffuse.size(); ++i) {
     diffuse.albedo_r[i] = diffuse.albedo_g[i] = diffuse.albedo_b[i] = 1e19f;
   }
-  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-  const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
+  const RenderSetup setup(scene, KernelChoice::kOracle);
+  const Bvh& bvh = setup.bvh();
+  const WavefrontKernels& oracle = setup.kernels();
   for (const IntegratorDesc::Type type :
        {IntegratorDesc::Type::kPathMis, IntegratorDesc::Type::kPathEms}) {
     scene.integrator.type = type;
