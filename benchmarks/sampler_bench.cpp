@@ -11,7 +11,7 @@
 
 #include "engine/core/rng.h"
 #include "engine/image/image.h"
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/sampler.h"
 #include "simd/environment8.h"

@@ -8,7 +8,7 @@
 
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/conductor_presets.h"
-#include "engine/bsdf/shade_batch.h"
+#include "engine/wavefront/bsdf.h"
 #include "engine/core/rng.h"
 #include "engine/sampling/warp.h"
 #include "simd/shade8.h"

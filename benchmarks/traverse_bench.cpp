@@ -30,7 +30,7 @@
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
 #include "engine/render/packet_render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "engine/sampling/warp.h"
 #include "engine/scene/scene.h"
 #include "simd/bvh8.h"

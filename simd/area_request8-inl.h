@@ -15,7 +15,7 @@
 #include <cstdint>
 
 #include "engine/bsdf/bsdf.h"
-#include "engine/render/area_request_batch.h"
+#include "engine/wavefront/area_request.h"
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"

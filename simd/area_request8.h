@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "engine/render/area_request_batch.h"
+#include "engine/wavefront/area_request.h"
 #include "engine/scene/scene.h"
 
 namespace ptlab::simd {

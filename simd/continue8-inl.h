@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/render/continue_batch.h"
+#include "engine/wavefront/continuation.h"
 #include "hwy/highway.h"
 #include "simd/store_selected-inl.h"
 #include "simd/transpose4-inl.h"

@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "engine/render/continue_batch.h"
+#include "engine/wavefront/continuation.h"
 
 namespace ptlab::simd {
 

@@ -12,7 +12,7 @@
 #include <cstdint>
 
 #include "engine/core/vec.h"
-#include "engine/light/distant_disk_batch.h"
+#include "engine/wavefront/distant_disk.h"
 #include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/light/distant_disk_batch.h"
+#include "engine/wavefront/distant_disk.h"
 #include "engine/scene/emitter_tables.h"
 
 namespace ptlab::simd {

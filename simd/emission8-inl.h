@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/render/emission_batch.h"
+#include "engine/wavefront/emission.h"
 #include "hwy/highway.h"
 #include "simd/light_pdf8-inl.h"
 #include "simd/shading_point8-inl.h"

@@ -3,7 +3,7 @@
 
 #include <cstddef>
 
-#include "engine/render/emission_batch.h"
+#include "engine/wavefront/emission.h"
 
 namespace ptlab::simd {
 

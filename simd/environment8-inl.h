@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"

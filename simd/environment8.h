@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 #include "engine/scene/emitter_tables.h"
 
 namespace ptlab::simd {

@@ -11,7 +11,7 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/render/render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "simd/bvh8.h"
 #include "simd/triangle_rows.h"
 

@@ -16,7 +16,7 @@
 
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/fresnel.h"
-#include "engine/bsdf/shade_batch.h"
+#include "engine/wavefront/bsdf.h"
 #include "engine/scene/material_tables.h"
 #include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"

@@ -4,14 +4,14 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/bsdf/shade_batch.h"
+#include "engine/wavefront/bsdf.h"
 #include "engine/scene/material_tables.h"
 
 namespace ptlab::simd {
 
 // Every function here runs an 8-wide Highway kernel (hn::CappedTag<float, 8>: one iteration
 // per 8 rows on AVX2/AVX-512, two on SSE4) chosen at run time among the compiled targets, and
-// has a scalar oracle of the same name in namespace ptlab (engine/bsdf/shade_batch.h). Arrays
+// has a scalar oracle of the same name in namespace ptlab (engine/wavefront/bsdf.h). Arrays
 // hold n entries (any n; no padding or alignment needed); outputs may not alias inputs.
 // Directions are unit vectors in the local shading frame (the "non-unit" guarantee is only: finite out).
 // The kernels repeat the oracle's operations in order. They differ from it only through

@@ -3,7 +3,7 @@
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "simd/shadow_rows8.cpp"
-#include "engine/render/shadow_rows.h"
+#include "engine/wavefront/shadow_rows.h"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 #include "simd/store_selected-inl.h"

@@ -3,7 +3,7 @@
 
 #include <cstddef>
 
-#include "engine/render/shadow_rows.h"
+#include "engine/wavefront/shadow_rows.h"
 
 namespace ptlab::simd {
 

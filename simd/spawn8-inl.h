@@ -14,7 +14,7 @@
 
 #include "engine/core/packet8.h"
 #include "engine/render/interaction.h"
-#include "engine/render/spawn_batch.h"
+#include "engine/wavefront/spawn.h"
 #include "hwy/highway.h"
 #include "simd/shading_point8-inl.h"
 

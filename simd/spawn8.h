@@ -5,7 +5,7 @@
 
 #include "engine/core/packet8.h"
 #include "engine/render/interaction.h"
-#include "engine/render/spawn_batch.h"
+#include "engine/wavefront/spawn.h"
 
 namespace ptlab::simd {
 

@@ -14,7 +14,7 @@
 #include <cstring>
 
 #include "engine/core/rng.h"
-#include "engine/render/vertex_batch.h"
+#include "engine/wavefront/vertices.h"
 #include "engine/sampling/sampler.h"
 #include "hwy/highway.h"
 #include "simd/pcg8-inl.h"

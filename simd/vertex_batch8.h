@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "engine/render/vertex_batch.h"
+#include "engine/wavefront/vertices.h"
 #include "engine/scene/scene.h"
 
 namespace ptlab::simd {

@@ -1,7 +1,7 @@
-// simd/'s table of the wavefront's stage kernels (engine/render/wavefront.h).
+// simd/'s table of the wavefront's stage kernels (engine/wavefront/wavefront.h).
 #pragma once
 
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "simd/bvh8.h"
 #include "simd/triangle_rows.h"
 

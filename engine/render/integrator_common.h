@@ -1,5 +1,5 @@
 // Per-vertex pieces of the integrators (emission, MIS weights, emitter samples with a deferred
-// shadow test), shared by the scalar integrators and the 8-wide wavefront (wavefront.cpp).
+// shadow test), shared by the scalar integrators and the 8-wide wavefront (engine/wavefront/).
 #pragma once
 
 #include <algorithm>

@@ -12,7 +12,7 @@
 #include "engine/core/frame.h"
 #include "engine/core/rng.h"
 #include "engine/light/area_light.h"
-#include "engine/render/area_request_batch.h"
+#include "engine/wavefront/area_request.h"
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 

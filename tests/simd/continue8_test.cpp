@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "engine/core/rng.h"
-#include "engine/render/continue_batch.h"
+#include "engine/wavefront/continuation.h"
 #include "simd/targets.h"                // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/row_checks.h"  // hwy/targets.h, after the policy

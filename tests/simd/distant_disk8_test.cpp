@@ -18,7 +18,7 @@
 #include "engine/core/rng.h"
 #include "engine/core/transform.h"
 #include "engine/light/distant_disk.h"
-#include "engine/light/distant_disk_batch.h"
+#include "engine/wavefront/distant_disk.h"
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/sample_columns.h"
 

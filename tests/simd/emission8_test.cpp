@@ -18,7 +18,7 @@
 
 #include "engine/core/check.h"
 #include "engine/core/rng.h"
-#include "engine/render/emission_batch.h"
+#include "engine/wavefront/emission.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/row_checks.h"

@@ -18,7 +18,7 @@
 #include "engine/core/rng.h"
 #include "engine/core/transform.h"
 #include "engine/image/image_io.h"
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/warp.h"
 #include "simd/targets.h"  // first: the same target policy as simd/

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "engine/core/rng.h"
-#include "engine/render/shadow_rows.h"
+#include "engine/wavefront/shadow_rows.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 

@@ -16,7 +16,7 @@
 
 #include "engine/core/rng.h"
 #include "engine/render/integrator_common.h"
-#include "engine/render/spawn_batch.h"
+#include "engine/wavefront/spawn.h"
 #include "tests/simd/for_each_target.h"
 
 namespace ptlab {

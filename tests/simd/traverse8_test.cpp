@@ -29,7 +29,7 @@
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/packet_render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "hwy/targets.h"
 #include "simd/bvh8.h"
 #include "simd/render_setup.h"
@@ -882,7 +882,7 @@ TEST(Traverse8, EmptyAndSingleTriangleScenes) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The wavefront (engine/render/wavefront.h) with the oracle's kernel table against the scalar
+// The wavefront (engine/wavefront/wavefront.h) with the oracle's kernel table against the scalar
 // tile loop (RenderTileScalar): bit-identical film on the Nori scenes, for every integrator.
 // With simd/'s table (SIMD shading, a few ulp off its oracle) against the oracle's: issue 11's
 // render contract, relMSE ≤ 1e-3 and every block of PARITY.md's 32×32 grid within 1 %.

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "engine/core/rng.h"
-#include "engine/render/vertex_batch.h"
+#include "engine/wavefront/vertices.h"
 #include "engine/sampling/guide_table.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"

@@ -13,7 +13,7 @@
 #include "engine/core/transform.h"
 #include "engine/image/image_io.h"
 #include "engine/light/distant_disk.h"
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/distribution2d.h"
 #include "simd/distant_disk8.h"

@@ -13,7 +13,7 @@
 #include "engine/bvh/bvh.h"
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "simd/render_setup.h"

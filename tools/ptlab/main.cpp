@@ -28,7 +28,7 @@
 #include "engine/render/integrator.h"
 #include "engine/render/camera.h"
 #include "engine/render/render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "engine/io/text_parsing.h"
 #include "engine/scene/scene_bytes.h"
 #include "engine/scene/scene_limits.h"

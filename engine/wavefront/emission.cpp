@@ -1,4 +1,4 @@
-#include "engine/render/emission_batch.h"
+#include "engine/wavefront/emission.h"
 
 #include "engine/render/integrator_common.h"
 

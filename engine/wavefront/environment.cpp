@@ -1,6 +1,6 @@
 // Environment-map samples and evaluations for a batch of rows: SampleEnvironment,
 // EnvironmentRadiance and EnvironmentPdf row by row.
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 
 #include "engine/light/environment_map.h"
 

@@ -1,4 +1,4 @@
-#include "engine/render/shadow_rows.h"
+#include "engine/wavefront/shadow_rows.h"
 
 namespace ptlab {
 

@@ -1,5 +1,5 @@
 // Distant-disk samples for a batch of rows: SampleDistantDisk row by row.
-#include "engine/light/distant_disk_batch.h"
+#include "engine/wavefront/distant_disk.h"
 
 #include "engine/light/distant_disk.h"
 

@@ -1,4 +1,4 @@
-#include "engine/render/continue_batch.h"
+#include "engine/wavefront/continuation.h"
 
 namespace ptlab {
 

@@ -1,6 +1,6 @@
 // PartitionByMaterial against a plain stable counting sort: odd and even sizes, one tag for
 // every row, invalid refs, runs of one tag.
-#include "engine/bsdf/shade_batch.h"
+#include "engine/wavefront/bsdf.h"
 
 #include <gtest/gtest.h>
 

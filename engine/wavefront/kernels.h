@@ -1,29 +1,29 @@
-// The wavefront render path (wavefront.cpp) and the typed table of its stage kernels, which the
-// scalar oracle (engine/) and simd/ each implement once.
+// The typed table of the wavefront's stage kernels, which the scalar oracle (engine/, kernels.cpp
+// and each stage's file) and simd/ (simd/wavefront_kernels.h) each implement once.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 
-#include "engine/bsdf/shade_batch.h"
 #include "engine/bvh/bvh.h"
 #include "engine/core/packet8.h"
 #include "engine/light/area_light.h"
-#include "engine/light/distant_disk_batch.h"
-#include "engine/light/environment_batch.h"
-#include "engine/render/area_request_batch.h"
 #include "engine/render/camera.h"
-#include "engine/render/continue_batch.h"
-#include "engine/render/emission_batch.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
 #include "engine/render/interaction.h"
 #include "engine/render/packet_render.h"
-#include "engine/render/shadow_rows.h"
-#include "engine/render/spawn_batch.h"
-#include "engine/render/vertex_batch.h"
+#include "engine/wavefront/area_request.h"
+#include "engine/wavefront/bsdf.h"
+#include "engine/wavefront/continuation.h"
+#include "engine/wavefront/distant_disk.h"
+#include "engine/wavefront/emission.h"
+#include "engine/wavefront/environment.h"
+#include "engine/wavefront/shadow_rows.h"
+#include "engine/wavefront/spawn.h"
+#include "engine/wavefront/vertices.h"
 
 namespace ptlab {
 
@@ -66,7 +66,7 @@ struct WavefrontKernels {
 
   // BSDF stage: one material's kernel over a contiguous batch of rows that all have tag `tag`
   // (the wavefront writes each continuing entry's row into its tag's group of rows and calls
-  // this once per tag present; engine/bsdf/shade_batch.h). Oracle: ptlab::ShadeBatch
+  // this once per tag present; engine/wavefront/bsdf.h). Oracle: ptlab::ShadeBatch
   // (BsdfSampleDirection per row, so the oracle table keeps the scalar path's bits); SIMD:
   // simd::ShadeBatch, within the contract of simd/shade8.h. The wavefront samples only
   // (in.wl.x == nullptr: f and pdf_l are not written).
@@ -88,7 +88,7 @@ struct WavefrontKernels {
                      const AreaLightBatchOutputs& out) = nullptr;
 
   // Emitter stage, the area-light samples' finish: shadow ray, BSDF evaluation, MIS weight
-  // (when `mis`) and contribution of each sample (engine/render/area_request_batch.h), one
+  // (when `mis`) and contribution of each sample (engine/wavefront/area_request.h), one
   // call per material tag on the rows whose shading point has that tag (the wavefront writes
   // each area-light row into its tag's group of rows, as for the bsdf slot; the shading points
   // are read where the wavefront keeps them, by queue entry); the wavefront then queues each
@@ -107,8 +107,8 @@ struct WavefrontKernels {
   size_t (*shadow_rows)(size_t n, const ShadowRowInputs& in, const ShadowRowOutputs& out) = nullptr;
 
   // Emitter stage, environment maps: the wave's samples of one map (every emitter sample whose
-  // pick is environment map `map`) as one batch over SoA columns (engine/light/
-  // environment_batch.h), one call per map picked; the wavefront finishes each returned sample
+  // pick is environment map `map`) as one batch over SoA columns (engine/wavefront/
+  // environment.h), one call per map picked; the wavefront finishes each returned sample
   // (pdf > 0) with integrator::InfiniteEmitterSampleRequest. Oracle:
   // ptlab::SampleEnvironmentBatch (SampleEnvironment per row); SIMD:
   // simd::SampleEnvironmentBatch, radiance bit-identical, wi and pdf within 2e-6
@@ -161,8 +161,8 @@ struct WavefrontKernels {
   void (*spawn)(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                 RayPacket8* out) = nullptr;
 
-  // Sampling stage, the decisions at a material group's vertices (engine/render/
-  // vertex_batch.h): with the independent sampler, one emitter sample per vertex and only
+  // Sampling stage, the decisions at a material group's vertices (engine/wavefront/
+  // vertices.h): with the independent sampler, one emitter sample per vertex and only
   // area lights (VertexBatchFits), each vertex's emitter pick, Nori's roulette and BSDF numbers
   // as the rows of the emitter and BSDF stages' columns, one call per group; other scenes and
   // integrators take the wavefront's per-row loop. Oracle: ptlab::DecideVertices (that loop's
@@ -172,7 +172,7 @@ struct WavefrontKernels {
                    const VertexBatchInputs& in, const VertexBatchPaths& paths,
                    VertexBatchOutputs* out) = nullptr;
 
-  // BSDF stage, its finish (engine/render/continue_batch.h): after the bsdf slot, each sampled
+  // BSDF stage, its finish (engine/wavefront/continuation.h): after the bsdf slot, each sampled
   // path's throughput, eta, specular flag, previous pdf and point, and the spawn row and next
   // queue owner of each path that goes on, one call per material tag on the tag's rows of the
   // BSDF columns (each row of a different path), appending at the running count of spawn rows.
@@ -182,8 +182,8 @@ struct WavefrontKernels {
   void (*continuation)(const ContinueBatchRules& rules, size_t n, const ContinueBatchInputs& in,
                        const ContinueBatchPaths& paths, ContinueBatchOutputs* out) = nullptr;
 
-  // Shading stage, the hits on area lights (HitLists' area entries, engine/render/
-  // emission_batch.h): each hit's emitted light toward its ray, MIS-weighted against the
+  // Shading stage, the hits on area lights (HitLists' area entries, engine/wavefront/
+  // emission.h): each hit's emitted light toward its ray, MIS-weighted against the
   // emitter sampling of the vertex before, added to its path, one call per wave. Oracle:
   // ptlab::AddAreaEmissions (the scalar integrators' operations per row, so the oracle table
   // keeps the scalar path's bits); SIMD: simd::AddAreaEmissions, bit-identical up to NaN
@@ -210,48 +210,5 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh);
 /// True when PTLAB_FORCE_SCALAR is set (to anything but "" or "0"): the tools then render with
 /// OracleWavefrontKernels, as `--scalar` does. The kernels themselves never read it.
 bool ForceScalar();
-
-class Wavefront;  // wavefront.cpp
-
-/// A worker thread's wavefront: path state, ray queues and per-bounce columns, kept from tile to
-/// tile. Its containers are cleared between waves and tiles, never shrunk, so a thread
-/// allocates in its first tiles only and Bytes() is its high-water mark.
-class WavefrontWorkspace {
- public:
-  WavefrontWorkspace();
-  ~WavefrontWorkspace();
-  WavefrontWorkspace(WavefrontWorkspace&&) noexcept;
-  WavefrontWorkspace& operator=(WavefrontWorkspace&&) noexcept;
-
-  /// Heap bytes of every queue and column: capacity × element size.
-  size_t Bytes() const;
-  /// The wavefront itself (wavefront.cpp; RenderTilePacket8 runs it).
-  Wavefront& wave() { return *wave_; }
-
- private:
-  std::unique_ptr<Wavefront> wave_;
-};
-
-/// Renders samples [s_begin, s_end) of pixels [x0, x1) x [y0, y1) into `block` as a wavefront:
-/// the paths of a few pixel rows and all the samples are generated as camera packets of 4x2
-/// pixels at one sample index, then bounce by bounce go through
-///   traversal (intersect8 per packet) -> shading (emission, environment) -> sampling (emitter
-///   samples, roulette, BSDF) -> shadow traversal (occluded8 per packet) -> accumulation,
-/// the surviving paths' rays written into the next queue (grouped by material tag, each group in
-/// queue order, a deterministic order that changes no result), so packets stay full. Each
-/// path draws from its own Pcg32(PixelSeed(seed, pixel), s) in the scalar integrator's order
-/// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
-/// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF, area-light request (its
-/// BSDF evaluation), environment and distant-disk kernels differ from their oracles by a few
-/// ulp (simd/shade8.h, simd/area_request8.h, simd/environment8.h, simd/distant_disk8.h), so the
-/// image agrees with the oracle's within the render contract of tests/simd/traverse8_test.cpp
-/// (relMSE, block means) but not bit for bit.
-/// Every integrator type is supported. The paths run in `workspace` (one per thread, reused from
-/// tile to tile; null: a workspace for this tile alone).
-void RenderTilePacket8(const RenderContext& ctx, const WavefrontKernels& kernels,
-                       const Camera& camera, const PixelFilter& filter, int x0, int y0, int x1,
-                       int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed, FilmBlock* block,
-                       TileSampleStats* stats, const PixelSampling* pixels = nullptr,
-                       WavefrontWorkspace* workspace = nullptr);
 
 }  // namespace ptlab

@@ -1,5 +1,5 @@
 // The emitter stage's finish of a batch of area-light samples: the scalar oracle.
-#include "engine/render/area_request_batch.h"
+#include "engine/wavefront/area_request.h"
 
 namespace ptlab {
 

@@ -35,7 +35,6 @@ inline Ray SpawnRayAt(const SurfaceInteraction& its, const Vec3f& wi_local) {
 /// RayQueue::Push leaves them). `out` holds (n + 7) / 8 packets; the rows of `its` that
 /// in.entry names are those of hits, as the interaction slot writes them (frame = Frame(n)).
 /// SIMD twin: simd::SpawnRayBatch (simd/spawn8.h).
-void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
-                   RayPacket8* out);
+void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in, RayPacket8* out);
 
 }  // namespace ptlab

@@ -1,5 +1,5 @@
 // Batched shading over SoA arrays (scalar oracle of simd/shade8.h) and the partition by material.
-#include "engine/bsdf/shade_batch.h"
+#include "engine/wavefront/bsdf.h"
 
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/bsdf.h"

@@ -1,4 +1,4 @@
-#include "engine/render/vertex_batch.h"
+#include "engine/wavefront/vertices.h"
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
 // The spawn stage's oracle: SpawnRayAt row by row.
-#include "engine/render/spawn_batch.h"
+#include "engine/wavefront/spawn.h"
 
 namespace ptlab {
 

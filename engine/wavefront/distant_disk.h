@@ -4,9 +4,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/light/environment_batch.h"
 #include "engine/light/environment_sample.h"
 #include "engine/scene/emitter_tables.h"
+#include "engine/wavefront/environment.h"
 
 namespace ptlab {
 
