@@ -12,7 +12,116 @@
 #include "engine/core/memory.h"
 #include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
+#include "engine/wavefront/soa.h"
 #include "engine/wavefront/wavefront.h"
+
+// The column lists of the wave's SoA batches, X(container, element type, name), one column a
+// line (engine/wavefront/soa.h); the structs below say what each batch's rows are.
+
+#define PTLAB_WAVE_BSDF_COLUMNS(X)         \
+  X(std::vector, uint32_t, path)           \
+  X(std::vector, uint32_t, entry)          \
+  X(std::vector, uint32_t, material_index) \
+  X(std::vector, float, roulette_scale)    \
+  X(AlignedVector, float, wo_x)            \
+  X(AlignedVector, float, wo_y)            \
+  X(AlignedVector, float, wo_z)            \
+  X(AlignedVector, float, u_lobe)          \
+  X(AlignedVector, float, u_x)             \
+  X(AlignedVector, float, u_y)             \
+  X(AlignedVector, float, wi_x)            \
+  X(AlignedVector, float, wi_y)            \
+  X(AlignedVector, float, wi_z)            \
+  X(AlignedVector, float, weight_r)        \
+  X(AlignedVector, float, weight_g)        \
+  X(AlignedVector, float, weight_b)        \
+  X(AlignedVector, float, pdf)             \
+  X(AlignedVector, float, eta)
+
+#define PTLAB_WAVE_SPAWN_COLUMNS(X) \
+  X(std::vector, uint32_t, entry)   \
+  X(AlignedVector, float, wi_x)     \
+  X(AlignedVector, float, wi_y)     \
+  X(AlignedVector, float, wi_z)
+
+#define PTLAB_WAVE_EMITTER_COLUMNS(X) \
+  X(std::vector, uint32_t, request)   \
+  X(std::vector, uint32_t, entry)     \
+  X(std::vector, uint32_t, light)     \
+  X(std::vector, float, pick_pmf)     \
+  X(AlignedVector, float, ref_x)      \
+  X(AlignedVector, float, ref_y)      \
+  X(AlignedVector, float, ref_z)      \
+  X(AlignedVector, float, wo_x)       \
+  X(AlignedVector, float, wo_y)       \
+  X(AlignedVector, float, wo_z)       \
+  X(AlignedVector, float, u_x)        \
+  X(AlignedVector, float, u_y)        \
+  X(AlignedVector, float, p_x)        \
+  X(AlignedVector, float, p_y)        \
+  X(AlignedVector, float, p_z)        \
+  X(AlignedVector, float, n_x)        \
+  X(AlignedVector, float, n_y)        \
+  X(AlignedVector, float, n_z)        \
+  X(AlignedVector, float, ng_x)       \
+  X(AlignedVector, float, ng_y)       \
+  X(AlignedVector, float, ng_z)       \
+  X(AlignedVector, float, pdf)        \
+  X(std::vector, uint8_t, traced)     \
+  X(AlignedVector, float, o_x)        \
+  X(AlignedVector, float, o_y)        \
+  X(AlignedVector, float, o_z)        \
+  X(AlignedVector, float, d_x)        \
+  X(AlignedVector, float, d_y)        \
+  X(AlignedVector, float, d_z)        \
+  X(AlignedVector, float, r)          \
+  X(AlignedVector, float, g)          \
+  X(AlignedVector, float, b)
+
+#define PTLAB_WAVE_INFINITE_LIGHT_COLUMNS(X) \
+  X(std::vector, uint32_t, request)          \
+  X(std::vector, uint32_t, entry)            \
+  X(std::vector, float, pick_pmf)            \
+  X(AlignedVector, float, u_x)               \
+  X(AlignedVector, float, u_y)               \
+  X(AlignedVector, float, wi_x)              \
+  X(AlignedVector, float, wi_y)              \
+  X(AlignedVector, float, wi_z)              \
+  X(AlignedVector, float, r)                 \
+  X(AlignedVector, float, g)                 \
+  X(AlignedVector, float, b)                 \
+  X(AlignedVector, float, pdf)
+
+#define PTLAB_WAVE_SHADOW_ROW_COLUMNS(X) \
+  X(std::vector, uint32_t, request)      \
+  X(AlignedVector, float, o_x)           \
+  X(AlignedVector, float, o_y)           \
+  X(AlignedVector, float, o_z)           \
+  X(AlignedVector, float, d_x)           \
+  X(AlignedVector, float, d_y)           \
+  X(AlignedVector, float, d_z)           \
+  X(AlignedVector, float, r)             \
+  X(AlignedVector, float, g)             \
+  X(AlignedVector, float, b)
+
+#define PTLAB_WAVE_SPLAT_COLUMNS(X) \
+  X(AlignedVector, float, sx)       \
+  X(AlignedVector, float, sy)       \
+  X(AlignedVector, float, r)        \
+  X(AlignedVector, float, g)        \
+  X(AlignedVector, float, b)
+
+#define PTLAB_WAVE_ESCAPED_COLUMNS(X) \
+  X(std::vector, uint32_t, q)         \
+  X(std::vector, uint8_t, mis)        \
+  X(std::vector, float, w_x)          \
+  X(std::vector, float, w_y)          \
+  X(std::vector, float, w_z)          \
+  X(std::vector, float, r)            \
+  X(std::vector, float, g)            \
+  X(std::vector, float, b)            \
+  X(std::vector, float, pdf)          \
+  X(std::vector, Color3f, light)
 
 namespace ptlab {
 
@@ -180,27 +289,18 @@ class alignas(kColumnAlignment) Wavefront {
   /// wi (local), weight f·|cos θi|/pdf, pdf (0: no sample) and eta (outputs, written by the
   /// bsdf slot).
   struct BsdfColumns {
-    std::vector<uint32_t> path, entry, material_index;
-    std::vector<float> roulette_scale;
-    AlignedVector<float> wo_x, wo_y, wo_z, u_lobe, u_x, u_y;
-    AlignedVector<float> wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta;
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_BSDF_COLUMNS)
     // Groups 0..kMaterialTagCount - 1 by tag, group kMaterialTagCount: no material.
     uint32_t begin[kMaterialGroups] = {}, next[kMaterialGroups] = {};
     size_t rows = 0;
 
     size_t size() const { return rows; }
-    size_t Bytes() const {
-      return VectorsBytes(path, entry, material_index, roulette_scale, wo_x, wo_y, wo_z, u_lobe,
-                          u_x, u_y, wi_x, wi_y, wi_z, weight_r, weight_g, weight_b, pdf, eta);
-    }
     /// As EmitterColumns::Clear: room for `capacity` rows (inputs and outputs), written in
     /// place; only grows. group_rows: the most rows each group can get (they sum to at most
     /// capacity).
     void Clear(size_t capacity, const uint32_t (&group_rows)[kMaterialGroups]) {
       rows = 0;
-      GrowColumns(capacity, &path, &entry, &material_index, &roulette_scale, &wo_x, &wo_y, &wo_z,
-                  &u_lobe, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &weight_r, &weight_g, &weight_b, &pdf,
-                  &eta);
+      Grow(capacity);
       uint32_t at = 0;
       for (int g = 0; g < kMaterialGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
@@ -217,11 +317,9 @@ class alignas(kColumnAlignment) Wavefront {
   /// The spawn stage's SoA columns, one row per path that goes on, in next-queue order: the
   /// queue entry of its shading point and the sampled direction in that point's frame.
   struct SpawnColumns {
-    std::vector<uint32_t> entry;
-    AlignedVector<float> wi_x, wi_y, wi_z;
-    size_t Bytes() const { return VectorsBytes(entry, wi_x, wi_y, wi_z); }
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_SPAWN_COLUMNS)
     /// Room for `capacity` rows, written in place; only grows.
-    void Clear(size_t capacity) { GrowColumns(capacity, &entry, &wi_x, &wi_y, &wi_z); }
+    void Clear(size_t capacity) { Grow(capacity); }
     SpawnInputs Inputs() const { return {entry.data(), wi_x.data(), wi_y.data(), wi_z.data()}; }
   };
 
@@ -234,31 +332,18 @@ class alignas(kColumnAlignment) Wavefront {
   /// point), wo (local) and numbers (inputs); the light sample (written by the area_light slot);
   /// the request: traced flag, shadow ray and contribution (written by the area_request slot).
   struct EmitterColumns {
-    std::vector<uint32_t> request, entry, light;
-    std::vector<float> pick_pmf;
-    AlignedVector<float> ref_x, ref_y, ref_z, wo_x, wo_y, wo_z, u_x, u_y;
-    AlignedVector<float> p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf;
-    std::vector<uint8_t> traced;
-    AlignedVector<float> o_x, o_y, o_z, d_x, d_y, d_z, r, g, b;
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_EMITTER_COLUMNS)
     uint32_t begin[kMaterialGroups] = {}, next[kMaterialGroups] = {};
     size_t rows = 0;
 
     size_t size() const { return rows; }
-    size_t Bytes() const {
-      return VectorsBytes(request, entry, light, pick_pmf, ref_x, ref_y, ref_z, wo_x, wo_y, wo_z,
-                          u_x, u_y, p_x, p_y, p_z, n_x, n_y, n_z, ng_x, ng_y, ng_z, pdf, traced,
-                          o_x, o_y, o_z, d_x, d_y, d_z, r, g, b);
-    }
     /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the
     /// rows are written in place, which keeps the per-sample loop free of push_back calls).
     /// The columns only grow, so a wave sizes them once. group_rows: the most rows each
     /// group can get (they sum to at most capacity).
     void Clear(size_t capacity, const uint32_t (&group_rows)[kMaterialGroups]) {
       rows = 0;
-      GrowColumns(capacity, &request, &entry, &light, &pick_pmf, &ref_x, &ref_y, &ref_z, &wo_x,
-                  &wo_y, &wo_z, &u_x, &u_y, &p_x, &p_y, &p_z, &n_x, &n_y, &n_z, &ng_x, &ng_y, &ng_z,
-                  &pdf);
-      GrowColumns(capacity, &traced, &o_x, &o_y, &o_z, &d_x, &d_y, &d_z, &r, &g, &b);
+      Grow(capacity);
       uint32_t at = 0;
       for (int t = 0; t < kMaterialGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
     }
@@ -276,20 +361,14 @@ class alignas(kColumnAlignment) Wavefront {
   /// entry, pick probability and numbers (inputs); the sample (outputs, written by the
   /// environment or distant_disk slot).
   struct InfiniteLightColumns {
-    std::vector<uint32_t> request, entry;
-    std::vector<float> pick_pmf;
-    AlignedVector<float> u_x, u_y, wi_x, wi_y, wi_z, r, g, b, pdf;
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_INFINITE_LIGHT_COLUMNS)
     size_t rows = 0;
 
     size_t size() const { return rows; }
-    size_t Bytes() const {
-      return VectorsBytes(request, entry, pick_pmf, u_x, u_y, wi_x, wi_y, wi_z, r, g, b, pdf);
-    }
     /// As EmitterColumns::Clear: room for `capacity` rows, written in place; only grows.
     void Clear(size_t capacity) {
       rows = 0;
-      GrowColumns(capacity, &request, &entry, &pick_pmf, &u_x, &u_y, &wi_x, &wi_y, &wi_z, &r, &g,
-                  &b, &pdf);
+      Grow(capacity);
     }
     void Push(uint32_t req, uint32_t queue_entry, float pmf, const Vec2f& u) {
       const size_t c = rows++;
@@ -303,13 +382,9 @@ class alignas(kColumnAlignment) Wavefront {
 
   /// The shadow_rows slot's output: the traced area-light rows of a bounce, compacted.
   struct ShadowRowColumns {
-    std::vector<uint32_t> request;
-    AlignedVector<float> o_x, o_y, o_z, d_x, d_y, d_z, r, g, b;
-    size_t Bytes() const { return VectorsBytes(request, o_x, o_y, o_z, d_x, d_y, d_z, r, g, b); }
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_SHADOW_ROW_COLUMNS)
     /// Room for `capacity` rows, written in place; only grows.
-    void Clear(size_t capacity) {
-      GrowColumns(capacity, &request, &o_x, &o_y, &o_z, &d_x, &d_y, &d_z, &r, &g, &b);
-    }
+    void Clear(size_t capacity) { Grow(capacity); }
     ShadowRowOutputs Outputs() {
       return {request.data(), o_x.data(), o_y.data(), o_z.data(), d_x.data(),
               d_y.data(),     d_z.data(), r.data(),   g.data(),   b.data()};
@@ -319,14 +394,13 @@ class alignas(kColumnAlignment) Wavefront {
   /// The splat stage's SoA columns: film position and radiance of each finite sample, rows
   /// [0, rows).
   struct SplatColumns {
-    AlignedVector<float> sx, sy, r, g, b;
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_SPLAT_COLUMNS)
     size_t rows = 0;
-    size_t Bytes() const { return VectorsBytes(sx, sy, r, g, b); }
     /// Room for `capacity` rows, written in place (no push_back's capacity check per column
     /// and row); only grows.
     void Clear(size_t capacity) {
       rows = 0;
-      GrowColumns(capacity, &sx, &sy, &r, &g, &b);
+      Grow(capacity);
     }
     void Push(float x, float y, const Color3f& L) {
       const size_t c = rows++;
@@ -380,17 +454,15 @@ class alignas(kColumnAlignment) Wavefront {
   size_t n_requests_ = 0;
   // A wave's escaped rays, when they go through the environment_eval batch (ShadeEscaped).
   struct EscapedColumns {
-    std::vector<uint32_t> q;           // queue entry
-    std::vector<uint8_t> mis;          // 1: MIS-weighted against the previous BSDF sample
-    std::vector<float> w_x, w_y, w_z;  // unit direction (world)
-    std::vector<float> r, g, b, pdf;   // one map's radiance and emitter-sampling pdf
-    std::vector<Color3f> light;        // the maps' sum
+    // q: queue entry; mis: 1 when MIS-weighted against the previous BSDF sample; w: unit
+    // direction (world); r, g, b, pdf: one map's radiance and emitter-sampling pdf; light: the
+    // maps' sum.
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_ESCAPED_COLUMNS)
     void Clear() { q.clear(), mis.clear(), w_x.clear(), w_y.clear(), w_z.clear(); }
     void Push(uint32_t entry, const Vec3f& w, bool weighted) {
       q.push_back(entry), mis.push_back(uint8_t(weighted));
       w_x.push_back(w.x), w_y.push_back(w.y), w_z.push_back(w.z);
     }
-    size_t Bytes() const { return VectorsBytes(q, mis, w_x, w_y, w_z, r, g, b, pdf, light); }
   };
   EscapedColumns escaped_;
   std::vector<uint8_t> occluded_;

@@ -16,16 +16,17 @@ void Wavefront::SampleBsdfs() {
   for (int t = 0; t < kMaterialTagCount; ++t) {
     const size_t begin = b.begin[t], count = b.next[t] - begin;
     if (count == 0) continue;
+    const BsdfColumns::Pointers c = b.At(begin);
     ShadeInputs in;
-    in.wo = {b.wo_x.data() + begin, b.wo_y.data() + begin, b.wo_z.data() + begin};
-    in.u_lobe = b.u_lobe.data() + begin, in.u_x = b.u_x.data() + begin;
-    in.u_y = b.u_y.data() + begin;
+    in.wo = {c.wo_x, c.wo_y, c.wo_z};
+    in.u_lobe = c.u_lobe, in.u_x = c.u_x;
+    in.u_y = c.u_y;
     ShadeOutputs out;
-    out.wi = {b.wi_x.data() + begin, b.wi_y.data() + begin, b.wi_z.data() + begin};
-    out.weight = {b.weight_r.data() + begin, b.weight_g.data() + begin, b.weight_b.data() + begin};
-    out.pdf = b.pdf.data() + begin, out.eta = b.eta.data() + begin;
-    kernels_->bsdf(scene_->materials, static_cast<MaterialTag>(t), b.material_index.data() + begin,
-                   count, in, out);
+    out.wi = {c.wi_x, c.wi_y, c.wi_z};
+    out.weight = {c.weight_r, c.weight_g, c.weight_b};
+    out.pdf = c.pdf, out.eta = c.eta;
+    kernels_->bsdf(scene_->materials, static_cast<MaterialTag>(t), c.material_index, count, in,
+                   out);
   }
   // Group by group, each in queue order, each sampled path's throughput and state, as the
   // scalar integrators do, through the kernel table's continuation slot, one call per tag; a
@@ -45,14 +46,11 @@ void Wavefront::SampleBsdfs() {
   for (int t = 0; t < kMaterialTagCount; ++t) {
     const size_t begin = b.begin[t], count = b.next[t] - begin;
     if (count == 0) continue;
+    const BsdfColumns::Pointers c = b.At(begin);
     const ContinueBatchRules rules{IsDeltaMaterial(static_cast<MaterialTag>(t)), rules_.cut_black};
     const ContinueBatchInputs in{
-        b.path.data() + begin,     b.entry.data() + begin,
-        b.weight_r.data() + begin, b.weight_g.data() + begin,
-        b.weight_b.data() + begin, whitted ? b.roulette_scale.data() + begin : nullptr,
-        b.pdf.data() + begin,      b.eta.data() + begin,
-        b.wi_x.data() + begin,     b.wi_y.data() + begin,
-        b.wi_z.data() + begin,     its_.data()};
+        c.path, c.entry, c.weight_r, c.weight_g, c.weight_b, whitted ? c.roulette_scale : nullptr,
+        c.pdf,  c.eta,   c.wi_x,     c.wi_y,     c.wi_z,     its_.data()};
     kernels_->continuation(rules, count, in, paths, &out);
   }
   const size_t m = out.rows;

@@ -20,23 +20,18 @@ void Wavefront::SampleAreaLights() {
   for (int t = 0; t < kMaterialTagCount; ++t) {
     const size_t b = a.begin[t], count = a.next[t] - b;
     if (count == 0) continue;
-    const AreaLightBatchInputs in{a.light.data() + b, a.ref_x.data() + b, a.ref_y.data() + b,
-                                  a.ref_z.data() + b, a.u_x.data() + b,   a.u_y.data() + b};
-    const AreaLightBatchOutputs out{a.p_x.data() + b,  a.p_y.data() + b,  a.p_z.data() + b,
-                                    a.n_x.data() + b,  a.n_y.data() + b,  a.n_z.data() + b,
-                                    a.ng_x.data() + b, a.ng_y.data() + b, a.ng_z.data() + b,
-                                    a.pdf.data() + b};
+    const EmitterColumns::Pointers c = a.At(b);
+    const AreaLightBatchInputs in{c.light, c.ref_x, c.ref_y, c.ref_z, c.u_x, c.u_y};
+    const AreaLightBatchOutputs out{c.p_x, c.p_y,  c.p_z,  c.n_x,  c.n_y,
+                                    c.n_z, c.ng_x, c.ng_y, c.ng_z, c.pdf};
     kernels_->area_light(kernels_->accel, *scene_, scene_->integrator.triangle_sampling, count, in,
                          out);
-    const AreaRequestInputs request_in{
-        its_.data(),        a.entry.data() + b,    a.ref_x.data() + b, a.ref_y.data() + b,
-        a.ref_z.data() + b, a.wo_x.data() + b,     a.wo_y.data() + b,  a.wo_z.data() + b,
-        a.light.data() + b, a.pick_pmf.data() + b, a.p_x.data() + b,   a.p_y.data() + b,
-        a.p_z.data() + b,   a.n_x.data() + b,      a.n_y.data() + b,   a.n_z.data() + b,
-        a.ng_x.data() + b,  a.ng_y.data() + b,     a.ng_z.data() + b,  a.pdf.data() + b};
-    const AreaRequestOutputs request_out{
-        a.traced.data() + b, a.o_x.data() + b, a.o_y.data() + b, a.o_z.data() + b, a.d_x.data() + b,
-        a.d_y.data() + b,    a.d_z.data() + b, a.r.data() + b,   a.g.data() + b,   a.b.data() + b};
+    const AreaRequestInputs request_in{its_.data(), c.entry, c.ref_x, c.ref_y, c.ref_z,
+                                       c.wo_x,      c.wo_y,  c.wo_z,  c.light, c.pick_pmf,
+                                       c.p_x,       c.p_y,   c.p_z,   c.n_x,   c.n_y,
+                                       c.n_z,       c.ng_x,  c.ng_y,  c.ng_z,  c.pdf};
+    const AreaRequestOutputs request_out{c.traced, c.o_x, c.o_y, c.o_z, c.d_x,
+                                         c.d_y,    c.d_z, c.r,   c.g,   c.b};
     kernels_->area_request(*scene_, static_cast<MaterialTag>(t), rules_.mis, count, request_in,
                            request_out);
   }
@@ -48,10 +43,9 @@ void Wavefront::SampleAreaLights() {
   for (int t = 0; t < kMaterialTagCount; ++t) {
     const size_t b = a.begin[t], count = a.next[t] - b;
     if (count == 0) continue;
-    const ShadowRowInputs in{a.traced.data() + b, a.request.data() + b, a.o_x.data() + b,
-                             a.o_y.data() + b,    a.o_z.data() + b,     a.d_x.data() + b,
-                             a.d_y.data() + b,    a.d_z.data() + b,     a.r.data() + b,
-                             a.g.data() + b,      a.b.data() + b};
+    const EmitterColumns::Pointers c = a.At(b);
+    const ShadowRowInputs in{c.traced, c.request, c.o_x, c.o_y, c.o_z, c.d_x,
+                             c.d_y,    c.d_z,     c.r,   c.g,   c.b};
     m += kernels_->shadow_rows(count, in, st.Outputs().From(m));
   }
   QueueShadowRows(m);

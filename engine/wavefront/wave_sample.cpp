@@ -88,20 +88,13 @@ void Wavefront::SampleGroupBatch(int depth, bool delta, int g, size_t k, size_t 
   BsdfColumns& b = bsdf_;
   const uint32_t area_at = a.next[g], bsdf_at = b.next[g];
   VertexBatchOutputs out;
-  out.area = {a.request.data() + area_at,  a.entry.data() + area_at, a.light.data() + area_at,
-              a.pick_pmf.data() + area_at, a.ref_x.data() + area_at, a.ref_y.data() + area_at,
-              a.ref_z.data() + area_at,    a.wo_x.data() + area_at,  a.wo_y.data() + area_at,
-              a.wo_z.data() + area_at,     a.u_x.data() + area_at,   a.u_y.data() + area_at};
-  out.bsdf = {b.path.data() + bsdf_at,
-              b.entry.data() + bsdf_at,
-              b.material_index.data() + bsdf_at,
-              b.roulette_scale.data() + bsdf_at,
-              b.wo_x.data() + bsdf_at,
-              b.wo_y.data() + bsdf_at,
-              b.wo_z.data() + bsdf_at,
-              b.u_lobe.data() + bsdf_at,
-              b.u_x.data() + bsdf_at,
-              b.u_y.data() + bsdf_at};
+  const EmitterColumns::Pointers ac = a.At(area_at);
+  const BsdfColumns::Pointers bc = b.At(bsdf_at);
+  out.area = {ac.request, ac.entry, ac.light, ac.pick_pmf, ac.ref_x, ac.ref_y,
+              ac.ref_z,   ac.wo_x,  ac.wo_y,  ac.wo_z,     ac.u_x,   ac.u_y};
+  out.bsdf = {bc.path, bc.entry, bc.material_index, bc.roulette_scale,
+              bc.wo_x, bc.wo_y,  bc.wo_z,           bc.u_lobe,
+              bc.u_x,  bc.u_y};
   out.request_traced = request_traced_.data();
   out.nee_paths = nee_paths_.data();
   const size_t nonfinite_at = nonfinite_nee_.size();
