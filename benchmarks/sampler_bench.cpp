@@ -14,7 +14,7 @@
 #include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/sampler.h"
-#include "simd/environment8.h"
+#include "simd/wavefront/environment8.h"
 #include "simd/sampler8.h"
 
 namespace ptlab {

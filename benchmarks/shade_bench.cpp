@@ -11,7 +11,7 @@
 #include "engine/wavefront/bsdf.h"
 #include "engine/core/rng.h"
 #include "engine/sampling/warp.h"
-#include "simd/shade8.h"
+#include "simd/wavefront/bsdf8.h"
 
 namespace ptlab {
 namespace {

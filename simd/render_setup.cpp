@@ -4,7 +4,7 @@
 #include "engine/core/check.h"
 #include "engine/core/memory.h"
 #include "simd/traverse8.h"
-#include "simd/wavefront_kernels.h"
+#include "simd/wavefront/kernels8.h"
 
 namespace ptlab {
 

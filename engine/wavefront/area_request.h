@@ -1,5 +1,5 @@
 // The emitter stage's finish of a batch of area-light samples (shadow ray, BSDF, MIS weight,
-// contribution) over SoA columns: the scalar oracle of simd/area_request8.h.
+// contribution) over SoA columns: the scalar oracle of simd/wavefront/area_request8.h.
 #pragma once
 
 #include <cstddef>

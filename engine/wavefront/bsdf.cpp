@@ -1,4 +1,4 @@
-// Batched shading over SoA arrays (scalar oracle of simd/shade8.h) and the partition by material.
+// Batched shading over SoA arrays (scalar oracle of simd/wavefront/bsdf8.h) and the partition by material.
 #include "engine/wavefront/bsdf.h"
 
 #include "engine/bsdf/beckmann.h"

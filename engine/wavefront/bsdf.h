@@ -1,4 +1,4 @@
-// Batched shading over SoA arrays (scalar oracle of simd/shade8.h) and the partition by material.
+// Batched shading over SoA arrays (scalar oracle of simd/wavefront/bsdf8.h) and the partition by material.
 #pragma once
 
 #include <cstddef>
@@ -103,7 +103,7 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
 void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const ShadeInputs& in,
                const ShadeOutputs& out, ShadeScratch* scratch);
 
-// Scalar twins of the kernel benchmarks/tests in simd/shade8.h (loops over beckmann.h and
+// Scalar twins of the kernel benchmarks/tests in simd/wavefront/bsdf8.h (loops over beckmann.h and
 // fresnel.h).
 
 /// d[i], pdf[i] = BeckmannEvalPdf(alpha[i], wo_i, wi_i).

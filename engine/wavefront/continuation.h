@@ -1,6 +1,6 @@
 // The BSDF stage's finish at a batch of sampled vertices of one material tag: each sampled
 // path's throughput and state, as the scalar integrators update them, and the spawn stage's
-// row of each path that goes on. The scalar oracle of simd/continue8.h; the wavefront's
+// row of each path that goes on. The scalar oracle of simd/wavefront/continuation8.h; the wavefront's
 // `continuation` slot.
 #pragma once
 

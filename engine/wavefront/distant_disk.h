@@ -15,7 +15,7 @@ namespace ptlab {
 
 /// SampleDistantDisk(table, disk, u) for n rows of one disk (row `disk` of the table), u =
 /// (in.u_x[i], in.u_y[i]); every output row is written, all zero for a black disk. The oracle
-/// of simd::SampleDistantDiskBatch (simd/distant_disk8.h), bit-identical to SampleDistantDisk
+/// of simd::SampleDistantDiskBatch (simd/wavefront/distant_disk8.h), bit-identical to SampleDistantDisk
 /// row by row.
 void SampleDistantDiskBatch(const DistantDiskTable& table, uint32_t disk, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out);

@@ -1,6 +1,6 @@
 // The shading stage's light from the area lights that rays hit: each hit's emitted radiance
 // toward its ray, MIS-weighted against the emitter sampling of the vertex before, added to its
-// path. The scalar oracle of simd/emission8.h; the wavefront's `emission` slot.
+// path. The scalar oracle of simd/wavefront/emission8.h; the wavefront's `emission` slot.
 #pragma once
 
 #include <cstddef>

@@ -23,7 +23,7 @@ struct EnvironmentBatchOutputs {
 };
 
 /// SampleEnvironment(table, map, u) for n rows of one map (row `map` of the table): the oracle
-/// of simd::SampleEnvironmentBatch (simd/environment8.h), bit-identical to SampleEnvironment
+/// of simd::SampleEnvironmentBatch (simd/wavefront/environment8.h), bit-identical to SampleEnvironment
 /// row by row.
 void SampleEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out);

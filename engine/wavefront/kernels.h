@@ -1,5 +1,5 @@
 // The typed table of the wavefront's stage kernels, which the scalar oracle (engine/, kernels.cpp
-// and each stage's file) and simd/ (simd/wavefront_kernels.h) each implement once.
+// and each stage's file) and simd/ (simd/wavefront/kernels8.h) each implement once.
 #pragma once
 
 #include <cstddef>
@@ -43,7 +43,7 @@ struct WavefrontAccel {
 };
 
 /// The stage kernels of the wavefront, one table per implementation: OracleWavefrontKernels
-/// (engine/, the reference) and simd::SimdWavefrontKernels (simd/wavefront_kernels.h). Every
+/// (engine/, the reference) and simd::SimdWavefrontKernels (simd/wavefront/kernels8.h). Every
 /// slot is set. The wavefront calls them in a fixed order with the same inputs whichever table
 /// it runs, so a table whose kernels meet their contracts renders the oracle's image.
 struct WavefrontKernels {
@@ -68,21 +68,21 @@ struct WavefrontKernels {
   // (the wavefront writes each continuing entry's row into its tag's group of rows and calls
   // this once per tag present; engine/wavefront/bsdf.h). Oracle: ptlab::ShadeBatch
   // (BsdfSampleDirection per row, so the oracle table keeps the scalar path's bits); SIMD:
-  // simd::ShadeBatch, within the contract of simd/shade8.h. The wavefront samples only
+  // simd::ShadeBatch, within the contract of simd/wavefront/bsdf8.h. The wavefront samples only
   // (in.wl.x == nullptr: f and pdf_l are not written).
   void (*bsdf)(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
                const ShadeInputs& in, const ShadeOutputs& out) = nullptr;
 
   // Splat stage: a wave's finite samples, in the scalar loop's order, into the film block
   // through the filter's precomputed table (PixelFilter::Eval). Oracle: ptlab::SplatSamples
-  // (FilmBlock::Splat per sample); SIMD: simd::SplatSamples, bit-identical (simd/splat8.h).
+  // (FilmBlock::Splat per sample); SIMD: simd::SplatSamples, bit-identical (simd/wavefront/splat8.h).
   void (*splat)(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) = nullptr;
 
   // Emitter stage: the wave's area-light samples (every emitter sample whose pick is an area
   // light) as batches over SoA columns (engine/light/area_light.h), one call per group of rows
   // of area_request below (the kernel does not care which rows it gets); the area_request slot
   // finishes them. Oracle: ptlab::SampleAreaLightBatch (SampleAreaLight per row); SIMD:
-  // simd::SampleAreaLightBatch, bit-identical (simd/emitter8.h).
+  // simd::SampleAreaLightBatch, bit-identical (simd/wavefront/area_light8.h).
   void (*area_light)(const WavefrontAccel& accel, const Scene& scene, TriangleSampling mode,
                      size_t n, const AreaLightBatchInputs& in,
                      const AreaLightBatchOutputs& out) = nullptr;
@@ -95,7 +95,7 @@ struct WavefrontKernels {
   // traced row's shadow ray. Oracle: ptlab::AreaEmitterRequestBatch
   // (integrator::AreaEmitterSampleRequest per row, so the oracle table keeps the scalar path's
   // bits); SIMD: simd::AreaEmitterRequestBatch, shadow rays bit-identical and contributions
-  // within simd::ShadeBatch's evaluation contract (simd/area_request8.h).
+  // within simd::ShadeBatch's evaluation contract (simd/wavefront/area_request8.h).
   void (*area_request)(const Scene& scene, MaterialTag tag, bool mis, size_t n,
                        const AreaRequestInputs& in, const AreaRequestOutputs& out) = nullptr;
 
@@ -103,7 +103,7 @@ struct WavefrontKernels {
   // shadow ray, contribution) compacted in row order, one call per material tag, which the
   // wavefront then copies into the shadow queue's packets a packet at a time (no branch per
   // row on the flag). Oracle: ptlab::CompactShadowRows; SIMD: simd::CompactShadowRows,
-  // bit-identical (simd/shadow_rows8.h).
+  // bit-identical (simd/wavefront/shadow_rows8.h).
   size_t (*shadow_rows)(size_t n, const ShadowRowInputs& in, const ShadowRowOutputs& out) = nullptr;
 
   // Emitter stage, environment maps: the wave's samples of one map (every emitter sample whose
@@ -112,7 +112,7 @@ struct WavefrontKernels {
   // (pdf > 0) with integrator::InfiniteEmitterSampleRequest. Oracle:
   // ptlab::SampleEnvironmentBatch (SampleEnvironment per row); SIMD:
   // simd::SampleEnvironmentBatch, radiance bit-identical, wi and pdf within 2e-6
-  // (simd/environment8.h).
+  // (simd/wavefront/environment8.h).
   void (*environment)(const EnvironmentMapTable& table, uint32_t map, size_t n,
                       const EnvironmentBatchInputs& in,
                       const EnvironmentBatchOutputs& out) = nullptr;
@@ -122,7 +122,7 @@ struct WavefrontKernels {
   // wavefront sums the maps' light as integrator::Escaped does. Oracle:
   // ptlab::EvalEnvironmentBatch (the two functions per row); SIMD: simd::EvalEnvironmentBatch,
   // radiance within 1e-3 of the pixels it reads, pdf bit-identical away from cell edges
-  // (simd/environment8.h).
+  // (simd/wavefront/environment8.h).
   void (*environment_eval)(const EnvironmentMapTable& table, uint32_t map, size_t n,
                            const EnvironmentEvalInputs& in,
                            const EnvironmentEvalOutputs& out) = nullptr;
@@ -131,7 +131,7 @@ struct WavefrontKernels {
   // wave's samples of disk `disk`, same columns), each returned sample finished with
   // integrator::InfiniteEmitterSampleRequest. Oracle: ptlab::SampleDistantDiskBatch
   // (SampleDistantDisk per row); SIMD: simd::SampleDistantDiskBatch, radiance and pdf
-  // bit-identical, wi within 1e-6 (simd/distant_disk8.h).
+  // bit-identical, wi within 1e-6 (simd/wavefront/distant_disk8.h).
   void (*distant_disk)(const DistantDiskTable& table, uint32_t disk, size_t n,
                        const EnvironmentBatchInputs& in,
                        const EnvironmentBatchOutputs& out) = nullptr;
@@ -147,7 +147,7 @@ struct WavefrontKernels {
   // oracle table keeps the scalar path's bits, and each hit row's list entries); SIMD:
   // simd::MakeInteractionBatch, bit-identical on the hit rows and in the lists' counts and
   // entries, and may write the other rows of a packet with a hit and the lists' room past their
-  // counts (simd/interaction8.h).
+  // counts (simd/wavefront/interaction8.h).
   void (*interaction)(const WavefrontAccel& accel, const Scene& scene, const RayPacket8* rays,
                       const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
                       const InteractionRows& out, HitLists* lists) = nullptr;
@@ -157,7 +157,7 @@ struct WavefrontKernels {
   // updates the path's state), row k into lane k % 8 of out[k / 8], the last packet's other
   // lanes zero. Oracle: ptlab::SpawnRayBatch (SpawnRayAt per row: Frame::ToWorld and
   // integrator::SpawnOrigin, the scalar path's bits); SIMD: simd::SpawnRayBatch, bit-identical
-  // (simd/spawn8.h).
+  // (simd/wavefront/spawn8.h).
   void (*spawn)(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                 RayPacket8* out) = nullptr;
 
@@ -167,7 +167,7 @@ struct WavefrontKernels {
   // as the rows of the emitter and BSDF stages' columns, one call per group; other scenes and
   // integrators take the wavefront's per-row loop. Oracle: ptlab::DecideVertices (that loop's
   // operations per row, so the oracle table keeps the scalar path's bits); SIMD:
-  // simd::DecideVertices, bit-identical (simd/vertex_batch8.h).
+  // simd::DecideVertices, bit-identical (simd/wavefront/vertices8.h).
   void (*vertices)(const Scene& scene, const VertexBatchRules& rules, size_t n,
                    const VertexBatchInputs& in, const VertexBatchPaths& paths,
                    VertexBatchOutputs* out) = nullptr;
@@ -178,7 +178,7 @@ struct WavefrontKernels {
   // BSDF columns (each row of a different path), appending at the running count of spawn rows.
   // Oracle: ptlab::ContinuePaths (the scalar integrators' operations per row, so the oracle
   // table keeps the scalar path's bits); SIMD: simd::ContinuePaths, bit-identical
-  // (simd/continue8.h).
+  // (simd/wavefront/continuation8.h).
   void (*continuation)(const ContinueBatchRules& rules, size_t n, const ContinueBatchInputs& in,
                        const ContinueBatchPaths& paths, ContinueBatchOutputs* out) = nullptr;
 
@@ -187,7 +187,7 @@ struct WavefrontKernels {
   // emitter sampling of the vertex before, added to its path, one call per wave. Oracle:
   // ptlab::AddAreaEmissions (the scalar integrators' operations per row, so the oracle table
   // keeps the scalar path's bits); SIMD: simd::AddAreaEmissions, bit-identical up to NaN
-  // payloads (simd/emission8.h).
+  // payloads (simd/wavefront/emission8.h).
   void (*emission)(const Scene& scene, const EmissionBatchRules& rules, size_t n,
                    const EmissionBatchInputs& in, const EmissionBatchPaths& paths) = nullptr;
 

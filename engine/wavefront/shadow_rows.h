@@ -1,6 +1,6 @@
 // The emitter stage's traced area-light requests, compacted: the rows of an area_request batch
 // whose traced flag is set, in row order, for the shadow queue. The scalar oracle of
-// simd/shadow_rows8.h; the wavefront's `shadow_rows` slot.
+// simd/wavefront/shadow_rows8.h; the wavefront's `shadow_rows` slot.
 #pragma once
 
 #include <cstddef>

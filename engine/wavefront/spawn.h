@@ -34,7 +34,7 @@ inline Ray SpawnRayAt(const SurfaceInteraction& its, const Vec3f& wi_local) {
 /// out[k / 8], for k in [0, n); the lanes after row n - 1 in the last packet are zero (as
 /// RayQueue::Push leaves them). `out` holds (n + 7) / 8 packets; the rows of `its` that
 /// in.entry names are those of hits, as the interaction slot writes them (frame = Frame(n)).
-/// SIMD twin: simd::SpawnRayBatch (simd/spawn8.h).
+/// SIMD twin: simd::SpawnRayBatch (simd/wavefront/spawn8.h).
 void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in, RayPacket8* out);
 
 }  // namespace ptlab

@@ -1,7 +1,7 @@
 // The sampling stage's decisions at a batch of path vertices of one material group, with the
 // independent sampler: the emitter pick of the vertex's one emitter sample, Nori's Russian
 // roulette and the BSDF's numbers, written as rows of the emitter and BSDF stages' columns.
-// The scalar oracle of simd/vertex_batch8.h; the wavefront's `vertices` slot.
+// The scalar oracle of simd/wavefront/vertices8.h; the wavefront's `vertices` slot.
 #pragma once
 
 #include <cstddef>

@@ -46,7 +46,7 @@ class WavefrontWorkspace {
 /// and samples are splatted in the scalar order (row, pixel, sample). With the oracle's table the
 /// block is bit-identical to RenderTileScalar's; with simd/'s the BSDF, area-light request (its
 /// BSDF evaluation), environment and distant-disk kernels differ from their oracles by a few
-/// ulp (simd/shade8.h, simd/area_request8.h, simd/environment8.h, simd/distant_disk8.h), so the
+/// ulp (simd/wavefront/bsdf8.h, simd/wavefront/area_request8.h, simd/wavefront/environment8.h, simd/wavefront/distant_disk8.h), so the
 /// image agrees with the oracle's within the render contract of tests/simd/traverse8_test.cpp
 /// (relMSE, block means) but not bit for bit.
 /// Every integrator type is supported. The paths run in `workspace` (one per thread, reused from

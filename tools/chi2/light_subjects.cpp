@@ -16,8 +16,8 @@
 #include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/distribution2d.h"
-#include "simd/distant_disk8.h"
-#include "simd/environment8.h"
+#include "simd/wavefront/distant_disk8.h"
+#include "simd/wavefront/environment8.h"
 
 namespace ptlab {
 namespace {
