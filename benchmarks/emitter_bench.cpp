@@ -10,8 +10,8 @@
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
 #include "engine/light/area_light.h"
-#include "simd/area_request8.h"
-#include "simd/emitter8.h"
+#include "simd/wavefront/area_request8.h"
+#include "simd/wavefront/area_light8.h"
 #include "tests/simd/area_request_rows.h"
 
 namespace ptlab {

@@ -10,7 +10,7 @@
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
 #include "engine/render/interaction.h"
-#include "simd/interaction8.h"
+#include "simd/wavefront/interaction8.h"
 
 namespace ptlab {
 namespace {

@@ -11,10 +11,10 @@
 
 #include "engine/core/rng.h"
 #include "engine/image/image.h"
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/sampler.h"
-#include "simd/environment8.h"
+#include "simd/wavefront/environment8.h"
 #include "simd/sampler8.h"
 
 namespace ptlab {

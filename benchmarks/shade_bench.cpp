@@ -8,10 +8,10 @@
 
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/conductor_presets.h"
-#include "engine/bsdf/shade_batch.h"
+#include "engine/wavefront/bsdf.h"
 #include "engine/core/rng.h"
 #include "engine/sampling/warp.h"
-#include "simd/shade8.h"
+#include "simd/wavefront/bsdf8.h"
 
 namespace ptlab {
 namespace {

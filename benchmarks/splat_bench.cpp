@@ -8,7 +8,7 @@
 #include "engine/core/rng.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
-#include "simd/splat8.h"
+#include "simd/wavefront/splat8.h"
 
 namespace ptlab {
 namespace {

@@ -30,12 +30,12 @@
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
 #include "engine/render/packet_render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "engine/sampling/warp.h"
 #include "engine/scene/scene.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8.h"
-#include "simd/wavefront_kernels.h"
+#include "simd/render_setup.h"
 
 #ifdef PTLAB_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -567,9 +567,7 @@ void RunBuild(benchmark::State& state, const std::string& scene_name, bool embre
 struct RenderBench {
   std::string error;
   std::unique_ptr<Scene> scene;
-  Bvh bvh;
-  simd::Bvh8 bvh8;
-  simd::TriangleRows rows;
+  std::optional<RenderSetup> setup;  // BVH, BVH8, triangle rows and the SIMD table
 };
 
 RenderBench* GetRenderScene(IntegratorDesc::Type type) {
@@ -588,9 +586,7 @@ RenderBench* GetRenderScene(IntegratorDesc::Type type) {
     r->scene->camera.width = 200;
     r->scene->camera.height = 150;
     r->scene->integrator.type = type;
-    r->bvh = BuildBvh(r->scene->triangles, r->scene->spheres);
-    r->bvh8 = simd::BuildBvh8(r->bvh);
-    r->rows = simd::BuildTriangleRows(*r->scene);
+    r->setup.emplace(*r->scene, KernelChoice::kSimd);
   }
   return cache.emplace(static_cast<int>(type), std::move(r)).first->second.get();
 }
@@ -604,8 +600,8 @@ void RunRender(benchmark::State& state, IntegratorDesc::Type type, bool packets)
   const Scene& scene = *r->scene;
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
-  const RenderContext ctx{scene, r->bvh};
-  const WavefrontKernels kernels = simd::SimdWavefrontKernels(r->bvh8, r->rows);
+  const RenderContext ctx{scene, r->setup->bvh()};
+  const WavefrontKernels& kernels = r->setup->kernels();
   const int w = camera.width(), h = camera.height();
   constexpr uint32_t kSpp = 4;
   constexpr int kTile = 32;

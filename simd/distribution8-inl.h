@@ -1,6 +1,6 @@
 // Per-target helper (re-included once per Highway target): inverting a piecewise-constant CDF
 // (engine/sampling/distribution2d.h) for eight numbers per vector, as SamplePiecewiseConstant1D
-// does for one. Used by simd/environment8.
+// does for one. Used by simd/wavefront/environment8.
 
 #if defined(PTLAB_SIMD_DISTRIBUTION8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_DISTRIBUTION8_INL_H_

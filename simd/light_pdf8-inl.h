@@ -1,7 +1,7 @@
 // Per-target helpers (re-included once per Highway target): the light-sampling densities the
 // kernels share, in the scalar code's float operations and order, eight rows per vector.
-// AreaToSolidAngle8 for simd/emitter8 and simd/emission8, MisWeight8 for simd/area_request8 and
-// simd/emission8.
+// AreaToSolidAngle8 for simd/wavefront/area_light8 and simd/wavefront/emission8, MisWeight8 for simd/wavefront/area_request8 and
+// simd/wavefront/emission8.
 
 #if defined(PTLAB_SIMD_LIGHT_PDF8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_LIGHT_PDF8_INL_H_

@@ -1,7 +1,7 @@
 // Per-target helper (re-included once per Highway target): the shading point's frame, the ray
 // origin offset and reads of the wavefront's SurfaceInteraction rows, eight rows per vector, in
 // the scalar code's float operations and order (bit-identical to it without FMA contraction).
-// Shared by simd/interaction8, simd/area_request8 and simd/spawn8.
+// Shared by simd/wavefront/interaction8, simd/wavefront/area_request8 and simd/wavefront/spawn8.
 
 #if defined(PTLAB_SIMD_SHADING_POINT8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_SHADING_POINT8_INL_H_

@@ -1,7 +1,7 @@
 // Per-target helper (re-included once per Highway target): four vectors of floats as quads of
-// rows, the 4x4 transpose within each 128-bit block (simd/interaction8, simd/continue8), and
-// its way back: columns loaded from rows (TriangleRows in simd/interaction8 and simd/emitter8,
-// interaction rows in simd/spawn8, simd/area_request8 and simd/vertex_batch8).
+// rows, the 4x4 transpose within each 128-bit block (simd/wavefront/interaction8, simd/wavefront/continuation8), and
+// its way back: columns loaded from rows (TriangleRows in simd/wavefront/interaction8 and simd/wavefront/area_light8,
+// interaction rows in simd/wavefront/spawn8, simd/wavefront/area_request8 and simd/wavefront/vertices8).
 
 #if defined(PTLAB_SIMD_TRANSPOSE4_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_TRANSPOSE4_INL_H_

@@ -19,7 +19,7 @@ namespace ptlab::simd {
 // the same hit or miss, the same primitive, and t, b1, b2 bit-identical (the kernel performs
 // the oracle's float operations in the oracle's order, with FMA contraction disabled, and the
 // same double-precision fallback on edges). The oracle's own packet kernels are
-// OracleWavefrontKernels' (engine/render/wavefront.h), which `--scalar` / PTLAB_FORCE_SCALAR=1
+// OracleWavefrontKernels' (engine/wavefront/wavefront.h), which `--scalar` / PTLAB_FORCE_SCALAR=1
 // render with.
 
 /// Tuning of packet traversal (defaults are the measured best; see benchmarks/).

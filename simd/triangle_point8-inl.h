@@ -1,7 +1,7 @@
 // Per-target helper (re-included once per Highway target): a point on a triangle from its
 // barycentrics with the triangle's geometric and shading normals, as MakeInteraction and
 // SampleAreaLight compute them, eight triangles per vector, from vertices and vertex normals
-// already loaded (simd/interaction8 and simd/emitter8 load them from TriangleRows).
+// already loaded (simd/wavefront/interaction8 and simd/wavefront/area_light8 load them from TriangleRows).
 
 #if defined(PTLAB_SIMD_TRIANGLE_POINT8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_TRIANGLE_POINT8_INL_H_

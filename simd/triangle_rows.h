@@ -19,7 +19,7 @@ inline constexpr size_t kRowV0 = 0, kRowMaterial = 9, kRowEmitter = 10, kRowVert
 /// interaction8): eight hits read eight rows and transpose them, instead of gathering fourteen
 /// columns of TriangleTable, TriangleShadingTable and MeshTable (a gather is one load per
 /// lane). Vertex normals likewise, one 16-byte row per VertexTable row. The oracle keeps
-/// reading the columns; the SIMD kernel table needs these (simd/wavefront_kernels.h).
+/// reading the columns; the SIMD kernel table needs these (simd/wavefront/kernels8.h).
 struct TriangleRows {
   AlignedVector<float> triangles;  // kTriangleRowFloats per scene triangle, 64-byte aligned
   AlignedVector<float> normals;    // (n_x, n_y, n_z, 0) per vertex; empty without normals

@@ -10,7 +10,7 @@ namespace ptlab {
 // Where a sum cancels (η² − sin²θ near the critical angle, η² − κ² − sin²θ), the formulas are
 // arranged so that no precision is lost beyond the input's own conditioning: η² − 1 is formed
 // as (η − 1)(η + 1), and cos²θ is kept as c·c rather than recovered from 1 − sin²θ (which
-// would lose it entirely below cos θ ≈ 2.4e-4). The SIMD twins in simd/shade8-inl.h round
+// would lose it entirely below cos θ ≈ 2.4e-4). The SIMD twins in simd/wavefront/bsdf8-inl.h round
 // the products of these sums exactly as this code does (no FMA contraction there).
 
 /// Relative IORs are clamped into [kMinRelativeIor, kMaxRelativeIor] (NaN → the minimum), so

@@ -58,7 +58,7 @@ struct AreaLightBatchOutputs {
   float* pdf = nullptr;
 };
 
-/// SampleAreaLight for n rows: the oracle of simd::SampleAreaLightBatch (simd/emitter8.h),
+/// SampleAreaLight for n rows: the oracle of simd::SampleAreaLightBatch (simd/wavefront/area_light8.h),
 /// bit-identical to SampleAreaLight row by row.
 void SampleAreaLightBatch(const Scene& scene, TriangleSampling mode, size_t n,
                           const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out);

@@ -103,7 +103,7 @@ class FilmBlock {
 };
 
 /// Splats the samples in order into `block` (FilmBlock::Splat each): the scalar oracle of
-/// simd::SplatSamples (simd/splat8.h) and the oracle table's splat kernel (wavefront.h).
+/// simd::SplatSamples (simd/wavefront/splat8.h) and the oracle table's splat kernel (wavefront.h).
 void SplatSamples(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block);
 
 }  // namespace ptlab

@@ -32,7 +32,7 @@ class PixelFilter {
   float radius() const { return desc_.radius; }
   /// The table Eval interpolates: kFilterTableSize + 1 samples over [0, radius], and the scale
   /// from |x| to a table position (kFilterTableSize / radius); for kernels that evaluate many
-  /// offsets at once with Eval's operations (simd/splat8-inl.h).
+  /// offsets at once with Eval's operations (simd/wavefront/splat8-inl.h).
   const float* table() const { return table_; }
   float lookup_scale() const { return lookup_scale_; }
 

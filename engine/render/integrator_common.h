@@ -1,5 +1,5 @@
 // Per-vertex pieces of the integrators (emission, MIS weights, emitter samples with a deferred
-// shadow test), shared by the scalar integrators and the 8-wide wavefront (wavefront.cpp).
+// shadow test), shared by the scalar integrators and the 8-wide wavefront (engine/wavefront/).
 #pragma once
 
 #include <algorithm>
@@ -26,7 +26,7 @@ inline constexpr float kWhittedContinuation = 0.95f;
 /// Nori's path_* Russian roulette (from depth 3): the probability that a path with this
 /// throughput and accumulated relative index of refraction η goes on, min(max component ·
 /// η², 0.99). One formula for the scalar integrators, the wavefront's per-row loop and the
-/// vertices slot's oracle (simd/vertex_batch8 repeats its operations in this order).
+/// vertices slot's oracle (simd/wavefront/vertices8 repeats its operations in this order).
 inline float NoriContinuation(const Color3f& throughput, float eta) {
   return std::min(MaxComponent(throughput) * eta * eta, 0.99f);
 }

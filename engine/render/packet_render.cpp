@@ -1,4 +1,4 @@
-// The scalar tile loop (Li per sample); the packet path (the wavefront) is in wavefront.cpp.
+// The scalar tile loop (Li per sample); the packet path (the wavefront) is engine/wavefront/.
 #include "engine/render/packet_render.h"
 
 namespace ptlab {

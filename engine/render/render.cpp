@@ -19,7 +19,7 @@
 #include "engine/render/film.h"
 #include "engine/render/integrator.h"
 #include "engine/render/packet_render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 
 namespace ptlab {
 namespace {

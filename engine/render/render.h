@@ -15,7 +15,7 @@
 
 namespace ptlab {
 
-struct WavefrontKernels;  // engine/render/wavefront.h
+struct WavefrontKernels;  // engine/wavefront/wavefront.h
 
 struct RenderProgress {
   uint64_t samples_done = 0, samples_total = 0;  // pixel samples

@@ -1,5 +1,5 @@
 // Area-light emitter requests over a loaded scene, for the area_request kernels' test
-// (tests/simd/area_request8_test.cpp) and benchmark (benchmarks/emitter_bench.cpp): shading
+// (tests/simd/wavefront/area_request8_test.cpp) and benchmark (benchmarks/emitter_bench.cpp): shading
 // points on the scene's triangles, their wo, material rows of one tag and light samples drawn
 // by SampleAreaLight from them; and the hard cases.
 #pragma once
@@ -12,7 +12,7 @@
 #include "engine/core/frame.h"
 #include "engine/core/rng.h"
 #include "engine/light/area_light.h"
-#include "engine/render/area_request_batch.h"
+#include "engine/wavefront/area_request.h"
 #include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
 

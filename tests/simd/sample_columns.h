@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 
 namespace ptlab::test {
 

@@ -29,10 +29,10 @@
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/packet_render.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "hwy/targets.h"
 #include "simd/bvh8.h"
-#include "simd/wavefront_kernels.h"
+#include "simd/render_setup.h"
 #include "tests/engine/bvh/test_meshes.h"
 #include "tests/test_data.h"
 #include "tools/imgdiff/imgdiff.h"
@@ -883,7 +883,7 @@ TEST(Traverse8, EmptyAndSingleTriangleScenes) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The wavefront (engine/render/wavefront.h) with the oracle's kernel table against the scalar
+// The wavefront (engine/wavefront/wavefront.h) with the oracle's kernel table against the scalar
 // tile loop (RenderTileScalar): bit-identical film on the Nori scenes, for every integrator.
 // With simd/'s table (SIMD shading, a few ulp off its oracle) against the oracle's: issue 11's
 // render contract, relMSE ≤ 1e-3 and every block of docs/parity.md's 32×32 grid within 1 %.
@@ -960,11 +960,10 @@ void ExpectPacketRenderMatchesOracle(const std::string& path, int width) {
   const double aspect = double(scene.camera.width) / double(scene.camera.height);
   scene.camera.width = width;
   scene.camera.height = int(std::lround(width / aspect));
-  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-  const Bvh8 bvh8 = BuildBvh8(bvh);
-  const TriangleRows rows = BuildTriangleRows(scene);
-  const WavefrontKernels packets = SimdWavefrontKernels(bvh8, rows);
-  const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
+  const RenderSetup setup(scene, KernelChoice::kSimd);
+  const Bvh& bvh = setup.bvh();
+  const WavefrontKernels& packets = setup.simd_kernels();
+  const WavefrontKernels& oracle = setup.oracle_kernels();
   using Type = IntegratorDesc::Type;
   const Type own = scene.integrator.type;
   for (const SamplerType sampler : {SamplerType::kIndependent, SamplerType::kSobol}) {
@@ -1041,13 +1040,11 @@ TEST(Traverse8Render, WavefrontKeepsPacketsFull) {
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   const Scene& scene = *loaded;
   ASSERT_EQ(scene.integrator.type, IntegratorDesc::Type::kPathMis);
-  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-  const Bvh8 bvh8 = BuildBvh8(bvh);
-  const TriangleRows rows = BuildTriangleRows(scene);
-  const WavefrontKernels packets = SimdWavefrontKernels(bvh8, rows);
+  const RenderSetup setup(scene, KernelChoice::kSimd);
+  const WavefrontKernels& packets = setup.kernels();
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
-  const RenderContext ctx{scene, bvh};
+  const RenderContext ctx{scene, setup.bvh()};
   FilmBlock block(300, 300, 40, 40);
   TileSampleStats stats;
   RenderTilePacket8(ctx, packets, camera, filter, 304, 304, 336, 336, 0, 16, 1, &block, &stats);
@@ -1131,8 +1128,9 @@ TEST(Traverse8Render, OracleWavefrontMatchesScalarWhenThroughputOverflows) {
   for (size_t i = 0; i < diffuse.size(); ++i) {
     diffuse.albedo_r[i] = diffuse.albedo_g[i] = diffuse.albedo_b[i] = 1e19f;
   }
-  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-  const WavefrontKernels oracle = OracleWavefrontKernels(bvh);
+  const RenderSetup setup(scene, KernelChoice::kOracle);
+  const Bvh& bvh = setup.bvh();
+  const WavefrontKernels& oracle = setup.kernels();
   for (const IntegratorDesc::Type type :
        {IntegratorDesc::Type::kPathMis, IntegratorDesc::Type::kPathEms}) {
     scene.integrator.type = type;

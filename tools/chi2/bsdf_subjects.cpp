@@ -12,9 +12,9 @@
 #include "engine/bsdf/conductor.h"
 #include "engine/bsdf/diffuse.h"
 #include "engine/bsdf/rough_plastic.h"
-#include "engine/bsdf/shade_batch.h"
+#include "engine/wavefront/bsdf.h"
 #include "engine/core/check.h"
-#include "simd/shade8.h"
+#include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/lobe_disk.h"
 #include "tools/chi2/stats_math.h"
 

@@ -13,7 +13,7 @@
 #include "engine/light/light_selection.h"
 #include "engine/sampling/spherical_triangle.h"
 #include "engine/scene/scene.h"
-#include "simd/emitter8.h"
+#include "simd/wavefront/area_light8.h"
 
 namespace ptlab {
 namespace {

@@ -13,11 +13,11 @@
 #include "engine/core/transform.h"
 #include "engine/image/image_io.h"
 #include "engine/light/distant_disk.h"
-#include "engine/light/environment_batch.h"
+#include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/distribution2d.h"
-#include "simd/distant_disk8.h"
-#include "simd/environment8.h"
+#include "simd/wavefront/distant_disk8.h"
+#include "simd/wavefront/environment8.h"
 
 namespace ptlab {
 namespace {

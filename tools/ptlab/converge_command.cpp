@@ -17,12 +17,11 @@
 #include "engine/image/image_io.h"
 #include "engine/render/render.h"
 #include "engine/render/setup_checks.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
-#include "simd/bvh8.h"
-#include "simd/wavefront_kernels.h"
 #include "engine/scene/scene_limits.h"
+#include "simd/render_setup.h"
 #include "tools/common/exit_codes.h"
 #include "tools/common/output_guard.h"
 #include "tools/converge/convergence.h"
@@ -41,15 +40,9 @@ constexpr uint64_t kAutoReferenceSeed = 0x5eed0fef;
 struct LoadedScene {
   std::string path, stem;
   Scene scene;
-  Bvh bvh;
-  simd::Bvh8 bvh8;
-  simd::TriangleRows rows;
-  WavefrontKernels simd_kernels, oracle_kernels;
-
-  // path=scalar or PTLAB_FORCE_SCALAR=1: the oracle's table (as `ptlab render --scalar`).
-  const WavefrontKernels* Kernels(bool scalar) const {
-    return scalar || ForceScalar() ? &oracle_kernels : &simd_kernels;
-  }
+  // BVHs and both tables; path=scalar or PTLAB_FORCE_SCALAR=1 picks the oracle's
+  // (RenderSetup::KernelsFor, as `ptlab render --scalar`).
+  std::optional<RenderSetup> setup;
   Image reference;
   std::string reference_note;
 };
@@ -88,7 +81,7 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
   options.threads = args.threads;
   options.seed = seed;
   options.cancel = interrupted;
-  options.kernels = ls.Kernels(target.scalar);
+  options.kernels = &ls.setup->KernelsFor(target.scalar);
   options.adaptive = target.adaptive;
   const int w = scene.camera.width, h = scene.camera.height;
   FilmBlock halves[2] = {FilmBlock(0, 0, w, h), FilmBlock(0, 0, w, h)};
@@ -121,7 +114,7 @@ bool RunOne(const LoadedScene& ls, const Variant& variant, const ConvergeArgs& a
                               : std::nan("");
     points->push_back(p);
   };
-  const RenderResult r = Render(scene, ls.bvh, options);
+  const RenderResult r = Render(scene, ls.setup->bvh(), options);
   if (!r.pixel_samples.empty()) {
     // The sample-rate image: samples per pixel as EXR (exact counts) and PNG (count / spp).
     std::string name = ls.stem + "_" + variant.name + "_seed" + std::to_string(seed) + "_samples";
@@ -292,11 +285,7 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
         return kExitUsage;
       }
     }
-    ls->bvh = BuildBvh(ls->scene.triangles, ls->scene.spheres);
-    ls->bvh8 = simd::BuildBvh8(ls->bvh);
-    ls->rows = simd::BuildTriangleRows(ls->scene);
-    ls->simd_kernels = simd::SimdWavefrontKernels(ls->bvh8, ls->rows);
-    ls->oracle_kernels = OracleWavefrontKernels(ls->bvh);
+    ls->setup.emplace(ls->scene, KernelChoice::kSimd);
     if (!auto_ref) {
       StatusOr<Image> ref = ReadImage(args.refs[i]);
       Status st = ref.ok() ? CheckReference(*ref, ls->scene, "reference " + args.refs[i])
@@ -347,10 +336,10 @@ int RunConverge(const ConvergeArgs& args, const std::atomic<bool>* interrupted) 
     o.threads = run_args.threads;
     o.seed = kAutoReferenceSeed;
     o.cancel = interrupted;
-    o.kernels = ls->Kernels(t.scalar);
+    o.kernels = &ls->setup->KernelsFor(t.scalar);
     std::fprintf(stderr, "converge: %s: rendering the reference (variant %s, %dx the budget)\n",
                  ls->stem.c_str(), ref_spec.name.c_str(), kAutoReferenceFactor);
-    RenderResult r = Render(scene, ls->bvh, o);
+    RenderResult r = Render(scene, ls->setup->bvh(), o);
     if (r.interrupted) return kExitInterrupted;
     ls->reference = std::move(r.image);
     ls->reference_note = "auto: rendered by ptlab with variant " + ref_spec.name + " at " +

@@ -32,7 +32,7 @@
 #include "engine/render/render.h"
 #include "engine/render/render_memory.h"
 #include "engine/render/setup_checks.h"
-#include "engine/render/wavefront.h"
+#include "engine/wavefront/wavefront.h"
 #include "engine/io/text_parsing.h"
 #include "engine/scene/scene_bytes.h"
 #include "engine/scene/scene_limits.h"
@@ -41,7 +41,7 @@
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
 #include "simd/traverse8.h"
-#include "simd/wavefront_kernels.h"
+#include "simd/render_setup.h"
 #include "tools/chi2/nori_tests.h"
 #include "tools/converge/pass_variance.h"
 #include "tools/common/exit_codes.h"
@@ -195,18 +195,12 @@ void PrintStats(const RenderResult& r, int threads) {
 // (capacity × element size of their containers), and the process's peak resident set so far
 // (which also holds what loading and the BVH builds freed, the allocator's slack, code and
 // stacks).
-// Peak resident bytes after each set-up step (getrusage's peak only grows).
-struct PeakRss {
-  uint64_t loaded = 0, bvh = 0, bvh8 = 0;
-};
-
-void PrintMemory(const Scene& scene, const Bvh& bvh, const simd::Bvh8& bvh8,
-                 const simd::TriangleRows& rows, const RenderResult& r, int threads,
-                 const PeakRss& peak) {
+void PrintMemory(const Scene& scene, const RenderSetup& setup, const RenderResult& r,
+                 int threads, uint64_t peak_loaded) {
   const SceneBytes s = SceneTableBytes(scene);
   const auto mib = [](uint64_t bytes) { return double(bytes) / double(1 << 20); };
-  const uint64_t bvh_bytes = BvhBytes(bvh), bvh8_bytes = simd::Bvh8Bytes(bvh8);
-  const uint64_t rows_bytes = simd::TriangleRowsBytes(rows);
+  const uint64_t bvh_bytes = BvhBytes(setup.bvh()), bvh8_bytes = simd::Bvh8Bytes(setup.bvh8());
+  const uint64_t rows_bytes = simd::TriangleRowsBytes(setup.rows());
   const uint64_t counted =
       s.total() + bvh_bytes + bvh8_bytes + rows_bytes + r.memory.wavefront + r.memory.film;
   std::fprintf(stderr,
@@ -217,8 +211,8 @@ void PrintMemory(const Scene& scene, const Bvh& bvh, const simd::Bvh8& bvh8,
                mib(s.total()), mib(s.triangles), mib(s.shading), mib(s.vertices),
                mib(s.spheres + s.materials + s.emitters + s.meshes), mib(bvh_bytes),
                mib(bvh8_bytes), mib(rows_bytes), mib(r.memory.wavefront), threads,
-               mib(r.memory.film), mib(counted), mib(PeakResidentBytes()), mib(peak.loaded),
-               mib(peak.bvh), mib(peak.bvh8));
+               mib(r.memory.film), mib(counted), mib(PeakResidentBytes()), mib(peak_loaded),
+               mib(setup.peak_after_bvh()), mib(setup.peak_after_bvh8()));
 }
 
 // The CS184 flags that change the scene: -l, -m, -b, -d and -e (an environment-map light,
@@ -454,32 +448,16 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                  scene.spheres.size() > 0
                      ? ("  " + std::to_string(scene.spheres.size()) + " spheres").c_str()
                      : "");
-  PeakRss peak;
-  peak.loaded = PeakResidentBytes();
-  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
-  peak.bvh = PeakResidentBytes();
-  // The one switch between the kernel tables: --scalar or PTLAB_FORCE_SCALAR=1 picks the
-  // oracle's, which renders the same bits one ray at a time.
-  const bool packets = !args.scalar && !ForceScalar();
-  simd::Bvh8 bvh8;
-  simd::TriangleRows rows;
-  WavefrontKernels kernels = OracleWavefrontKernels(bvh);
-  if (packets) {
-    bvh8 = simd::BuildBvh8(bvh);
-    rows = simd::BuildTriangleRows(scene);
-    kernels = simd::SimdWavefrontKernels(bvh8, rows);
-  }
-  peak.bvh8 = PeakResidentBytes();
-  options.kernels = &kernels;
-  const std::string traversal = packets ? std::string("packet8 ") + simd::Traverse8TargetName()
-                                        : std::string("scalar");
+  const uint64_t peak_loaded = PeakResidentBytes();
+  const RenderSetup setup(scene, ChooseKernels(args.scalar));
+  const std::string traversal = setup.TraversalName();
   if (mpi.root()) std::fprintf(stderr, "ptlab: traversal: %s\n",
-               packets ? ("8-wide packets, Highway target " +
-                          std::string(simd::Traverse8TargetName())).c_str()
-                       : "scalar oracle kernels (one ray at a time)");
+               setup.packets() ? ("8-wide packets, Highway target " +
+                                  std::string(simd::Traverse8TargetName())).c_str()
+                               : "scalar oracle kernels (one ray at a time)");
   std::signal(SIGINT, OnInterrupt);
   std::signal(SIGTERM, OnInterrupt);
-  const RenderResult result = Render(scene, bvh, options);
+  const RenderResult result = Render(scene, setup, options);
   BlockInterrupts hold_interrupts;
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
@@ -492,7 +470,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (!mpi.root()) return result.interrupted ? interrupted_code : 0;  // rank 0 writes the film
   if (args.stats) {
     PrintStats(result, options.threads * mpi.size());
-    PrintMemory(scene, bvh, bvh8, rows, result, options.threads, peak);
+    PrintMemory(scene, setup, result, options.threads, peak_loaded);
   }
 
   if (result.nonfinite_samples > 0)

@@ -273,9 +273,8 @@ TEST(Render, MemoryOfFilmBlocksAndWavefronts) {
     EXPECT_GT(packets.memory.wavefront, paths * (sizeof(PathSampler) + sizeof(Color3f))) << threads;
   }
 
-  const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
-  const simd::TriangleRows rows = simd::BuildTriangleRows(scene);
-  const WavefrontKernels kernels = simd::SimdWavefrontKernels(bvh8, rows);
+  const RenderSetup setup(scene, KernelChoice::kSimd);
+  const WavefrontKernels& kernels = setup.kernels();
   const Camera camera(scene.camera);
   const PixelFilter filter(scene.filter);
   const RenderContext ctx{scene, bvh};

@@ -144,7 +144,7 @@ TEST(PtlabCli, StatsReportsStagesAndPackets) {
   EXPECT_NEAR(s.lanes, double(s.rays) / double(s.packets), 0.01);
   EXPECT_LE(s.lanes, 8.0);
   // --scalar runs the same wavefront on the oracle's kernel table, and its stages are broken
-  // down as well. Its BSDF samples differ from the SIMD ones by a few ulp (simd/shade8.h), which
+  // down as well. Its BSDF samples differ from the SIMD ones by a few ulp (simd/wavefront/bsdf8.h), which
   // ends or continues a rare path differently: about the same rays in about as many packets.
   ASSERT_EQ(RunPtlab(render + " --scalar", dir / "log2"), 0) << ReadFile(dir / "log2");
   const std::string log2 = ReadFile(dir / "log2");

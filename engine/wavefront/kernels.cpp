@@ -1,0 +1,79 @@
+// The oracle's kernel table: the scalar reference of every wavefront stage (each slot's oracle
+// lives in its stage's file; here the traversal wrappers and the table itself).
+#include "engine/wavefront/kernels.h"
+
+#include <bit>
+#include <cstdlib>
+#include <cstring>
+
+#include "engine/bvh/intersect1.h"
+#include "engine/sampling/sobol.h"
+
+namespace ptlab {
+
+namespace {
+
+// The oracle's traversal kernels: each active lane alone through Intersect1 / Occluded1.
+Mask8 OracleIntersect8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active,
+                       HitPacket8* hits) {
+  Mask8 got = 0;
+  for (Mask8 todo = active & kAllLanes; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    Hit h;
+    if (!Intersect1(*accel.bvh, GetLaneRay(rays, j), &h)) continue;
+    SetLaneHit(hits, j, h.t, h.b1, h.b2, h.prim);
+    got |= LaneBit(j);
+  }
+  return got;
+}
+
+Mask8 OracleOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active) {
+  Mask8 got = 0;
+  for (Mask8 todo = active & kAllLanes; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    if (Occluded1(*accel.bvh, GetLaneRay(rays, j))) got |= LaneBit(j);
+  }
+  return got;
+}
+
+void OracleAreaLight(const WavefrontAccel&, const Scene& scene, TriangleSampling mode, size_t n,
+                     const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) {
+  SampleAreaLightBatch(scene, mode, n, in, out);
+}
+
+void OracleInteraction(const WavefrontAccel&, const Scene& scene, const RayPacket8* rays,
+                       const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
+                       const InteractionRows& out, HitLists* lists) {
+  MakeInteractionBatch(scene, rays, hits, hit_mask, packets, out, lists);
+}
+
+}  // namespace
+
+WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
+  return {.accel = {.bvh = &bvh},
+          .intersect8 = OracleIntersect8,
+          .occluded8 = OracleOccluded8,
+          .sobol2d = ScrambledSobol2DBatch,
+          .sobol1d = ScrambledSobol1DBatch,
+          .bsdf = ShadeBatch,
+          .splat = SplatSamples,
+          .area_light = OracleAreaLight,
+          .area_request = AreaEmitterRequestBatch,
+          .shadow_rows = CompactShadowRows,
+          .environment = SampleEnvironmentBatch,
+          .environment_eval = EvalEnvironmentBatch,
+          .distant_disk = SampleDistantDiskBatch,
+          .interaction = OracleInteraction,
+          .spawn = SpawnRayBatch,
+          .vertices = DecideVertices,
+          .continuation = ContinuePaths,
+          .emission = AddAreaEmissions,
+          .name = "scalar-oracle"};
+}
+
+bool ForceScalar() {
+  const char* v = std::getenv("PTLAB_FORCE_SCALAR");
+  return v != nullptr && v[0] != '\0' && std::strcmp(v, "0") != 0;
+}
+
+}  // namespace ptlab

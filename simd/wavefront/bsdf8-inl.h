@@ -1,0 +1,686 @@
+// Per-target SIMD kernels of simd/wavefront/bsdf8.h (re-included once per Highway target).
+// Each kernel mirrors its scalar oracle in engine/bsdf/ operation by operation, so that the two
+// differ only by the rounding of transcendentals (hwy/contrib/math vs libm) and by FMA
+// contraction outside the cancelling sums (those use RoundedMul below).
+
+#if defined(PTLAB_SIMD_SHADE8_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef PTLAB_SIMD_SHADE8_INL_H_
+#undef PTLAB_SIMD_SHADE8_INL_H_
+#else
+#define PTLAB_SIMD_SHADE8_INL_H_
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/bsdf/beckmann.h"
+#include "engine/bsdf/fresnel.h"
+#include "engine/wavefront/bsdf.h"
+#include "engine/scene/material_tables.h"
+#include "hwy/contrib/math/math-inl.h"
+#include "hwy/highway.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace ptlab::simd {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D8 = hn::CappedTag<float, 8>;
+using V8 = hn::Vec<D8>;
+using M8 = hn::Mask<D8>;
+
+// ------------------------------------------------------------------------------ clamps
+
+/// ClampBeckmannAlpha.
+HWY_INLINE V8 ClampAlpha(D8 d, V8 alpha) {
+  const V8 lo = hn::Set(d, kBeckmannMinAlpha);
+  return hn::IfThenElse(hn::Gt(alpha, lo), hn::Min(alpha, hn::Set(d, kBeckmannMaxAlpha)), lo);
+}
+/// ClampSample.
+HWY_INLINE V8 ClampUnit(D8 d, V8 u) {
+  return hn::IfThenElseZero(hn::Gt(u, hn::Zero(d)), hn::Min(u, hn::Set(d, kOneMinusEpsilon)));
+}
+/// ClampCosine: |c| clamped to [0, 1], NaN → 1.
+HWY_INLINE V8 ClampCos(D8 d, V8 c) {
+  const V8 a = hn::Abs(c), one = hn::Set(d, 1.0f);
+  return hn::IfThenElse(hn::Lt(a, one), a, one);
+}
+/// ClampRelativeIor.
+HWY_INLINE V8 ClampRelIor(D8 d, V8 eta) {
+  const V8 lo = hn::Set(d, kMinRelativeIor);
+  return hn::IfThenElse(hn::Gt(eta, lo), hn::Min(eta, hn::Set(d, kMaxRelativeIor)), lo);
+}
+/// ClampConductorIor.
+HWY_INLINE V8 ClampCondIor(D8 d, V8 v) {
+  return hn::IfThenElseZero(hn::Gt(v, hn::Zero(d)), hn::Min(v, hn::Set(d, kMaxConductorIor)));
+}
+/// a·b rounded to float before any add: the bitwise OR with +0.0 is opaque to the compiler, so
+/// it cannot contract the product and a following add/sub into one FMA. Used for the products
+/// in sums that cancel (η² − sin²θ, wo·H, …), so that every target rounds them exactly as the
+/// scalar oracle does (engine/ is compiled without FMA).
+HWY_INLINE V8 RoundedMul(D8 d, V8 a, V8 b) { return hn::Or(hn::Mul(a, b), hn::Zero(d)); }
+
+/// Dot product with RoundedMul terms, summed in the order of Dot() in engine/core/vec.h.
+HWY_INLINE V8 RoundedDot(D8 d, V8 ax, V8 ay, V8 az, V8 bx, V8 by, V8 bz) {
+  return hn::Add(hn::Add(RoundedMul(d, ax, bx), RoundedMul(d, ay, by)), RoundedMul(d, az, bz));
+}
+
+HWY_INLINE M8 AllFinite3(D8, V8 a, V8 b, V8 c) {
+  return hn::And(hn::IsFinite(a), hn::And(hn::IsFinite(b), hn::IsFinite(c)));
+}
+
+// ------------------------------------------------------------------------------ Fresnel
+
+/// FresnelDielectric (fresnel.h); eta is clamped here. Returns F, sets *cos_t.
+HWY_INLINE V8 FresnelDielectric(D8 d, V8 cos_i, V8 eta, V8* cos_t) {
+  const V8 one = hn::Set(d, 1.0f);
+  eta = ClampRelIor(d, eta);
+  eta = hn::IfThenElse(hn::Lt(cos_i, hn::Zero(d)), hn::Div(one, eta), eta);
+  const V8 c = ClampCos(d, cos_i);
+  const V8 p = hn::Add(RoundedMul(d, hn::Sub(eta, one), hn::Add(eta, one)), RoundedMul(d, c, c));
+  const M8 refracts = hn::Gt(p, hn::Zero(d));
+  const V8 eta_ct = hn::Sqrt(hn::IfThenElseZero(refracts, p));
+  const V8 ct_over_eta = hn::Div(eta_ct, hn::Mul(eta, eta));
+  const V8 rs = hn::Div(hn::Sub(c, eta_ct), hn::Add(c, eta_ct));
+  const V8 rp = hn::Div(hn::Sub(c, ct_over_eta), hn::Add(c, ct_over_eta));
+  const V8 f = hn::Mul(hn::Set(d, 0.5f), hn::Add(hn::Mul(rs, rs), hn::Mul(rp, rp)));
+  *cos_t = hn::IfThenElseZero(refracts, hn::Div(eta_ct, eta));
+  return hn::IfThenElse(refracts, f, one);
+}
+
+/// FresnelSchlick (fresnel.h).
+HWY_INLINE V8 FresnelSchlick(D8 d, V8 cos_i, V8 eta) {
+  const V8 one = hn::Set(d, 1.0f);
+  eta = ClampRelIor(d, eta);
+  const V8 r = hn::Div(hn::Sub(eta, one), hn::Add(eta, one));
+  const V8 r0 = hn::Mul(r, r);
+  const V8 m = hn::Sub(one, ClampCos(d, cos_i));
+  const V8 m2 = hn::Mul(m, m);
+  return hn::Add(r0, hn::Mul(hn::Sub(one, r0), hn::Mul(hn::Mul(m2, m2), m)));
+}
+
+/// FresnelConductor (fresnel.h), one channel.
+HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
+  const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), half = hn::Set(d, 0.5f);
+  eta = ClampCondIor(d, eta);
+  k = ClampCondIor(d, k);
+  const V8 c = ClampCos(d, cos_i);
+  const V8 s2 = RoundedMul(d, hn::Sub(one, c), hn::Add(one, c));
+  const V8 t = hn::Sub(RoundedMul(d, hn::Sub(eta, k), hn::Add(eta, k)), s2);
+  const V8 ek = hn::Mul(eta, k);
+  const V8 abs_z = hn::Sqrt(hn::Add(hn::Mul(t, t), hn::Mul(hn::Set(d, 4.0f), hn::Mul(ek, ek))));
+  const M8 pos = hn::Gt(t, zero);
+  const V8 a_pos = hn::Sqrt(hn::Mul(half, hn::Add(abs_z, t)));
+  const V8 b_neg = hn::Sqrt(hn::Mul(half, hn::Sub(abs_z, t)));
+  const V8 a =
+      hn::IfThenElse(pos, a_pos, hn::IfThenElseZero(hn::Gt(b_neg, zero), hn::Div(ek, b_neg)));
+  const V8 b = hn::IfThenElse(pos, hn::Div(ek, a_pos), b_neg);
+  const V8 b2 = hn::Mul(b, b);
+  const V8 am = hn::Sub(a, c), ap = hn::Add(a, c);
+  const V8 num_s = hn::Add(hn::Mul(am, am), b2), den_s = hn::Add(hn::Mul(ap, ap), b2);
+  const V8 rs = hn::IfThenElse(hn::Gt(den_s, zero), hn::Div(num_s, den_s), one);
+  const V8 ac = RoundedMul(d, a, c), bc = hn::Mul(b, c);
+  const V8 pm = hn::Sub(ac, s2), pp = hn::Add(ac, s2);
+  const V8 bc2 = hn::Mul(bc, bc);
+  const V8 num_p = hn::Add(hn::Mul(pm, pm), bc2), den_p = hn::Add(hn::Mul(pp, pp), bc2);
+  const V8 rp = hn::Mul(rs, hn::IfThenElse(hn::Gt(den_p, zero), hn::Div(num_p, den_p), one));
+  return hn::Mul(half, hn::Add(rs, rp));
+}
+
+// ------------------------------------------------------------------------------ Beckmann
+
+/// BeckmannD (beckmann.h) for the unnormalised half vector h; alpha already clamped.
+HWY_INLINE V8 BeckmannD(D8 d, V8 alpha, V8 hx, V8 hy, V8 hz) {
+  const V8 a2 = hn::Mul(alpha, alpha);
+  // Rounded products: exp(−s2/(z2 α²)) amplifies an ulp of its argument up to ~100 times.
+  const V8 s2 = hn::Add(RoundedMul(d, hx, hx), RoundedMul(d, hy, hy));
+  const V8 z2 = RoundedMul(d, hz, hz);
+  // hwy::Exp converts its argument to int before it range-checks it: −∞ (h.z = 0) and NaN
+  // (h = 0) would be undefined behaviour on the EMU128 target (UBSan found it). Below −104
+  // Exp is 0 anyway, which is what the oracle's exp gives there (NaN lanes end at 0 below).
+  const V8 arg = hn::Div(hn::Neg(s2), hn::Mul(z2, a2)), low = hn::Set(d, -200.0f);
+  const V8 e = hn::Exp(d, hn::IfThenElse(hn::Ge(arg, low), arg, low));
+  const V8 cos2 = hn::Div(z2, hn::Add(s2, z2));
+  const V8 dv = hn::Div(e, hn::Mul(hn::Mul(hn::Set(d, kPi), a2), hn::Mul(cos2, cos2)));
+  const V8 zero = hn::Zero(d);
+  return hn::IfThenElseZero(hn::And(hn::Gt(hz, zero), hn::Gt(e, zero)), dv);
+}
+
+/// BeckmannEvalPdf (beckmann.h) given dv = BeckmannD(alpha, h) of h = wo + wi (the sum as
+/// BeckmannEvalPdf forms it). Returns D, sets *pdf.
+HWY_INLINE V8 BeckmannEvalPdfOfD(D8 d, V8 dv, V8 ox, V8 oy, V8 oz, V8 iz, V8 hx, V8 hy, V8 hz,
+                                 V8* pdf) {
+  const V8 zero = hn::Zero(d);
+  const V8 wo_h = RoundedDot(d, ox, oy, oz, hx, hy, hz);
+  const V8 p = hn::Div(hn::Mul(dv, hz), hn::Mul(hn::Set(d, 4.0f), wo_h));
+  const M8 ok = hn::And(hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)), hn::Gt(wo_h, zero)),
+                        hn::And(hn::Gt(dv, zero), hn::And(hn::IsFinite(dv), hn::IsFinite(p))));
+  *pdf = hn::IfThenElseZero(ok, p);
+  return hn::IfThenElseZero(ok, dv);
+}
+
+/// BeckmannEvalPdf (beckmann.h); alpha already clamped. Returns D, sets *pdf.
+HWY_INLINE V8 BeckmannEvalPdf(D8 d, V8 alpha, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy, V8 iz, V8* pdf) {
+  const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
+  return BeckmannEvalPdfOfD(d, BeckmannD(d, alpha, hx, hy, hz), ox, oy, oz, iz, hx, hy, hz, pdf);
+}
+
+/// BeckmannG1 (beckmann.h); alpha already clamped, v.z > 0 assumed by the caller's mask.
+HWY_INLINE V8 BeckmannG1(D8 d, V8 alpha, V8 vx, V8 vy, V8 vz) {
+  const V8 b = hn::Div(vz, hn::Mul(alpha, hn::Sqrt(hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy)))));
+  const V8 num = hn::Mul(b, hn::Add(hn::Set(d, 3.535f), hn::Mul(hn::Set(d, 2.181f), b)));
+  const V8 den = hn::Add(hn::Set(d, 1.0f),
+                         hn::Mul(b, hn::Add(hn::Set(d, 2.276f), hn::Mul(hn::Set(d, 2.577f), b))));
+  return hn::IfThenElse(hn::Lt(b, hn::Set(d, 1.6f)), hn::Div(num, den), hn::Set(d, 1.0f));
+}
+
+/// BeckmannG1OverCos (beckmann.h); alpha already clamped.
+HWY_INLINE V8 BeckmannG1OverCos(D8 d, V8 alpha, V8 vx, V8 vy, V8 vz) {
+  const V8 as = hn::Mul(alpha, hn::Sqrt(hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy))));
+  const V8 b = hn::Div(vz, as);
+  const V8 num = hn::Add(hn::Set(d, 3.535f), hn::Mul(hn::Set(d, 2.181f), b));
+  const V8 den = hn::Add(hn::Set(d, 1.0f),
+                         hn::Mul(b, hn::Add(hn::Set(d, 2.276f), hn::Mul(hn::Set(d, 2.577f), b))));
+  return hn::IfThenElse(hn::Lt(b, hn::Set(d, 1.6f)), hn::Div(num, hn::Mul(den, as)),
+                        hn::Div(hn::Set(d, 1.0f), vz));
+}
+
+/// SampleBeckmannNormal (beckmann.h); alpha already clamped.
+HWY_INLINE void SampleBeckmannNormal(D8 d, V8 alpha, V8 ux, V8 uy, V8* hx, V8* hy, V8* hz) {
+  const V8 u1 = ClampUnit(d, ux), u2 = ClampUnit(d, uy);
+  const V8 tan2 = hn::Mul(hn::Neg(hn::Mul(alpha, alpha)), hn::Log1p(d, hn::Neg(u1)));
+  const V8 one = hn::Set(d, 1.0f);
+  const V8 cos_t = hn::Div(one, hn::Sqrt(hn::Add(one, tan2)));
+  const V8 sin_t = hn::Mul(hn::Sqrt(tan2), cos_t);
+  const V8 phi = hn::Mul(hn::Set(d, 2.0f * kPi), u2);
+  *hx = hn::Mul(sin_t, hn::Cos(d, phi));
+  *hy = hn::Mul(sin_t, hn::Sin(d, phi));
+  *hz = cos_t;
+}
+
+/// ReflectAbout (beckmann.h).
+HWY_INLINE void Reflect(D8 d, V8 ox, V8 oy, V8 oz, V8 hx, V8 hy, V8 hz, V8* rx, V8* ry, V8* rz) {
+  const V8 dot = hn::Add(hn::Add(hn::Mul(ox, hx), hn::Mul(oy, hy)), hn::Mul(oz, hz));
+  const V8 dot2 = hn::Mul(hn::Set(d, 2.0f), dot);
+  *rx = hn::Sub(hn::Mul(dot2, hx), ox);
+  *ry = hn::Sub(hn::Mul(dot2, hy), oy);
+  *rz = hn::Sub(hn::Mul(dot2, hz), oz);
+}
+
+/// SampleCosineHemisphere (engine/sampling/warp.h: Malley's method on the concentric disk).
+HWY_INLINE void SampleCosineHemisphere(D8 d, V8 ux, V8 uy, V8* wx, V8* wy, V8* wz) {
+  const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), two = hn::Set(d, 2.0f);
+  const V8 ox = hn::Sub(hn::Mul(two, ux), one), oy = hn::Sub(hn::Mul(two, uy), one);
+  const M8 at_center = hn::And(hn::Eq(ox, zero), hn::Eq(oy, zero));
+  const M8 x_major = hn::Gt(hn::Abs(ox), hn::Abs(oy));
+  const V8 quarter_pi = hn::Set(d, kPi / 4);
+  const V8 r = hn::IfThenElse(x_major, ox, oy);
+  // At the centre θ is 0/0: zeroed, because hwy::Cos/Sin convert NaN to int (undefined on
+  // EMU128; UBSan found it). Those lanes are 0 below either way.
+  const V8 theta = hn::IfThenZeroElse(
+      at_center,
+      hn::IfThenElse(x_major, hn::Mul(quarter_pi, hn::Div(oy, ox)),
+                     hn::Sub(hn::Set(d, kPi / 2), hn::Mul(quarter_pi, hn::Div(ox, oy)))));
+  const V8 dx = hn::IfThenZeroElse(at_center, hn::Mul(r, hn::Cos(d, theta)));
+  const V8 dy = hn::IfThenZeroElse(at_center, hn::Mul(r, hn::Sin(d, theta)));
+  *wx = dx;
+  *wy = dy;
+  *wz = hn::Sqrt(hn::Max(zero, hn::Sub(hn::Sub(one, hn::Mul(dx, dx)), hn::Mul(dy, dy))));
+}
+
+// ------------------------------------------------------------------------------ batch driver
+
+/// Plain pointers for one block of rows: `index` (may be null), kIn float inputs and kOut float
+/// outputs (null entries are neither read nor written).
+template <size_t kIn, size_t kOut>
+struct BlockIo {
+  const uint32_t* index = nullptr;
+  const float* in[kIn] = {};
+  float* out[kOut] = {};
+};
+
+/// Calls block(io, i) for i = 0, N, 2N, … with N = Lanes(D8) ≤ 8; a partial last block runs
+/// on padded copies (padding repeats the last row, so it is always a valid input).
+template <size_t kIn, size_t kOut, class Block>
+HWY_INLINE void ForEachBlock(const BlockIo<kIn, kOut>& io, size_t n, const Block& block) {
+  const D8 d;
+  const size_t lanes = hn::Lanes(d);
+  size_t i = 0;
+  for (; i + lanes <= n; i += lanes) block(io, i);
+  if (i == n) return;
+  const size_t rem = n - i;
+  HWY_ALIGN uint32_t t_index[8];
+  HWY_ALIGN float t_in[kIn][8];
+  HWY_ALIGN float t_out[kOut][8];
+  BlockIo<kIn, kOut> t;
+  for (size_t j = 0; j < 8; ++j) {
+    const size_t src = i + std::min(j, rem - 1);
+    if (io.index != nullptr) t_index[j] = io.index[src];
+    for (size_t c = 0; c < kIn; ++c)
+      if (io.in[c] != nullptr) t_in[c][j] = io.in[c][src];
+  }
+  t.index = io.index != nullptr ? t_index : nullptr;
+  for (size_t c = 0; c < kIn; ++c) t.in[c] = io.in[c] != nullptr ? t_in[c] : nullptr;
+  for (size_t c = 0; c < kOut; ++c) t.out[c] = io.out[c] != nullptr ? t_out[c] : nullptr;
+  block(t, 0);
+  for (size_t c = 0; c < kOut; ++c) {
+    if (io.out[c] == nullptr) continue;
+    for (size_t j = 0; j < rem; ++j) io.out[c][i + j] = t_out[c][j];
+  }
+}
+
+HWY_INLINE V8 Load(D8 d, const float* p, size_t i) { return hn::LoadU(d, p + i); }
+HWY_INLINE void Store(D8 d, V8 v, float* p, size_t i) { hn::StoreU(v, d, p + i); }
+
+/// Gathers column[index[i + lane]].
+HWY_INLINE V8 Gather(D8 d, const AlignedVector<float>& column, const uint32_t* index, size_t i) {
+  const hn::RebindToSigned<D8> di;
+  const auto idx = hn::LoadU(di, reinterpret_cast<const int32_t*>(index + i));
+  return hn::GatherIndex(d, column.data(), idx);
+}
+
+// ------------------------------------------------------------------------------ kernels
+
+inline void BeckmannEvalPdfKernel(const float* alpha, DirectionArrays wo, DirectionArrays wi,
+                                  size_t n, float* d_out, float* pdf_out) {
+  BlockIo<7, 2> io;
+  io.in[0] = alpha;
+  io.in[1] = wo.x, io.in[2] = wo.y, io.in[3] = wo.z;
+  io.in[4] = wi.x, io.in[5] = wi.y, io.in[6] = wi.z;
+  io.out[0] = d_out, io.out[1] = pdf_out;
+  ForEachBlock(io, n, [](const BlockIo<7, 2>& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const V8 alpha_v = ClampAlpha(d, Load(d, b.in[0], i));
+    V8 pdf;
+    const V8 dv =
+        BeckmannEvalPdf(d, alpha_v, Load(d, b.in[1], i), Load(d, b.in[2], i), Load(d, b.in[3], i),
+                        Load(d, b.in[4], i), Load(d, b.in[5], i), Load(d, b.in[6], i), &pdf);
+    Store(d, dv, b.out[0], i);
+    Store(d, pdf, b.out[1], i);
+  });
+}
+
+inline void SampleBeckmannReflectionKernel(const float* alpha, DirectionArrays wo, const float* u_x,
+                                           const float* u_y, size_t n, DirectionOutArrays wi,
+                                           float* pdf_out) {
+  BlockIo<6, 4> io;
+  io.in[0] = alpha;
+  io.in[1] = wo.x, io.in[2] = wo.y, io.in[3] = wo.z;
+  io.in[4] = u_x, io.in[5] = u_y;
+  io.out[0] = wi.x, io.out[1] = wi.y, io.out[2] = wi.z, io.out[3] = pdf_out;
+  ForEachBlock(io, n, [](const BlockIo<6, 4>& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const V8 alpha_v = ClampAlpha(d, Load(d, b.in[0], i));
+    const V8 ox = Load(d, b.in[1], i), oy = Load(d, b.in[2], i), oz = Load(d, b.in[3], i);
+    V8 hx, hy, hz, ix, iy, iz, pdf;
+    SampleBeckmannNormal(d, alpha_v, Load(d, b.in[4], i), Load(d, b.in[5], i), &hx, &hy, &hz);
+    Reflect(d, ox, oy, oz, hx, hy, hz, &ix, &iy, &iz);
+    BeckmannEvalPdf(d, alpha_v, ox, oy, oz, ix, iy, iz, &pdf);
+    const M8 ok = hn::Gt(pdf, hn::Zero(d));
+    Store(d, hn::IfThenElseZero(ok, ix), b.out[0], i);
+    Store(d, hn::IfThenElseZero(ok, iy), b.out[1], i);
+    Store(d, hn::IfThenElseZero(ok, iz), b.out[2], i);
+    Store(d, pdf, b.out[3], i);
+  });
+}
+
+inline void ConductorFresnelKernel(const float* cos_i, const float* eta, const float* k, size_t n,
+                                   float* f) {
+  BlockIo<3, 1> io;
+  io.in[0] = cos_i, io.in[1] = eta, io.in[2] = k;
+  io.out[0] = f;
+  ForEachBlock(io, n, [](const BlockIo<3, 1>& b, size_t i) HWY_ATTR {
+    const D8 d;
+    Store(d, FresnelConductor(d, Load(d, b.in[0], i), Load(d, b.in[1], i), Load(d, b.in[2], i)),
+          b.out[0], i);
+  });
+}
+
+inline void DielectricFresnelKernel(const float* cos_i, const float* eta, size_t n, float* f,
+                                    float* cos_t) {
+  BlockIo<2, 2> io;
+  io.in[0] = cos_i, io.in[1] = eta;
+  io.out[0] = f, io.out[1] = cos_t;
+  ForEachBlock(io, n, [](const BlockIo<2, 2>& b, size_t i) HWY_ATTR {
+    const D8 d;
+    V8 ct;
+    Store(d, FresnelDielectric(d, Load(d, b.in[0], i), Load(d, b.in[1], i), &ct), b.out[0], i);
+    Store(d, ct, b.out[1], i);
+  });
+}
+
+// ------------------------------------------------------------------------------ shade step
+
+// Column order of the shade step's BlockIo (see ShadeInputs / ShadeOutputs).
+enum ShadeIn { kWoX, kWoY, kWoZ, kWlX, kWlY, kWlZ, kULobe, kUX, kUY, kShadeInCount };
+enum ShadeOut { kFR, kFG, kFB, kPdfL, kWiX, kWiY, kWiZ, kWR, kWG, kWB, kPdf, kEta, kShadeOutCount };
+using ShadeIo = BlockIo<kShadeInCount, kShadeOutCount>;
+
+/// Column c of the shade step's inputs, rows [i, i + Lanes(d)).
+HWY_INLINE V8 In(D8 d, const ShadeIo& b, ShadeIn c, size_t i) { return Load(d, b.in[c], i); }
+
+HWY_INLINE void StoreEval(D8 d, const ShadeIo& b, size_t i, V8 fr, V8 fg, V8 fb, V8 pdf_l) {
+  Store(d, fr, b.out[kFR], i), Store(d, fg, b.out[kFG], i), Store(d, fb, b.out[kFB], i);
+  Store(d, pdf_l, b.out[kPdfL], i);
+}
+
+/// Stores a sample; rows outside `ok` get wi = 0, weight = 0, pdf = 0, eta = 1.
+HWY_INLINE void StoreSample(D8 d, const ShadeIo& b, size_t i, M8 ok, V8 ix, V8 iy, V8 iz, V8 wr,
+                            V8 wg, V8 wb, V8 pdf, V8 eta) {
+  Store(d, hn::IfThenElseZero(ok, ix), b.out[kWiX], i);
+  Store(d, hn::IfThenElseZero(ok, iy), b.out[kWiY], i);
+  Store(d, hn::IfThenElseZero(ok, iz), b.out[kWiZ], i);
+  Store(d, hn::IfThenElseZero(ok, wr), b.out[kWR], i);
+  Store(d, hn::IfThenElseZero(ok, wg), b.out[kWG], i);
+  Store(d, hn::IfThenElseZero(ok, wb), b.out[kWB], i);
+  Store(d, hn::IfThenElseZero(ok, pdf), b.out[kPdf], i);
+  Store(d, hn::IfThenElse(ok, eta, hn::Set(d, 1.0f)), b.out[kEta], i);
+}
+
+/// CosineHemispherePdf (warp.h) with the one-sided test of DiffusePdf.
+HWY_INLINE V8 CosinePdf(D8 d, V8 oz, V8 iz) {
+  const V8 zero = hn::Zero(d);
+  return hn::IfThenElseZero(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)),
+                            hn::Mul(iz, hn::Set(d, kInvPi)));
+}
+
+/// DiffuseEval / DiffusePdf / DiffuseSample (engine/bsdf/diffuse.h).
+inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, bool eval,
+                         bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const V8 zero = hn::Zero(d), inv_pi = hn::Set(d, kInvPi);
+    const V8 ar = Gather(d, t.albedo_r, b.index, i), ag = Gather(d, t.albedo_g, b.index, i),
+             ab = Gather(d, t.albedo_b, b.index, i);
+    const V8 oz = In(d, b, kWoZ, i);
+    if (eval) {
+      const V8 lz = In(d, b, kWlZ, i);
+      const M8 both = hn::And(hn::Gt(oz, zero), hn::Gt(lz, zero));
+      StoreEval(d, b, i, hn::IfThenElseZero(both, hn::Mul(ar, inv_pi)),
+                hn::IfThenElseZero(both, hn::Mul(ag, inv_pi)),
+                hn::IfThenElseZero(both, hn::Mul(ab, inv_pi)), CosinePdf(d, oz, lz));
+    }
+    if (!sample) return;
+    const V8 ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
+    V8 ix, iy, iz;
+    SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
+    const V8 pdf = CosinePdf(d, oz, iz);
+    StoreSample(d, b, i, hn::Gt(pdf, zero), ix, iy, iz, ar, ag, ab, pdf, hn::Set(d, 1.0f));
+  });
+}
+
+/// MirrorSample (engine/bsdf/mirror.h); Eval and Pdf are 0.
+inline void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool eval, bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
+    if (!sample) return;
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+    const V8 rr = Gather(d, t.reflectance_r, b.index, i),
+             rg = Gather(d, t.reflectance_g, b.index, i),
+             rb = Gather(d, t.reflectance_b, b.index, i);
+    StoreSample(d, b, i, hn::Gt(oz, zero), hn::Neg(ox), hn::Neg(oy), oz, rr, rg, rb, one, one);
+  });
+}
+
+/// DielectricSample (engine/bsdf/dielectric.h); Eval and Pdf are 0.
+inline void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t n, bool eval,
+                            bool sample) {
+  const bool has_flags = !t.flags.empty();
+  ForEachBlock(io, n, [&t, eval, sample, has_flags](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const hn::RebindToSigned<D8> di;
+    const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
+    if (!sample) return;
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i),
+             u_lobe = In(d, b, kULobe, i);
+    const V8 eta =
+        ClampRelIor(d, hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i)));
+    V8 cos_t;
+    V8 f = FresnelDielectric(d, oz, eta, &cos_t);
+    M8 scale = hn::FirstN(d, 0);
+    M8 tir_only = hn::FirstN(d, 0);  // refraction-only lanes under total internal reflection
+    if (has_flags) {
+      HWY_ALIGN int32_t flags[8];
+      for (size_t j = 0; j < hn::Lanes(d); ++j) flags[j] = t.flags[b.index[i + j]];
+      const auto fl = hn::LoadU(di, flags);
+      const M8 schlick = hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricSchlick)));
+      scale = hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricScaleRadiance)));
+      f = hn::IfThenElse(hn::And(schlick, hn::Lt(f, one)), FresnelSchlick(d, oz, eta), f);
+      const M8 refract_only =
+          hn::RebindMask(d, hn::TestBit(fl, hn::Set(di, kDielectricRefractOnly)));
+      tir_only = hn::And(refract_only, hn::Ge(f, one));
+      f = hn::IfThenElse(refract_only, zero, f);
+    }
+    const M8 reflect = hn::Lt(u_lobe, f);
+    const M8 outside = hn::Gt(oz, zero);
+    const V8 rel = hn::IfThenElse(outside, hn::Div(one, eta), eta);
+    const V8 ix = hn::IfThenElse(reflect, hn::Neg(ox), hn::Mul(hn::Neg(ox), rel));
+    const V8 iy = hn::IfThenElse(reflect, hn::Neg(oy), hn::Mul(hn::Neg(oy), rel));
+    const V8 iz = hn::IfThenElse(reflect, oz, hn::IfThenElse(outside, hn::Neg(cos_t), cos_t));
+    const V8 pdf = hn::IfThenElse(reflect, f, hn::Sub(one, f));
+    const V8 eta_out = hn::IfThenElse(reflect, one, hn::Div(one, rel));
+    const V8 w = hn::IfThenElse(hn::AndNot(reflect, scale), hn::Mul(rel, rel), one);
+    // A smooth interface always scatters (only a huge non-unit wo can overflow).
+    const M8 ok = hn::AndNot(tir_only, hn::And(hn::IsFinite(ix), hn::IsFinite(iy)));
+    V8 wr = w, wg = w, wb = w;
+    if (t.tinted()) {
+      // CS184 glass colors: the reflectance tints reflection, the transmittance refraction.
+      wr = hn::Mul(w, hn::IfThenElse(reflect, Gather(d, t.reflectance_r, b.index, i),
+                                     Gather(d, t.transmittance_r, b.index, i)));
+      wg = hn::Mul(w, hn::IfThenElse(reflect, Gather(d, t.reflectance_g, b.index, i),
+                                     Gather(d, t.transmittance_g, b.index, i)));
+      wb = hn::Mul(w, hn::IfThenElse(reflect, Gather(d, t.reflectance_b, b.index, i),
+                                     Gather(d, t.transmittance_b, b.index, i)));
+    }
+    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, eta_out);
+  });
+}
+
+/// Conductor parameters of one block, gathered from ConductorTable (lanes [0, Lanes(d))).
+struct ConductorLanes {
+  HWY_ALIGN float alpha[8], eta_r[8], eta_g[8], eta_b[8], k_r[8], k_g[8], k_b[8];
+};
+
+/// ConductorEval (engine/bsdf/conductor.h) at (wo, wi) and (returned) ConductorPdf, the
+/// Beckmann D of h = wo + wi computed once for both; the Fresnel factor is evaluated per
+/// channel.
+HWY_INLINE V8 ConductorEvalPdf(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy,
+                               V8 iz, V8* fr, V8* fg, V8* fb) {
+  const V8 zero = hn::Zero(d), alpha = hn::Load(d, c.alpha);
+  const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
+  const V8 dv = BeckmannD(d, alpha, hx, hy, hz);
+  V8 pdf;
+  BeckmannEvalPdfOfD(d, dv, ox, oy, oz, iz, hx, hy, hz, &pdf);
+  const V8 n2 = hn::Add(hn::Add(hn::Mul(hx, hx), hn::Mul(hy, hy)), hn::Mul(hz, hz));
+  const V8 wi_h = hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2));
+  const V8 g =
+      hn::Mul(BeckmannG1OverCos(d, alpha, ox, oy, oz), BeckmannG1OverCos(d, alpha, ix, iy, iz));
+  const V8 scale = hn::Mul(hn::Mul(hn::Set(d, 0.25f), dv), g);
+  const V8 r = hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_r), hn::Load(d, c.k_r)), scale);
+  const V8 gg = hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_g), hn::Load(d, c.k_g)), scale);
+  const V8 bb = hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_b), hn::Load(d, c.k_b)), scale);
+  const M8 ok = hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)),
+                        hn::And(hn::Gt(dv, zero), AllFinite3(d, r, gg, bb)));
+  *fr = hn::IfThenElseZero(ok, r);
+  *fg = hn::IfThenElseZero(ok, gg);
+  *fb = hn::IfThenElseZero(ok, bb);
+  return pdf;
+}
+
+/// ConductorEval / ConductorPdf / ConductorSample (engine/bsdf/conductor.h).
+inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n, bool eval,
+                           bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    ConductorLanes c;
+    hn::Store(ClampAlpha(d, Gather(d, t.alpha, b.index, i)), d, c.alpha);
+    hn::Store(Gather(d, t.eta_r, b.index, i), d, c.eta_r);
+    hn::Store(Gather(d, t.eta_g, b.index, i), d, c.eta_g);
+    hn::Store(Gather(d, t.eta_b, b.index, i), d, c.eta_b);
+    hn::Store(Gather(d, t.k_r, b.index, i), d, c.k_r);
+    hn::Store(Gather(d, t.k_g, b.index, i), d, c.k_g);
+    hn::Store(Gather(d, t.k_b, b.index, i), d, c.k_b);
+    const V8 alpha = hn::Load(d, c.alpha);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+    if (eval) {
+      const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
+      V8 fr, fg, fb;
+      const V8 pdf_l = ConductorEvalPdf(d, c, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      StoreEval(d, b, i, fr, fg, fb, pdf_l);
+    }
+    if (!sample) return;
+    const V8 ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
+    V8 hx, hy, hz, ix, iy, iz, pdf;
+    SampleBeckmannNormal(d, alpha, ux, uy, &hx, &hy, &hz);
+    Reflect(d, ox, oy, oz, hx, hy, hz, &ix, &iy, &iz);
+    BeckmannEvalPdf(d, alpha, ox, oy, oz, ix, iy, iz, &pdf);
+    // weight = F G1(wi) (G1(wo)/cos θo) (wo·H) / H.z, H = wo + wi (ConductorSample).
+    const V8 sx = hn::Add(ox, ix), sy = hn::Add(oy, iy), sz = hn::Add(oz, iz);
+    const V8 n2 = hn::Add(hn::Add(hn::Mul(sx, sx), hn::Mul(sy, sy)), hn::Mul(sz, sz));
+    const V8 g = hn::Mul(BeckmannG1(d, alpha, ix, iy, iz),
+                         BeckmannG1OverCos(d, alpha, ox, oy, oz));
+    const V8 wi_h = hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2));
+    const V8 wo_h = RoundedDot(d, ox, oy, oz, sx, sy, sz);
+    const V8 scale = hn::Div(hn::Mul(g, wo_h), sz);
+    const V8 wr =
+        hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_r), hn::Load(d, c.k_r)), scale);
+    const V8 wg =
+        hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_g), hn::Load(d, c.k_g)), scale);
+    const V8 wb =
+        hn::Mul(FresnelConductor(d, wi_h, hn::Load(d, c.eta_b), hn::Load(d, c.k_b)), scale);
+    const M8 ok = hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)),
+                          hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
+    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
+  });
+}
+
+/// Rough plastic parameters of one block, gathered from RoughPlasticTable
+/// (MakeRoughPlasticParams; lanes [0, Lanes(d))).
+struct RoughPlasticLanes {
+  HWY_ALIGN float alpha[8], eta[8], kd_r[8], kd_g[8], kd_b[8], ks[8];
+};
+
+/// RoughPlasticEval and (returned) RoughPlasticPdf (engine/bsdf/rough_plastic.h:
+/// RoughPlasticEvalPdf), the Beckmann D of h = wo + wi computed once for both.
+HWY_INLINE V8 RoughPlasticEvalPdf(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy, V8 oz, V8 ix,
+                                  V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
+  const V8 alpha = hn::Load(d, p.alpha), eta = hn::Load(d, p.eta), kd_r = hn::Load(d, p.kd_r),
+           kd_g = hn::Load(d, p.kd_g), kd_b = hn::Load(d, p.kd_b), ks = hn::Load(d, p.ks);
+  const V8 zero = hn::Zero(d), inv_pi = hn::Set(d, kInvPi);
+  const V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
+  const V8 dv = BeckmannD(d, alpha, hx, hy, hz);
+  // RoughPlasticPdf: ks BeckmannReflectionPdf + (1 − ks) cos θi / π.
+  V8 spec_pdf;
+  BeckmannEvalPdfOfD(d, dv, ox, oy, oz, iz, hx, hy, hz, &spec_pdf);
+  const V8 pdf =
+      hn::Add(hn::Mul(ks, spec_pdf), hn::Mul(hn::Sub(hn::Set(d, 1.0f), ks), hn::Mul(iz, inv_pi)));
+  const V8 n2 = hn::Add(hn::Add(hn::Mul(hx, hx), hn::Mul(hy, hy)), hn::Mul(hz, hz));
+  V8 cos_t;
+  const V8 fres = FresnelDielectric(d, hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2)), eta, &cos_t);
+  const V8 g =
+      hn::Mul(BeckmannG1OverCos(d, alpha, ox, oy, oz), BeckmannG1OverCos(d, alpha, ix, iy, iz));
+  V8 spec = hn::Mul(hn::Mul(ks, fres), hn::Mul(hn::Mul(hn::Set(d, 0.25f), dv), g));
+  const M8 spec_ok = hn::And(hn::And(hn::Gt(dv, zero), hn::Gt(ks, zero)), hn::IsFinite(spec));
+  spec = hn::IfThenElseZero(spec_ok, spec);
+  const M8 both = hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero));
+  *fr = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_r, inv_pi), spec));
+  *fg = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_g, inv_pi), spec));
+  *fb = hn::IfThenElseZero(both, hn::Add(hn::Mul(kd_b, inv_pi), spec));
+  return hn::IfThenElseZero(both, pdf);
+}
+
+/// RoughPlasticEval / RoughPlasticPdf / RoughPlasticSample (engine/bsdf/rough_plastic.h).
+inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, size_t n, bool eval,
+                              bool sample) {
+  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const V8 kd_r = Gather(d, t.kd_r, b.index, i), kd_g = Gather(d, t.kd_g, b.index, i),
+             kd_b = Gather(d, t.kd_b, b.index, i);
+    const V8 max_kd = hn::Max(kd_r, hn::Max(kd_g, kd_b));
+    const V8 alpha = ClampAlpha(d, Gather(d, t.alpha, b.index, i));
+    const V8 ks = hn::Min(hn::Max(hn::Sub(one, max_kd), zero), one);
+    RoughPlasticLanes p;
+    hn::Store(alpha, d, p.alpha), hn::Store(ks, d, p.ks);
+    hn::Store(hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i)), d,
+              p.eta);
+    hn::Store(kd_r, d, p.kd_r), hn::Store(kd_g, d, p.kd_g), hn::Store(kd_b, d, p.kd_b);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+    if (eval) {
+      const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
+      V8 fr, fg, fb;
+      const V8 pdf_l = RoughPlasticEvalPdf(d, p, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      StoreEval(d, b, i, fr, fg, fb, pdf_l);
+    }
+    if (!sample) return;
+    const V8 u_lobe = In(d, b, kULobe, i), ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
+    // Both candidate directions, unless every lane picked the same lobe.
+    const M8 spec = hn::Lt(u_lobe, ks);
+    V8 ix = zero, iy = zero, iz = zero;
+    if (!hn::AllFalse(d, spec)) {
+      V8 hx, hy, hz;
+      SampleBeckmannNormal(d, alpha, ux, uy, &hx, &hy, &hz);
+      Reflect(d, ox, oy, oz, hx, hy, hz, &ix, &iy, &iz);
+    }
+    if (!hn::AllTrue(d, spec)) {
+      V8 cx, cy, cz;
+      SampleCosineHemisphere(d, ux, uy, &cx, &cy, &cz);
+      ix = hn::IfThenElse(spec, ix, cx), iy = hn::IfThenElse(spec, iy, cy);
+      iz = hn::IfThenElse(spec, iz, cz);
+    }
+    V8 fr, fg, fb;
+    const V8 pdf = RoughPlasticEvalPdf(d, p, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
+    const V8 cos_over_pdf = hn::Div(iz, pdf);
+    const V8 wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
+             wb = hn::Mul(fb, cos_over_pdf);
+    const M8 ok =
+        hn::And(hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero)),
+                hn::And(hn::And(hn::Gt(pdf, zero), hn::IsFinite(pdf)), AllFinite3(d, wr, wg, wb)));
+    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
+  });
+}
+
+/// ShadeBatch for one tag.
+inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
+                             const uint32_t* material_index, size_t n, const ShadeInputs& in,
+                             const ShadeOutputs& out) {
+  const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
+  ShadeIo io;
+  io.index = material_index;
+  io.in[kWoX] = in.wo.x, io.in[kWoY] = in.wo.y, io.in[kWoZ] = in.wo.z;
+  if (eval) io.in[kWlX] = in.wl.x, io.in[kWlY] = in.wl.y, io.in[kWlZ] = in.wl.z;
+  io.in[kULobe] = in.u_lobe, io.in[kUX] = in.u_x, io.in[kUY] = in.u_y;
+  if (eval) {
+    io.out[kFR] = out.f.r, io.out[kFG] = out.f.g, io.out[kFB] = out.f.b;
+    io.out[kPdfL] = out.pdf_l;
+  }
+  if (sample) {
+    io.out[kWiX] = out.wi.x, io.out[kWiY] = out.wi.y, io.out[kWiZ] = out.wi.z;
+    io.out[kWR] = out.weight.r, io.out[kWG] = out.weight.g, io.out[kWB] = out.weight.b;
+    io.out[kPdf] = out.pdf, io.out[kEta] = out.eta;
+  }
+  switch (tag) {
+    case MaterialTag::kDiffuse:
+      return ShadeDiffuse(m.diffuse, io, n, eval, sample);
+    case MaterialTag::kMirror:
+      return ShadeMirror(m.mirror, io, n, eval, sample);
+    case MaterialTag::kDielectric:
+      return ShadeDielectric(m.dielectric, io, n, eval, sample);
+    case MaterialTag::kConductor:
+      return ShadeConductor(m.conductor, io, n, eval, sample);
+    case MaterialTag::kRoughPlastic:
+      return ShadeRoughPlastic(m.rough_plastic, io, n, eval, sample);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ptlab::simd
+HWY_AFTER_NAMESPACE();
+
+#endif  // PTLAB_SIMD_SHADE8_INL_H_

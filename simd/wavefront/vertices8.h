@@ -1,0 +1,28 @@
+// Vectorized sampling-stage decisions at a batch of path vertices: the emitter pick, Russian
+// roulette and BSDF numbers with the independent sampler (plain API).
+#pragma once
+
+#include <cstddef>
+
+#include "engine/wavefront/vertices.h"
+#include "engine/scene/scene.h"
+
+namespace ptlab::simd {
+
+/// ptlab::DecideVertices, one row per 64-bit lane (hn::CappedTag<uint64_t, 8>: 8 rows per
+/// step on AVX3, 4 on AVX2): the rows' paths, shading points, wo and path state are gathered,
+/// each draw's PCG32 state is jumped to from the path's state (Pcg32JumpOf), the pick scans
+/// the selection CDF (or scales u for a uniform one), and the area and BSDF rows are
+/// compress-stored in row order; the path state is scattered back. The rows after the last
+/// whole vector take the oracle.
+/// Oracle: ptlab::DecideVertices. Contract: every output bit-identical to the oracle's on every
+/// target (integer PCG32 steps; the roulette's float operations in the oracle's order, with
+/// std::max / std::min's choice on NaN). tests/simd/wavefront/vertices8_test.cpp.
+void DecideVertices(const Scene& scene, const VertexBatchRules& rules, size_t n,
+                    const VertexBatchInputs& in, const VertexBatchPaths& paths,
+                    VertexBatchOutputs* out);
+
+/// Name of the Highway target DecideVertices dispatches to now; for logs and tests.
+const char* VertexBatch8TargetName();
+
+}  // namespace ptlab::simd
