@@ -625,12 +625,7 @@ class ColladaReader {
   }
 
   void AddAreaEmitter(uint32_t mesh_row, const Color3f& radiance) {
-    AreaLightTable& lights = scene_.area_lights;
-    const EmitterRef ref = EmitterRef::Make(EmitterTag::kArea, uint32_t(lights.size()));
-    lights.radiance.push_back(radiance);
-    lights.mesh.push_back(mesh_row);
-    scene_.meshes.emitter[mesh_row] = ref;
-    scene_.emitters.push_back(ref);
+    AttachAreaLight(&scene_, mesh_row, radiance);
   }
 
   // A CGL sphere of world centre c and radius r as a SphereTable row.

@@ -90,4 +90,13 @@ uint32_t AddMesh(Scene* scene, const MeshData& mesh, const Transform& to_world,
   return mesh_row;
 }
 
+void AttachAreaLight(Scene* scene, uint32_t mesh, const Color3f& radiance) {
+  AreaLightTable& lights = scene->area_lights;
+  const EmitterRef ref = EmitterRef::Make(EmitterTag::kArea, uint32_t(lights.size()));
+  lights.radiance.push_back(radiance);
+  lights.mesh.push_back(mesh);
+  scene->meshes.emitter[mesh] = ref;
+  scene->emitters.push_back(ref);
+}
+
 }  // namespace ptlab

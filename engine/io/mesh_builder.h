@@ -48,4 +48,9 @@ struct MeshData {
 uint32_t AddMesh(Scene* scene, const MeshData& mesh, const Transform& to_world,
                  MaterialRef material, std::string name);
 
+/// Makes mesh row `mesh` of `scene` an area light of `radiance`: a new AreaLightTable row, the
+/// mesh's emitter reference, and the emitter appended to Scene::emitters. FinalizeAreaLights
+/// fills its areas and CDFs once every shape is in.
+void AttachAreaLight(Scene* scene, uint32_t mesh, const Color3f& radiance);
+
 }  // namespace ptlab

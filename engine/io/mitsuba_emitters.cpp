@@ -4,6 +4,7 @@
 
 #include "engine/image/image_io.h"
 #include "engine/io/mitsuba_scene_builder.h"
+#include "engine/io/rotation_frame.h"
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
 #include "engine/scene/scene_limits.h"
@@ -42,16 +43,9 @@ Status MitsubaSceneBuilder::AreaEmitter(const MitsubaNode& node, Color3f* radian
 
 Status MitsubaSceneBuilder::Rotation(const MitsubaObject& obj, const Transform& to_world,
                                      Frame* frame) const {
-  const Matrix4& m = to_world.matrix();
-  const Vec3f c[3] = {{m.m[0][0], m.m[1][0], m.m[2][0]},
-                      {m.m[0][1], m.m[1][1], m.m[2][1]},
-                      {m.m[0][2], m.m[1][2], m.m[2][2]}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!(std::fabs(Dot(c[i], c[j]) - (i == j ? 1.0f : 0.0f)) <= 1e-4f))
-        return obj.Error("to_world", "to_world of " + DescribeMitsuba(obj.node()) +
-                                         " is not a rotation; expected an orthonormal upper 3x3");
-  frame->s = Normalize(c[0]), frame->t = Normalize(c[1]), frame->n = Normalize(c[2]);
+  if (!RotationFrameOf(to_world, frame))
+    return obj.Error("to_world", "to_world of " + DescribeMitsuba(obj.node()) +
+                                     " is not a rotation; expected an orthonormal upper 3x3");
   return Status::Ok();
 }
 

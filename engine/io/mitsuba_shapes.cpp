@@ -191,14 +191,7 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
             std::abs(v.z) <= kMaxWorldCoordinate))
         return node.Error("a world-space vertex of " + DescribeMitsuba(node) +
                           " is not finite or beyond the coordinate limit");
-  if (emitter) {
-    AreaLightTable& lights = scene_.area_lights;
-    const EmitterRef ref = EmitterRef::Make(EmitterTag::kArea, uint32_t(lights.size()));
-    lights.radiance.push_back(radiance);
-    lights.mesh.push_back(row);
-    scene_.meshes.emitter[row] = ref;
-    scene_.emitters.push_back(ref);
-  }
+  if (emitter) AttachAreaLight(&scene_, row, radiance);
   return Status::Ok();
 }
 

@@ -17,6 +17,7 @@
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
 #include "engine/io/mesh_builder.h"
+#include "engine/io/rotation_frame.h"
 #include "engine/io/obj_loader.h"
 #include "engine/scene/scene_limits.h"
 #include "engine/io/shapes.h"
@@ -103,17 +104,10 @@ Status SceneParser::ParsePointEmitter(const pugi::xml_node& node) {
 
 Status SceneParser::RotationOf(const pugi::xml_node& node, PropertyList& props, const Transform& to_world,
                                Frame* frame) {
-  const Matrix4& m = to_world.matrix();
-  const Vec3f c[3] = {{m.m[0][0], m.m[1][0], m.m[2][0]},
-                      {m.m[0][1], m.m[1][1], m.m[2][1]},
-                      {m.m[0][2], m.m[1][2], m.m[2][2]}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!(std::fabs(Dot(c[i], c[j]) - (i == j ? 1.0f : 0.0f)) <= 1e-4f))
-        return props.Error("toWorld", "toWorld of " + Describe(node) +
-                                          " is not a rotation; expected an orthonormal upper 3x3 "
-                                          "(rotate, lookat; no scale or shear)");
-  frame->s = Normalize(c[0]), frame->t = Normalize(c[1]), frame->n = Normalize(c[2]);
+  if (!RotationFrameOf(to_world, frame))
+    return props.Error("toWorld", "toWorld of " + Describe(node) +
+                                      " is not a rotation; expected an orthonormal upper 3x3 "
+                                      "(rotate, lookat; no scale or shear)");
   return Status::Ok();
 }
 

@@ -114,14 +114,7 @@ Status SceneParser::ParseShape(const pugi::xml_node& node) {
                                    "); expected coordinates and toWorld that keep every "
                                    "coordinate finite and within +-" +
                                    FormatNumber(kMaxWorldCoordinate));
-  if (emitter_node) {
-    AreaLightTable& lights = scene_.area_lights;
-    const EmitterRef ref = EmitterRef::Make(EmitterTag::kArea, uint32_t(lights.size()));
-    lights.radiance.push_back(radiance);
-    lights.mesh.push_back(row);
-    scene_.meshes.emitter[row] = ref;
-    scene_.emitters.push_back(ref);
-  }
+  if (emitter_node) AttachAreaLight(&scene_, row, radiance);
   return Status::Ok();
 }
 
