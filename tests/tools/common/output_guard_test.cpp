@@ -20,7 +20,9 @@ namespace fs = std::filesystem;
 class OutputGuardTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test_util::TempDir("output_guard");
+    // One folder per test: CTest runs the tests of this fixture side by side.
+    dir_ = test_util::TempDir(std::string("output_guard_") +
+                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::ofstream(dir_ / "scene.xml") << "<scene/>";
   }
   std::string P(const std::string& name) const { return (dir_ / name).string(); }
