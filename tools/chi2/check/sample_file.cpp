@@ -57,6 +57,20 @@ bool IsHeader(std::string_view line) {
   return header;
 }
 
+// The next sample line of a text sample file: blank lines, '#' comments and a header (the first
+// line that is not a comment, when IsHeader) are passed over. Every reader of the text format
+// goes through it, so they agree on which line is sample k.
+bool NextSampleLine(LineReader& in, bool* first, std::string_view* line) {
+  while (in.Next(line)) {
+    const size_t start = line->find_first_not_of(" \t");
+    if (start == std::string_view::npos || (*line)[start] == '#') continue;
+    const bool header = *first && IsHeader(*line);
+    *first = false;
+    if (!header) return true;
+  }
+  return false;
+}
+
 // The count of sample lines (those ParseText takes), or -1 past kMaxSamples.
 int64_t CountTextSamples(const std::string& path) {
   LineReader in;
@@ -64,14 +78,7 @@ int64_t CountTextSamples(const std::string& path) {
   std::string_view line;
   bool first = true;
   int64_t count = 0;
-  while (in.Next(&line)) {
-    const size_t start = line.find_first_not_of(" \t");
-    if (start == std::string_view::npos || line[start] == '#') continue;
-    if (first && IsHeader(line)) {
-      first = false;
-      continue;
-    }
-    first = false;
+  while (NextSampleLine(in, &first, &line)) {
     if (++count > kMaxSamples) return -1;
   }
   return count;
@@ -84,14 +91,7 @@ chi2::Status ParseText(LineReader& in, int dims, std::vector<chi2::Point>* point
   points->reserve(size_t(count));
   std::string_view line;
   bool first = true;
-  while (in.Next(&line)) {
-    const size_t start = line.find_first_not_of(" \t");
-    if (start == std::string_view::npos || line[start] == '#') continue;
-    if (first && IsHeader(line)) {
-      first = false;
-      continue;
-    }
-    first = false;
+  while (NextSampleLine(in, &first, &line)) {
     float v[3] = {0, 0, 0};
     int count = 0;
     std::string bad;
@@ -163,14 +163,7 @@ std::string SampleLocation(const std::string& path, bool raw, int dims, int64_t 
   std::string_view line;
   bool first = true;
   int64_t samples = 0;
-  while (in.Next(&line)) {  // the same lines ParseText takes as samples
-    const size_t start = line.find_first_not_of(" \t");
-    if (start == std::string_view::npos || line[start] == '#') continue;
-    if (first && IsHeader(line)) {
-      first = false;
-      continue;
-    }
-    first = false;
+  while (NextSampleLine(in, &first, &line)) {  // the lines ParseText takes as samples
     if (samples++ == index) return path + ":" + std::to_string(in.line_number());
   }
   return path;
