@@ -380,9 +380,8 @@ StatusOr<MitsubaObject> MitsubaObject::Read(const MitsubaNode& node,
           p.boolean = lower == "true";
         } else if (tag == "integer") {
           int v = 0;
-          if (!ParseInt(value, &v))
-            return child.Error("malformed integer '" + value +
-                               "'; expected a decimal integer such as 42");
+          if (const std::string error = ParseNumber<int>(value, &v); !error.empty())
+            return child.Error("integer " + error);
           p.type = T::kInteger;
           p.integer = v;
         } else if (tag == "float") {

@@ -183,8 +183,8 @@ class TestParser {
       return Status::Ok();
     }
     int v = 0;
-    if (!ParseInt(value, &v))
-      return at_.Error(node, "malformed integer '" + value + "'; expected a decimal integer");
+    if (const std::string error = ParseNumber<int>(value, &v); !error.empty())
+      return at_.Error(node, "integer " + error);
     if (name == "sampleCount") {
       const bool ok = (ttest ? v >= 2 : (v == -1 || v >= 1)) && v <= kMaxNoriTestSampleCount;
       if (!ok)

@@ -108,9 +108,8 @@ class PropertyList {
           break;
         }
         case PropertyType::kInteger:
-          if (!ParseInt(value, &p.integer))
-            return at_->Error(
-                node, "malformed integer '" + value + "'; expected a decimal integer such as 42");
+          if (const std::string error = ParseNumber<int>(value, &p.integer); !error.empty())
+            return at_->Error(node, "integer " + error);
           break;
         case PropertyType::kFloat:
           PTLAB_RETURN_IF_ERROR(ParseFloatValue(*at_, node, "value", &p.number));

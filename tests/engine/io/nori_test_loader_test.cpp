@@ -127,7 +127,9 @@ TEST(NoriTestLoader, MalformedFiles) {
   ExpectError("<test type=\"chi2test\">\n<integer name=\"testCount\" value=\"0\"/></test>", 2,
               {"testCount", "1..10000"});
   ExpectError("<test type=\"ttest\">\n<integer name=\"sampleCount\" value=\"1.5\"/></test>", 2,
-              {"malformed integer"});
+              {"integer '1.5' is not an integer", "[-2147483648, 2147483647]"});
+  ExpectError("<test type=\"ttest\">\n<integer name=\"sampleCount\" value=\"99999999999\"/></test>",
+              2, {"integer '99999999999' is out of range [-2147483648, 2147483647]"});
   ExpectError("\n<test type=\"ztest\"/>", 2, {"unknown test type 'ztest'", "ttest or chi2test"});
   ExpectError("\n<test kind=\"ttest\"/>", 2, {"unknown attribute 'kind'"});
   ExpectError("\n<scene/>", 2, {"root element <scene>", "<test"});

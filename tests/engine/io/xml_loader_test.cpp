@@ -522,7 +522,10 @@ TEST(SceneLoader, MalformedNumber) {
       5, {"malformed number 'nan'"});
   ExpectError(Parse("<scene>\n<integrator type=\"normals\"/>\n<camera type=\"perspective\">\n"
                     "<integer name=\"width\" value=\"1.5\"/></camera></scene>\n"),
-              "bad.xml", 4, {"malformed integer '1.5'"});
+              "bad.xml", 4, {"integer '1.5' is not an integer", "[-2147483648, 2147483647]"});
+  ExpectError(Parse("<scene>\n<integrator type=\"normals\"/>\n<camera type=\"perspective\">\n"
+                    "<integer name=\"width\" value=\"99999999999\"/></camera></scene>\n"),
+              "bad.xml", 4, {"integer '99999999999' is out of range [-2147483648, 2147483647]"});
   ExpectParseError("\n<boolean name=\"x\" value=\"yes\"/>\n", 5,
                    {"malformed boolean 'yes'", "true or false"});
 }
