@@ -112,6 +112,7 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
   alignas(32) static constexpr int32_t kLaneBits[8] = {1, 2, 4, 8, 16, 32, 64, 128};
   lists->hits = lists->area_hits = 0;
   for (uint32_t& count : lists->group_hits) count = 0;
+  const bool with_uv = !scene.textures.empty();
   for (size_t k = 0; k < packets; ++k) {
     const Mask8 hit = hit_mask[k] & kAllLanes;
     if (hit == 0) continue;
@@ -186,8 +187,15 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
       const Ray ray = GetLaneRay(r, j);
       SurfaceInteraction& its = out.its[q];
       its = MakeInteraction(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]});
-      its.uv = {};  // the rows carry no surface coordinates
+      if (!with_uv) its.uv = {};  // the rows carry no surface coordinates
       out.wo[q] = LocalDirectionBack(its.frame, ray.d);
+    }
+    // Surface coordinates of the triangle hits, only in a scene with textures: SurfaceUvAt per
+    // lane (scalar: a gather of six vertex columns per lane would be no faster).
+    if (!with_uv) continue;
+    for (Mask8 todo = hit & ~spheres; todo != 0; todo &= todo - 1) {
+      const int j = std::countr_zero(todo);
+      out.its[k * kPacketWidth + size_t(j)].uv = SurfaceUvAt(scene, h.prim[j], h.b1[j], h.b2[j]);
     }
   }
 }
