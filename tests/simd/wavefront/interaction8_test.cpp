@@ -268,7 +268,9 @@ void ExpectRowsMatchOracle(const std::string& path, bool textured = false) {
   EXPECT_GT(want_lists.lists.area_hits, 0u);  // both scenes have area lights
   size_t with_uv = 0;
   for (const SurfaceInteraction& its : want.its) with_uv += its.uv.x != 0 || its.uv.y != 0;
-  if (textured) EXPECT_GT(with_uv, 1000u);
+  if (textured) {
+    EXPECT_GT(with_uv, 1000u);
+  }
   const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
   test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
     Rows got(rows);
