@@ -21,10 +21,11 @@ RoughPlasticParams RoughPlasticRow(const RoughPlasticTable& t, uint32_t i) {
 
 }  // namespace
 
-Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
+Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
+                 const TextureSite& site) {
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
-      return DiffuseEval(m.diffuse.Albedo(ref.index()), wo, wi);
+      return DiffuseEval(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, wi);
     case MaterialTag::kConductor:
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
@@ -36,7 +37,9 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
   return {};  // an invalid ref
 }
 
-float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
+float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
+              const TextureSite& site) {
+  (void)site;  // no textured parameter changes a pdf yet
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffusePdf(wo, wi);
@@ -52,11 +55,11 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
 }
 
 Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
-                    float* pdf) {
+                    float* pdf, const TextureSite& site) {
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       *pdf = DiffusePdf(wo, wi);
-      return DiffuseEval(m.diffuse.Albedo(ref.index()), wo, wi);
+      return DiffuseEval(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, wi);
     case MaterialTag::kConductor: {
       const ConductorParams p = ConductorRow(m.conductor, ref.index());
       *pdf = ConductorPdf(p, wo, wi);
@@ -73,10 +76,10 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
 }
 
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
-                         const Vec2f& u2, BsdfSample* sample) {
+                         const Vec2f& u2, BsdfSample* sample, const TextureSite& site) {
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
-      return DiffuseSample(m.diffuse.Albedo(ref.index()), wo, u2, sample);
+      return DiffuseSample(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, u2, sample);
     case MaterialTag::kMirror:
       return MirrorSample(m.mirror.Reflectance(ref.index()), wo, sample);
     case MaterialTag::kDielectric: {

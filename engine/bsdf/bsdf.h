@@ -3,6 +3,7 @@
 
 #include "engine/bsdf/bsdf_sample.h"
 #include "engine/scene/material_tables.h"
+#include "engine/texture/texture_site.h"
 
 namespace ptlab {
 
@@ -17,17 +18,28 @@ constexpr bool IsDeltaMaterial(MaterialTag tag) {
 // normal); wo points to the viewer, wi to the light. No NaN or Inf ever comes out: f ≥ 0,
 // pdf ≥ 0 and finite, and a sample's weight is finite.
 
+// `site`: the shading point's textures, which a textured parameter (engine/texture/
+// texture_site.h) reads; a scene without textures passes none (a textured row without a site
+// stops at a PTLAB_CHECK).
+
 /// f(wo, wi) in the local shading frame (0 for delta models).
-Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi);
+Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
+                 const TextureSite& site = {});
 /// Solid-angle pdf with which BsdfSampleDirection would pick wi (0 for delta models).
-float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi);
+float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
+              const TextureSite& site = {});
 /// BsdfEval and (*pdf) BsdfPdf at once, bit for bit: one dispatch, and the rough plastic's
 /// Beckmann D, which both evaluate, once (an MIS-weighted emitter sample needs the two).
 Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
-                    float* pdf);
+                    float* pdf, const TextureSite& site = {});
 /// Samples wi given wo; u1 picks a lobe, u2 the direction. False when no sample is possible.
 /// For non-delta models sample->weight = Eval·|cos θi|/Pdf and sample->pdf = Pdf(wo, wi).
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
-                         const Vec2f& u2, BsdfSample* sample);
+                         const Vec2f& u2, BsdfSample* sample, const TextureSite& site = {});
+
+/// Row i's diffuse albedo: the constant or, when textured, its texture at `site`.
+inline Color3f DiffuseAlbedo(const DiffuseTable& t, uint32_t i, const TextureSite& site) {
+  return TexturedColor(t.albedo_texture, i, t.Albedo(i), site);
+}
 
 }  // namespace ptlab

@@ -31,6 +31,15 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
   MaterialRef ref;
   if (type == "diffuse") {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"reflectance"}));
+    // A textured reflectance (<texture name="reflectance"> or <ref name="reflectance">).
+    if (const MitsubaProperty* p = obj.Get("reflectance");
+        p && p->type == MitsubaProperty::Type::kObject && p->object->tag == "texture") {
+      StatusOr<uint32_t> texture = Texture(*p->object);
+      if (!texture.ok()) return texture.status();
+      ref = scene_.materials.AddTexturedDiffuse(*texture);
+      bsdfs_[&node] = ref;
+      return ref;
+    }
     Color3f albedo{0.5f, 0.5f, 0.5f};
     PTLAB_RETURN_IF_ERROR(obj.Color("reflectance", SpectrumUse::kReflectance, &albedo));
     if (!(albedo.r >= 0 && albedo.g >= 0 && albedo.b >= 0 && albedo.r <= 1 && albedo.g <= 1 &&

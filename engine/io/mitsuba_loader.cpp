@@ -90,8 +90,9 @@ Status MitsubaSceneBuilder::SceneChild(const MitsubaNode& node) {
     have_integrator_ = true;
     return Integrator(node);
   }
-  if (tag == "texture" || tag == "medium" || tag == "phase" || tag == "volume")
-    return Unsupported(node);
+  // A top-level texture is read where a material refers to it (<ref id>).
+  if (tag == "texture") return Status::Ok();
+  if (tag == "medium" || tag == "phase" || tag == "volume") return Unsupported(node);
   return node.Error("<" + tag +
                     "> is not allowed directly inside <scene>; expected shape, "
                     "emitter, bsdf, texture, sensor or integrator");

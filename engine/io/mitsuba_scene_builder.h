@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <utility>
 #include <string>
 
 #include "engine/core/status.h"
@@ -44,6 +45,12 @@ class MitsubaSceneBuilder {
   Status MeshFile(const MitsubaObject& obj, MeshData* mesh, std::string* name);
 
   StatusOr<MaterialRef> Bsdf(const MitsubaNode& node);
+  // A <texture> as a row of scene_.textures (mitsuba_textures.cpp), read once per element.
+  StatusOr<uint32_t> Texture(const MitsubaNode& node);
+  // Fills the mesh_attribute texture that `material` reads (if any) from `mesh`'s attribute,
+  // the mesh's triangles being scene rows first_triangle on.
+  Status BindMeshAttribute(const MitsubaNode& shape, MaterialRef material, const MeshData& mesh,
+                           uint32_t first_triangle);
 
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);
@@ -58,6 +65,9 @@ class MitsubaSceneBuilder {
   const MitsubaNode* multi_sample_direct_ = nullptr;  // a direct integrator, emitter_samples > 1
   std::map<const MitsubaNode*, MaterialRef> bsdfs_;   // one row per <bsdf> element
   std::map<std::string, MeshData> meshes_;            // one read per mesh file
+  std::map<const MitsubaNode*, uint32_t> textures_;   // one row per <texture> element
+  // mesh_attribute rows: the attribute's name and the <texture> element.
+  std::map<uint32_t, std::pair<std::string, const MitsubaNode*>> attribute_names_;
 };
 
 }  // namespace ptlab::internal

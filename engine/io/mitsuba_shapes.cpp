@@ -155,6 +155,12 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
       return Unsupported(node, "a sphere under a non-uniform scale or shear");
     if (emitter) return Unsupported(node, "an emitting sphere");
     if (flip_normals) return Unsupported(node, "flip_normals on a sphere");
+    if (material.tag() == MaterialTag::kDiffuse && scene_.materials.diffuse.textured()) {
+      const uint32_t tex = scene_.materials.diffuse.albedo_texture[material.index()];
+      if (tex != kNoTexture && (scene_.textures.Kind(tex) == TextureKind::kFaceAttribute ||
+                                scene_.textures.Kind(tex) == TextureKind::kVertexAttribute))
+        return Unsupported(node, "a mesh_attribute texture on a sphere (it has no attributes)");
+    }
     const Vec3f c = to_world.ApplyPoint(center);
     const float r = radius * scale;
     if (!(std::fabs(c.x) + r <= kMaxWorldCoordinate && std::fabs(c.y) + r <= kMaxWorldCoordinate &&
@@ -184,6 +190,7 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
   }
   const uint32_t first = uint32_t(scene_.triangles.size());
   const uint32_t row = AddMesh(&scene_, mesh, to_world, material, name);
+  PTLAB_RETURN_IF_ERROR(BindMeshAttribute(node, material, mesh, first));
   const TriangleTable& tri = scene_.triangles;
   for (uint32_t t = first; t < tri.size(); ++t)
     for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)})

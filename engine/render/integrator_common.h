@@ -86,13 +86,15 @@ inline Color3f Escaped(const Scene& scene, const Vec3f& w, bool mis, float bsdf_
 
 /// f(wo, wi_local) of an emitter sample's shading point and, for MIS, *pdf_bsdf = BsdfPdf of
 /// the same directions (one BsdfEvalPdf; without mis only BsdfEval, *pdf_bsdf = 0).
-inline Color3f EmitterSampleBsdf(const Scene& scene, MaterialRef material, const Vec3f& wo,
-                                 const Vec3f& wi_local, bool mis, float* pdf_bsdf) {
+inline Color3f EmitterSampleBsdf(const Scene& scene, const SurfaceInteraction& its,
+                                 const Vec3f& wo, const Vec3f& wi_local, bool mis,
+                                 float* pdf_bsdf) {
+  const TextureSite site = TextureSiteOf(scene, its);
   if (!mis) {
     *pdf_bsdf = 0.0f;
-    return BsdfEval(scene.materials, material, wo, wi_local);
+    return BsdfEval(scene.materials, its.material, wo, wi_local, site);
   }
-  return BsdfEvalPdf(scene.materials, material, wo, wi_local, pdf_bsdf);
+  return BsdfEvalPdf(scene.materials, its.material, wo, wi_local, pdf_bsdf, site);
 }
 
 /// f·Le·|cos θi| / pdf_light of one emitter sample (solid-angle pdf_light, emitter choice
@@ -133,7 +135,7 @@ inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
   if (!(Dot(ls.n, wi) < 0)) return req;
   const Vec3f wi_local = its.frame.ToLocal(wi);
   float pdf_bsdf;
-  const Color3f f = EmitterSampleBsdf(scene, its.material, wo, wi_local, mis, &pdf_bsdf);
+  const Color3f f = EmitterSampleBsdf(scene, its, wo, wi_local, mis, &pdf_bsdf);
   if (IsBlack(f)) return req;
   // Shadow ray between the two offset points; d is not normalised, so t runs over [0, 1).
   req.shadow.o = SpawnOrigin(its, wi);
@@ -159,7 +161,7 @@ inline EmitterSampleRequest InfiniteEmitterSampleRequest(const Scene& scene,
   EmitterSampleRequest req;
   const Vec3f wi_local = its.frame.ToLocal(es.wi);
   float pdf_bsdf;
-  const Color3f f = EmitterSampleBsdf(scene, its.material, wo, wi_local, mis, &pdf_bsdf);
+  const Color3f f = EmitterSampleBsdf(scene, its, wo, wi_local, mis, &pdf_bsdf);
   if (IsBlack(f)) return req;
   req.shadow = Ray{SpawnOrigin(its, es.wi), es.wi, 0.0f, kInfinity};
   req.contribution =
@@ -185,7 +187,7 @@ inline EmitterSampleRequest PrepareEmitterSampleFrom(const Scene& scene,
     DeltaLightSample ls;
     if (!SampleDeltaLight(scene, emitter, its.p, &ls)) return req;
     const Vec3f wi_local = its.frame.ToLocal(ls.wi);
-    const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local);
+    const Color3f f = BsdfEval(scene.materials, its.material, wo, wi_local, TextureSiteOf(scene, its));
     if (IsBlack(f)) return req;
     req.shadow.o = SpawnOrigin(its, ls.wi);
     // A finite light: t over [0, 1) up to the light itself; a directional one: to infinity.
@@ -266,7 +268,8 @@ inline bool SampleBsdf(const Scene& scene, const SurfaceInteraction& its, const 
   float u_lobe;
   Vec2f u_dir;
   DrawBsdfNumbers(sampler, depth, &u_lobe, &u_dir);
-  return BsdfSampleDirection(scene.materials, its.material, wo, u_lobe, u_dir, bs);
+  return BsdfSampleDirection(scene.materials, its.material, wo, u_lobe, u_dir, bs,
+                             TextureSiteOf(scene, its));
 }
 
 /// What a prepared emitter sample adds once its shadow ray's visibility is known (the scalar

@@ -80,6 +80,8 @@ void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitP
                           const Mask8* hit_mask, size_t packets, const InteractionRows& out,
                           HitLists* lists) {
   HitLists& l = *lists;
+  // Surface coordinates only for the textures that read them (TextureSiteOf).
+  const bool with_uv = !scene.textures.empty();
   l.hits = l.area_hits = 0;
   std::fill(std::begin(l.group_hits), std::end(l.group_hits), 0u);
   for (size_t k = 0; k < packets; ++k) {
@@ -89,7 +91,7 @@ void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitP
       const Ray ray = GetLaneRay(rays[k], j);
       const size_t q = k * kPacketWidth + size_t(j);
       SurfaceInteraction& its = out.its[q];
-      its = MakeInteractionWith(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]}, false);
+      its = MakeInteractionWith(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]}, with_uv);
       out.wo[q] = LocalDirectionBack(its.frame, ray.d);
       l.entries[l.hits++] = uint32_t(q);
       if (its.emitter.tag() == EmitterTag::kArea) l.area_entries[l.area_hits++] = uint32_t(q);

@@ -10,6 +10,7 @@
 #include "engine/core/packet8.h"
 #include "engine/core/ray.h"
 #include "engine/scene/scene.h"
+#include "engine/texture/texture_site.h"
 
 namespace ptlab {
 
@@ -34,13 +35,21 @@ Vec2f SurfaceUvAt(const Scene& scene, uint32_t tri, float b1, float b2);
 /// tessellated MakeSphere (engine/io/shapes.h).
 Vec2f SphereUv(const Vec3f& n);
 
+/// The scene's textures at `its` (its uv, p and prim): what a textured material parameter
+/// reads; no textures (nullptr) in a scene without any.
+inline TextureSite TextureSiteOf(const Scene& scene, const SurfaceInteraction& its) {
+  if (scene.textures.empty()) return {};
+  return {&scene.textures, {its.uv, its.p, its.prim}};
+}
+
 /// Builds the interaction for a hit of `ray` (hit.prim must be valid). A sphere hit's shading
 /// normal is (p - c)/r; spheres never emit.
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit);
 
 /// The shading stage's rows, one per queue entry (row q = lane q % 8 of packet q / 8), each
-/// array with room for 8 rows per packet: the interaction as MakeInteraction builds it but
-/// without surface coordinates (uv (0, 0): no stage of the wavefront reads them), and wo, the
+/// array with room for 8 rows per packet: the interaction as MakeInteraction builds it, with
+/// surface coordinates only in a scene with textures (they read them; otherwise uv (0, 0): no
+/// other stage of the wavefront reads them), and wo, the
 /// unit direction back along the ray, -d / |d|, in the interaction's shading frame.
 struct InteractionRows {
   SurfaceInteraction* its;
@@ -73,7 +82,7 @@ inline Vec3f LocalDirectionBack(const Frame& frame, const Vec3f& d) {
 }
 
 /// For every hit lane of `packets` ray/hit packets (bit j of hit_mask[k] set): row k * 8 + j of
-/// out.its = MakeInteraction without uv and of out.wo = LocalDirectionBack(its.frame, d); other
+/// out.its = MakeInteraction (uv only when scene.textures is not empty) and of out.wo = LocalDirectionBack(its.frame, d); other
 /// rows are left as they are. And the lists of those hits (queue entry q = k * 8 + j): every q,
 /// the q whose row's emitter tag is kArea, and the count per MaterialGroup of the row's
 /// material. The wavefront's interaction slot, so the oracle table keeps the scalar path's

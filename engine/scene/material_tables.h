@@ -7,13 +7,18 @@
 #include "engine/core/aligned.h"
 #include "engine/core/vec.h"
 #include "engine/scene/refs.h"
+#include "engine/scene/texture_tables.h"
 
 namespace ptlab {
 
-/// Lambertian: albedo (Nori default 0.5).
+/// Lambertian: albedo (Nori default 0.5). `albedo_texture` (a textured parameter, engine/
+/// texture/texture_site.h) stays empty until a row's albedo is a texture; then it holds one
+/// texture id per row (kNoTexture: the row's constant albedo).
 struct DiffuseTable {
   AlignedVector<float> albedo_r, albedo_g, albedo_b;
+  AlignedVector<uint32_t> albedo_texture;
   size_t size() const { return albedo_r.size(); }
+  bool textured() const { return !albedo_texture.empty(); }
   Color3f Albedo(size_t i) const { return {albedo_r[i], albedo_g[i], albedo_b[i]}; }
 };
 
@@ -78,7 +83,15 @@ struct MaterialTables {
   MaterialRef AddDiffuse(const Color3f& albedo) {
     diffuse.albedo_r.push_back(albedo.r), diffuse.albedo_g.push_back(albedo.g),
         diffuse.albedo_b.push_back(albedo.b);
+    if (diffuse.textured()) diffuse.albedo_texture.push_back(kNoTexture);
     return MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(diffuse.size() - 1));
+  }
+  /// A diffuse row whose albedo is texture `texture` (a TextureTable row id).
+  MaterialRef AddTexturedDiffuse(uint32_t texture) {
+    const MaterialRef ref = AddDiffuse({0, 0, 0});
+    diffuse.albedo_texture.resize(diffuse.size(), kNoTexture);
+    diffuse.albedo_texture.back() = texture;
+    return ref;
   }
   MaterialRef AddMirror(const Color3f& reflectance = {1, 1, 1}) {
     mirror.reflectance_r.push_back(reflectance.r), mirror.reflectance_g.push_back(reflectance.g),

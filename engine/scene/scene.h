@@ -12,6 +12,7 @@
 #include "engine/scene/geometry_tables.h"
 #include "engine/scene/material_tables.h"
 #include "engine/scene/sphere_table.h"
+#include "engine/scene/texture_tables.h"
 
 namespace ptlab {
 
@@ -78,6 +79,7 @@ struct Scene {
   MeshTable meshes;
   SphereTable spheres;  // analytic spheres, beside the triangles (BuildBvh takes both)
   MaterialTables materials;
+  TextureTable textures;  // empty unless a material parameter is textured (engine/texture/)
   AreaLightTable area_lights;
   EnvironmentMapTable environment_maps;
   DistantDiskTable distant_disks;

@@ -16,7 +16,8 @@ static_assert(sizeof(SphereTable) == 5 * kColumn);
 static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
 static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
-static_assert(sizeof(MaterialTables) == (3 + 3 + 9 + 7 + 6) * kColumn);
+static_assert(sizeof(MaterialTables) == (4 + 3 + 9 + 7 + 6) * kColumn);
+static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
 static_assert(sizeof(EnvironmentMapTable) == 13 * kColumn);
 static_assert(sizeof(DistantDiskTable) == 4 * kColumn);
@@ -39,7 +40,8 @@ size_t TableBytes(const MeshTable& t) {
 
 size_t TableBytes(const MaterialTables& m) {
   const DielectricTable& d = m.dielectric;
-  return VectorsBytes(m.diffuse.albedo_r, m.diffuse.albedo_g, m.diffuse.albedo_b) +
+  return VectorsBytes(m.diffuse.albedo_r, m.diffuse.albedo_g, m.diffuse.albedo_b,
+                      m.diffuse.albedo_texture) +
          VectorsBytes(m.mirror.reflectance_r, m.mirror.reflectance_g, m.mirror.reflectance_b) +
          VectorsBytes(d.int_ior, d.ext_ior, d.flags, d.reflectance_r, d.reflectance_g,
                       d.reflectance_b, d.transmittance_r, d.transmittance_g, d.transmittance_b) +
@@ -85,7 +87,11 @@ SceneBytes SceneTableBytes(const Scene& scene) {
   b.spheres = TableBytes(scene.spheres);
   b.shading = TableBytes(scene.shading);
   b.vertices = TableBytes(scene.vertices);
-  b.materials = TableBytes(scene.materials);
+  // Textures count with the materials they drive.
+  const TextureTable& t = scene.textures;
+  b.materials = TableBytes(scene.materials) +
+                VectorsBytes(t.kind, t.filter, t.wrap, t.m00, t.m01, t.m02, t.m10, t.m11, t.m12,
+                             t.width, t.height, t.offset, t.data);
   b.emitters = EmitterTablesBytes(scene);
   b.meshes = TableBytes(scene.meshes);
   return b;

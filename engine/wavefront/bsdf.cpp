@@ -13,15 +13,16 @@ void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* materi
   for (size_t i = 0; i < n; ++i) {
     const MaterialRef ref = MaterialRef::Make(tag, material_index[i]);
     const Vec3f wo{in.wo.x[i], in.wo.y[i], in.wo.z[i]};
+    const TextureSite site = RowTextureSite(in.texture, i);
     if (eval) {
       const Vec3f wl{in.wl.x[i], in.wl.y[i], in.wl.z[i]};
-      const Color3f f = BsdfEval(m, ref, wo, wl);
+      const Color3f f = BsdfEval(m, ref, wo, wl, site);
       out.f.r[i] = f.r, out.f.g[i] = f.g, out.f.b[i] = f.b;
-      out.pdf_l[i] = BsdfPdf(m, ref, wo, wl);
+      out.pdf_l[i] = BsdfPdf(m, ref, wo, wl, site);
     }
     if (in.u_lobe == nullptr) continue;  // evaluation only
     BsdfSample s;
-    if (BsdfSampleDirection(m, ref, wo, in.u_lobe[i], {in.u_x[i], in.u_y[i]}, &s)) {
+    if (BsdfSampleDirection(m, ref, wo, in.u_lobe[i], {in.u_x[i], in.u_y[i]}, &s, site)) {
       out.wi.x[i] = s.wi.x, out.wi.y[i] = s.wi.y, out.wi.z[i] = s.wi.z;
       out.weight.r[i] = s.weight.r, out.weight.g[i] = s.weight.g, out.weight.b[i] = s.weight.b;
       out.pdf[i] = s.pdf;

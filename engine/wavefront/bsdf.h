@@ -6,6 +6,7 @@
 
 #include "engine/core/aligned.h"
 #include "engine/core/memory.h"
+#include "engine/render/interaction.h"
 #include "engine/scene/material_tables.h"
 
 namespace ptlab {
@@ -42,7 +43,22 @@ struct ShadeInputs {
                                   // wi, weight, pdf and eta not written): evaluation only
   const float* u_x = nullptr;     // BsdfSampleDirection's u2.x
   const float* u_y = nullptr;     // BsdfSampleDirection's u2.y
+  /// The shading points of the rows, for textured parameters (engine/texture/texture_site.h):
+  /// row i's is its[entry[i]] (TextureSiteOf). textures == nullptr in a scene without textures:
+  /// then `its` and `entry` are not read.
+  struct Textures {
+    const TextureTable* textures = nullptr;
+    const SurfaceInteraction* its = nullptr;
+    const uint32_t* entry = nullptr;
+  } texture;
 };
+
+/// The texture site of row i of a shading step (empty without textures).
+inline TextureSite RowTextureSite(const ShadeInputs::Textures& t, size_t i) {
+  if (t.textures == nullptr) return {};
+  const SurfaceInteraction& its = t.its[t.entry[i]];
+  return {t.textures, {its.uv, its.p, its.prim}};
+}
 
 /// What one shading step writes per hit.
 struct ShadeOutputs {
@@ -80,11 +96,12 @@ struct ShadeScratch {
   MaterialPartition partition;
   AlignedVector<float> in[9];    // wo xyz, wl xyz, u_lobe, u_x, u_y
   AlignedVector<float> out[12];  // f rgb, pdf_l, wi xyz, weight rgb, pdf, eta
+  AlignedVector<uint32_t> texture_entry;  // in.texture.entry per group row (textures only)
 };
 
 /// Heap bytes of the scratch: capacity × element size of every array.
 inline size_t ShadeScratchBytes(const ShadeScratch& s) {
-  size_t bytes = VectorsBytes(s.partition.slot, s.partition.index);
+  size_t bytes = VectorsBytes(s.partition.slot, s.partition.index, s.texture_entry);
   for (const auto& v : s.in) bytes += VectorBytes(v);
   for (const auto& v : s.out) bytes += VectorBytes(v);
   return bytes;
@@ -166,6 +183,12 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
       tout[c] = scratch->out[c].data();
     }
     ShadeInputs bin;
+    bin.texture = in.texture;
+    if (in.texture.textures != nullptr) {
+      if (scratch->texture_entry.size() < count) scratch->texture_entry.resize(count);
+      for (size_t j = 0; j < count; ++j) scratch->texture_entry[j] = in.texture.entry[slot[j]];
+      bin.texture.entry = scratch->texture_entry.data();
+    }
     bin.wo = {tin[0], tin[1], tin[2]};
     bin.wl = {tin[3], tin[4], tin[5]};
     bin.u_lobe = tin[6], bin.u_x = tin[7], bin.u_y = tin[8];

@@ -138,7 +138,7 @@ struct WavefrontKernels {
 
   // Interaction stage: a wave's hit records -> the shading stage's rows (engine/render/
   // interaction.h, InteractionRows): the SurfaceInteraction of each hit (its frame, material
-  // and emitter; no uv: no stage reads it) and wo, the direction back along the ray in its
+  // and emitter; uv only in a scene with textures: only they read it) and wo, the direction back along the ray in its
   // frame; row = queue entry, 8 rows per packet. And the wave's hit lists (HitLists, same
   // header): every hit's queue entry and those of the hits on area lights, in queue order, and
   // the hits per material group; the shading stage adds emission over the area list only and

@@ -21,6 +21,7 @@ void Wavefront::SampleBsdfs() {
     in.wo = {c.wo_x, c.wo_y, c.wo_z};
     in.u_lobe = c.u_lobe, in.u_x = c.u_x;
     in.u_y = c.u_y;
+    if (!scene_->textures.empty()) in.texture = {&scene_->textures, its_.data(), c.entry};
     ShadeOutputs out;
     out.wi = {c.wi_x, c.wi_y, c.wi_z};
     out.weight = {c.weight_r, c.weight_g, c.weight_b};

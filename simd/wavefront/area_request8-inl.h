@@ -51,6 +51,7 @@ struct AreaRequestChunk {
   size_t rows = 0;  // compacted rows
   HWY_ALIGN int32_t row[kAreaRequestRoom];
   HWY_ALIGN uint32_t index[kAreaRequestRoom];
+  HWY_ALIGN uint32_t entry[kAreaRequestRoom];  // queue entries (a scene with textures only)
   HWY_ALIGN float wo_x[kAreaRequestRoom], wo_y[kAreaRequestRoom], wo_z[kAreaRequestRoom];
   HWY_ALIGN float wl_x[kAreaRequestRoom], wl_y[kAreaRequestRoom], wl_z[kAreaRequestRoom];
   HWY_ALIGN float e_r[kAreaRequestRoom], e_g[kAreaRequestRoom], e_b[kAreaRequestRoom];
@@ -207,6 +208,11 @@ inline void AreaEmitterRequestBatchKernel(const Scene& scene, MaterialTag tag, b
       ShadeInputs bsdf_in;
       bsdf_in.wo = {c.wo_x, c.wo_y, c.wo_z};
       bsdf_in.wl = {c.wl_x, c.wl_y, c.wl_z};
+      // Textured parameters read the compacted rows' shading points.
+      if (!scene.textures.empty()) {
+        for (size_t k = 0; k < c.rows; ++k) c.entry[k] = in.entry[i + size_t(c.row[k])];
+        bsdf_in.texture = {&scene.textures, in.its, c.entry};
+      }
       ShadeOutputs bsdf_out;
       bsdf_out.f = {c.e_r, c.e_g, c.e_b};
       bsdf_out.pdf_l = c.e_pdf;

@@ -20,6 +20,7 @@
 #include "engine/scene/material_tables.h"
 #include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
+#include "simd/texture/texture8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -237,6 +238,7 @@ HWY_INLINE void SampleCosineHemisphere(D8 d, V8 ux, V8 uy, V8* wx, V8* wy, V8* w
 template <size_t kIn, size_t kOut>
 struct BlockIo {
   const uint32_t* index = nullptr;
+  const uint32_t* entry = nullptr;  // the shading step's ShadeInputs::texture.entry (or null)
   const float* in[kIn] = {};
   float* out[kOut] = {};
 };
@@ -251,17 +253,19 @@ HWY_INLINE void ForEachBlock(const BlockIo<kIn, kOut>& io, size_t n, const Block
   for (; i + lanes <= n; i += lanes) block(io, i);
   if (i == n) return;
   const size_t rem = n - i;
-  HWY_ALIGN uint32_t t_index[8];
+  HWY_ALIGN uint32_t t_index[8], t_entry[8];
   HWY_ALIGN float t_in[kIn][8];
   HWY_ALIGN float t_out[kOut][8];
   BlockIo<kIn, kOut> t;
   for (size_t j = 0; j < 8; ++j) {
     const size_t src = i + std::min(j, rem - 1);
     if (io.index != nullptr) t_index[j] = io.index[src];
+    if (io.entry != nullptr) t_entry[j] = io.entry[src];
     for (size_t c = 0; c < kIn; ++c)
       if (io.in[c] != nullptr) t_in[c][j] = io.in[c][src];
   }
   t.index = io.index != nullptr ? t_index : nullptr;
+  t.entry = io.entry != nullptr ? t_entry : nullptr;
   for (size_t c = 0; c < kIn; ++c) t.in[c] = io.in[c] != nullptr ? t_in[c] : nullptr;
   for (size_t c = 0; c < kOut; ++c) t.out[c] = io.out[c] != nullptr ? t_out[c] : nullptr;
   block(t, 0);
@@ -387,13 +391,49 @@ HWY_INLINE V8 CosinePdf(D8 d, V8 oz, V8 iz) {
 }
 
 /// DiffuseEval / DiffusePdf / DiffuseSample (engine/bsdf/diffuse.h).
-inline void ShadeDiffuse(const DiffuseTable& t, const ShadeIo& io, size_t n, bool eval,
-                         bool sample) {
-  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+/// A textured color parameter (TexturedColor, engine/texture/texture_site.h) of rows [i, i +
+/// Lanes): the rows whose id in `texture` (a texture-id column, gathered by b.index) is not
+/// kNoTexture get their texture at the shading point its[b.entry[row]] (uv, p, prim gathered),
+/// each channel clamped to ≥ 0 as std::max(c, 0) does; the others keep (r, g, b).
+HWY_INLINE void TexturedColor8(D8 d, const ShadeInputs::Textures& tex,
+                               const AlignedVector<uint32_t>& texture, const ShadeIo& b, size_t i,
+                               V8* r, V8* g, V8* b_out) {
+  const hn::RebindToSigned<D8> di;
+  const auto id = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(texture.data()),
+                                  hn::LoadU(di, reinterpret_cast<const int32_t*>(b.index + i)));
+  const M8 has = hn::RebindMask(d, hn::Ne(id, hn::Set(di, int32_t(kNoTexture))));
+  if (hn::AllFalse(d, has)) return;
+  // The shading points' fields, SurfaceInteraction as 4-byte words.
+  constexpr int32_t kWords = int32_t(sizeof(SurfaceInteraction) / 4);
+  constexpr int32_t kP = int32_t(offsetof(SurfaceInteraction, p) / 4),
+                    kUv = int32_t(offsetof(SurfaceInteraction, uv) / 4),
+                    kPrim = int32_t(offsetof(SurfaceInteraction, prim) / 4);
+  const auto base = hn::Mul(hn::LoadU(di, reinterpret_cast<const int32_t*>(b.entry + i)),
+                            hn::Set(di, kWords));
+  const float* its = reinterpret_cast<const float*>(tex.its);
+  const auto at = [&](int32_t word) { return hn::Add(base, hn::Set(di, word)); };
+  const V8 u = hn::GatherIndex(d, its, at(kUv)), v = hn::GatherIndex(d, its, at(kUv + 1));
+  const V8 px = hn::GatherIndex(d, its, at(kP)), py = hn::GatherIndex(d, its, at(kP + 1)),
+           pz = hn::GatherIndex(d, its, at(kP + 2));
+  const auto prim =
+      hn::GatherIndex(di, reinterpret_cast<const int32_t*>(tex.its), at(kPrim));
+  V8 tr, tg, tb;
+  EvalTexture8(*tex.textures, id, u, v, px, py, pz, prim, has, &tr, &tg, &tb);
+  const V8 zero = hn::Zero(d);
+  *r = hn::IfThenElse(has, hn::IfThenZeroElse(hn::Lt(tr, zero), tr), *r);
+  *g = hn::IfThenElse(has, hn::IfThenZeroElse(hn::Lt(tg, zero), tg), *g);
+  *b_out = hn::IfThenElse(has, hn::IfThenZeroElse(hn::Lt(tb, zero), tb), *b_out);
+}
+
+inline void ShadeDiffuse(const DiffuseTable& t, const ShadeInputs::Textures& tex,
+                         const ShadeIo& io, size_t n, bool eval, bool sample) {
+  const bool textured = tex.textures != nullptr && t.textured();
+  ForEachBlock(io, n, [&t, &tex, textured, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), inv_pi = hn::Set(d, kInvPi);
-    const V8 ar = Gather(d, t.albedo_r, b.index, i), ag = Gather(d, t.albedo_g, b.index, i),
-             ab = Gather(d, t.albedo_b, b.index, i);
+    V8 ar = Gather(d, t.albedo_r, b.index, i), ag = Gather(d, t.albedo_g, b.index, i),
+       ab = Gather(d, t.albedo_b, b.index, i);
+    if (textured) TexturedColor8(d, tex, t.albedo_texture, b, i, &ar, &ag, &ab);
     const V8 oz = In(d, b, kWoZ, i);
     if (eval) {
       const V8 lz = In(d, b, kWlZ, i);
@@ -653,6 +693,7 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
   const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
   ShadeIo io;
   io.index = material_index;
+  if (in.texture.textures != nullptr) io.entry = in.texture.entry;
   io.in[kWoX] = in.wo.x, io.in[kWoY] = in.wo.y, io.in[kWoZ] = in.wo.z;
   if (eval) io.in[kWlX] = in.wl.x, io.in[kWlY] = in.wl.y, io.in[kWlZ] = in.wl.z;
   io.in[kULobe] = in.u_lobe, io.in[kUX] = in.u_x, io.in[kUY] = in.u_y;
@@ -667,7 +708,7 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
   }
   switch (tag) {
     case MaterialTag::kDiffuse:
-      return ShadeDiffuse(m.diffuse, io, n, eval, sample);
+      return ShadeDiffuse(m.diffuse, in.texture, io, n, eval, sample);
     case MaterialTag::kMirror:
       return ShadeMirror(m.mirror, io, n, eval, sample);
     case MaterialTag::kDielectric:

@@ -57,7 +57,11 @@ void DielectricFresnelBatch(const float* cos_i, const float* eta, size_t n, floa
 /// - non-delta models: pdf and weight equal the oracle's BsdfPdf and BsdfEval |cos θi| /
 ///   BsdfPdf at the returned wi within 2e-5 relative (+1e-30, +1e-20) when cos θo, cos θi ≥
 ///   1e-30 (below, values pass through denormals: finiteness only); eta = 1;
-/// - delta models: pdf within 2e-6, weight within 2e-5 relative, eta equal.
+/// - delta models: pdf within 2e-6, weight within 2e-5 relative, eta equal;
+/// - textured parameters (in.texture set; the diffuse albedo today): the parameter is
+///   bit-identical to the oracle's TexturedColor (EvalTexture8, simd/texture/texture8.h), so
+///   a textured diffuse row's f and sample weight are too
+///   (tests/simd/wavefront/bsdf8_texture_test.cpp).
 void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
                 const ShadeInputs& in, const ShadeOutputs& out);
 

@@ -112,6 +112,7 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
   alignas(32) static constexpr int32_t kLaneBits[8] = {1, 2, 4, 8, 16, 32, 64, 128};
   lists->hits = lists->area_hits = 0;
   for (uint32_t& count : lists->group_hits) count = 0;
+  const bool with_uv = !scene.textures.empty();
   for (size_t k = 0; k < packets; ++k) {
     const Mask8 hit = hit_mask[k] & kAllLanes;
     if (hit == 0) continue;
@@ -167,12 +168,42 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
       const auto wo_x = hn::Add(hn::Add(hn::Mul(wx, sx), hn::Mul(wy, sy)), hn::Mul(wz, sz));
       const auto wo_y = hn::Add(hn::Add(hn::Mul(wx, b), hn::Mul(wy, ty)), hn::Mul(wz, tz));
       const auto wo_z = hn::Add(hn::Add(hn::Mul(wx, nx), hn::Mul(wy, ny)), hn::Mul(wz, nz));
+      // Surface coordinates (SurfaceUvAt), only in a scene with textures: the mesh's uv
+      // interpolated, b0 u0 + b1 u1 + b2 u2 in that order, where its mesh has uvs, else (b1, b2).
+      auto u = zero, v = zero;
+      if (with_uv) {
+        u = b1, v = b2;
+        if (!scene.vertices.u.empty()) {
+          HWY_ALIGN int32_t tris[8], mesh_uvs[8];
+          hn::Store(ti, di, tris);
+          for (size_t j = 0; j < lanes; ++j)
+            mesh_uvs[j] = scene.meshes.has_uvs[scene.shading.mesh[uint32_t(tris[j])]];
+          const auto has_i =
+              hn::And(tri_i, hn::Ne(hn::Load(di, mesh_uvs), zero_i));
+          if (!hn::AllFalse(di, has_i)) {
+            const auto corner = [&](size_t c) {
+              return hn::IfThenElseZero(has_i, hn::BitCast(di, row[kRowVertex0 + c]));
+            };
+            const auto i0 = corner(0), i1 = corner(1), i2 = corner(2);
+            const float* cu = scene.vertices.u.data();
+            const float* cv = scene.vertices.v.data();
+            const auto su = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, cu, i0)),
+                                            hn::Mul(b1, hn::GatherIndex(d, cu, i1))),
+                                    hn::Mul(b2, hn::GatherIndex(d, cu, i2)));
+            const auto sv = hn::Add(hn::Add(hn::Mul(b0, hn::GatherIndex(d, cv, i0)),
+                                            hn::Mul(b1, hn::GatherIndex(d, cv, i1))),
+                                    hn::Mul(b2, hn::GatherIndex(d, cv, i2)));
+            const auto has = hn::RebindMask(d, has_i);
+            u = hn::IfThenElse(has, su, u), v = hn::IfThenElse(has, sv, v);
+          }
+        }
+      }
       float* const lane0 = rows + i * size_t(kInteractionFloats);
       StoreQuadRows(d, px, py, pz, gx, lane0, size_t(kInteractionFloats));
       StoreQuadRows(d, gy, gz, sx, sy, lane0 + 4, size_t(kInteractionFloats));
       StoreQuadRows(d, sz, b, ty, tz, lane0 + 8, size_t(kInteractionFloats));
-      StoreQuadRows(d, nx, ny, nz, zero, lane0 + 12, size_t(kInteractionFloats));
-      StoreQuadRows(d, zero, hn::BitCast(d, prim), hn::BitCast(d, material),
+      StoreQuadRows(d, nx, ny, nz, u, lane0 + 12, size_t(kInteractionFloats));
+      StoreQuadRows(d, v, hn::BitCast(d, prim), hn::BitCast(d, material),
                     hn::BitCast(d, emitter), lane0 + 16, size_t(kInteractionFloats));
       // The Vec3f rows of wo: x, y, z interleaved (a lane-by-lane copy measured 7 % of this
       // kernel).
@@ -186,9 +217,10 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
       const Ray ray = GetLaneRay(r, j);
       SurfaceInteraction& its = out.its[q];
       its = MakeInteraction(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]});
-      its.uv = {};  // the rows carry no surface coordinates
+      if (!with_uv) its.uv = {};  // the rows carry no surface coordinates
       out.wo[q] = LocalDirectionBack(its.frame, ray.d);
     }
+
   }
 }
 

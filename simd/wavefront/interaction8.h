@@ -16,7 +16,9 @@ namespace ptlab::simd {
 /// and transposed, the interpolation and normalizations of MakeInteraction / ShadingNormalAt
 /// run as vectors, then Frame(n) and wo (-d / |d| in the frame), stored into the
 /// SurfaceInteraction rows through 4x4 transposes; sphere lanes take the scalar
-/// MakeInteraction lane by lane. Every row of a vector of lanes with a triangle hit is written:
+/// MakeInteraction lane by lane; in a scene with textures (only there) the triangle hits' uv
+/// (SurfaceUvAt: the vertex uvs gathered and interpolated, the mesh's has_uvs read lane by
+/// lane). Every row of a vector of lanes with a triangle hit is written:
 /// rows of lanes that did not hit get finite floats (vertex 0 of triangle 0 and its geometric
 /// frame) and are otherwise unspecified. out.its and out.wo need 8 rows per packet. The hit
 /// lists (HitLists) from the refs in registers: entries compressed into the lists lane by

@@ -421,10 +421,16 @@ TEST_F(MitsubaLoader, BsdfsAndValues) {
                         "type=\"diffuse\"/></bsdf></shape>"))
                 .find("unsupported: bsdf \"twosided\""),
             std::string::npos);
+  // A diffuse reflectance may be a texture (docs/textures.md); other colours may not yet.
   EXPECT_NE(Error(Scene("<bsdf type=\"diffuse\">\n <texture name=\"reflectance\" "
                         "type=\"bitmap\"/></bsdf>"))
-                .find(":4:2: unsupported: texture \"bitmap\" (as property 'reflectance' of "
-                      "<bsdf type=\"diffuse\">)"),
+                .find(":4:2: <texture type=\"bitmap\"> is missing the required property "
+                      "'filename'"),
+            std::string::npos);
+  EXPECT_NE(Error(Scene("<bsdf type=\"dielectric\">\n <texture name=\"specular_reflectance\" "
+                        "type=\"bitmap\"/></bsdf>"))
+                .find(":4:2: unsupported: texture \"bitmap\" (as property "
+                      "'specular_reflectance' of <bsdf type=\"dielectric\">)"),
             std::string::npos);
   EXPECT_NE(Error(Scene("<bsdf type=\"dielectric\"><string name=\"int_ior\" value=\"glass\"/>"
                         "</bsdf>"))

@@ -245,11 +245,13 @@ bool FiniteRow(const SurfaceInteraction& its, const Vec3f& wo) {
   return true;
 }
 
-void ExpectRowsMatchOracle(const std::string& path) {
+// textured: with a texture in the scene, so that both compute the rows' surface coordinates.
+void ExpectRowsMatchOracle(const std::string& path, bool textured = false) {
   PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
   Scene& scene = *loaded;
+  if (textured) scene.textures.AddRow(TextureKind::kCheckerboard, 1, 1, 6);
   ASSERT_GT(scene.triangles.v0_x.size(), 8u);
   std::vector<uint32_t> hard = AddHardCases(&scene);
   for (const uint32_t tri : AddFrameCases(&scene)) hard.push_back(tri);
@@ -264,6 +266,11 @@ void ExpectRowsMatchOracle(const std::string& path) {
                        &want_lists.lists);
   ExpectListsOfRows(p, want.its, want_lists);
   EXPECT_GT(want_lists.lists.area_hits, 0u);  // both scenes have area lights
+  size_t with_uv = 0;
+  for (const SurfaceInteraction& its : want.its) with_uv += its.uv.x != 0 || its.uv.y != 0;
+  if (textured) {
+    EXPECT_GT(with_uv, 1000u);
+  }
   const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
   test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
     Rows got(rows);
@@ -363,6 +370,12 @@ TEST(Interaction8, RowsMatchOracleOnCbox) {
 
 TEST(Interaction8, RowsMatchOracleOnTable) {
   ExpectRowsMatchOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml");
+}
+
+// In a scene with textures the rows carry their surface coordinates (SurfaceUvAt, SphereUv).
+TEST(Interaction8, RowsWithUvMatchOracleInTexturedScenes) {
+  ExpectRowsMatchOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml", true);
+  ExpectRowsMatchOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml", true);
 }
 
 TEST(Interaction8, ListsMatchOracleOnAdversarialMasksCbox) {

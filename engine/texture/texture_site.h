@@ -1,0 +1,33 @@
+// Textured parameters: a material parameter that a per-row texture-id column may drive.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/core/aligned.h"
+#include "engine/core/check.h"
+#include "engine/texture/texture.h"
+
+namespace ptlab {
+
+/// The scene's textures at one shading point; textures == nullptr in a scene without textures
+/// (then no textured parameter exists and none is read).
+struct TextureSite {
+  const TextureTable* textures = nullptr;
+  TexturePoint at;
+};
+
+/// Row i's value of a color parameter that may be textured: `constant` unless the parameter's
+/// texture-id column (empty while no row of the table is textured) names a texture for row i;
+/// then that texture at `site`, each channel clamped to ≥ 0 (a textured parameter is never
+/// negative). The pattern every textured BSDF parameter follows (docs/materials.md).
+inline Color3f TexturedColor(const AlignedVector<uint32_t>& texture, size_t i,
+                             const Color3f& constant, const TextureSite& site) {
+  if (texture.empty() || texture[i] == kNoTexture) return constant;
+  PTLAB_CHECK(site.textures != nullptr);
+  const Color3f c = EvalTexture(*site.textures, texture[i], site.at);
+  return {std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f)};
+}
+
+}  // namespace ptlab
