@@ -58,8 +58,8 @@ Status MitsubaSceneBuilder::SpotEmitter(const MitsubaObject& obj) {
 // constant colour today (aspect 1, as Mitsuba's constant texture has resolution 1 × 1); a
 // bitmap is unsupported until textures land (ProjectorIrradiance is where its lookup goes).
 Status MitsubaSceneBuilder::ProjectorEmitter(const MitsubaObject& obj) {
-  PTLAB_RETURN_IF_ERROR(obj.Expect({"irradiance", "scale", "to_world", "fov", "fov_axis",
-                                    "focal_length", "sampling_weight"}));
+  PTLAB_RETURN_IF_ERROR(obj.Expect(
+      {"irradiance", "scale", "to_world", "fov", "fov_axis", "focal_length", "sampling_weight"}));
   PTLAB_RETURN_IF_ERROR(obj.SamplingWeight());
   PTLAB_RETURN_IF_ERROR(obj.Require("irradiance"));
   Color3f irradiance;
@@ -68,8 +68,8 @@ Status MitsubaSceneBuilder::ProjectorEmitter(const MitsubaObject& obj) {
   float scale = 1.0f;
   PTLAB_RETURN_IF_ERROR(obj.Float("scale", &scale));
   if (!(scale >= 0 && scale <= 1e20f))
-    return obj.Error("scale", "scale = " + FormatNumber(scale) +
-                                  " is out of range; expected [0, 1e20]");
+    return obj.Error("scale",
+                     "scale = " + FormatNumber(scale) + " is out of range; expected [0, 1e20]");
   const double aspect = 1.0;  // a constant image: 1 × 1 pixels
   float fov_x = 0;
   PTLAB_RETURN_IF_ERROR(MitsubaHorizontalFov(obj, aspect, &fov_x));

@@ -55,7 +55,7 @@ Status MitsubaHorizontalFov(const MitsubaObject& obj, double aspect, float* hori
       if (axis == "larger") axis = aspect > 1 ? "x" : "y";
       if (axis != "x" && axis != "y" && axis != "diagonal")
         return obj.Error("fov_axis", "unknown fov_axis '" + axis +
-                                          "'; expected x, y, diagonal, smaller or larger");
+                                         "'; expected x, y, diagonal, smaller or larger");
     }
   }
   if (!(fov > 0 && fov < 180))
@@ -63,7 +63,7 @@ Status MitsubaHorizontalFov(const MitsubaObject& obj, double aspect, float* hori
   *horizontal_fov = float(HorizontalFov(fov, axis, aspect));
   if (!(*horizontal_fov > 0 && *horizontal_fov < 180))
     return obj.Error("fov", "the horizontal field of view " + FormatNumber(*horizontal_fov) +
-                                 " is out of range; expected (0, 180)");
+                                " is out of range; expected (0, 180)");
   return Status::Ok();
 }
 
@@ -261,8 +261,9 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
                       m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
                       m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
     if (!(std::fabs(det) > 0 && std::isfinite(det)))
-      return obj->Error("to_world", "the orthographic sensor's to_world is singular; expected an "
-                                    "invertible transform (its scale sets the view's extent)");
+      return obj->Error("to_world",
+                        "the orthographic sensor's to_world is singular; expected an "
+                        "invertible transform (its scale sets the view's extent)");
     scene_.camera = camera;
     return Status::Ok();
   }

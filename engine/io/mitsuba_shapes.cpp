@@ -103,9 +103,9 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"center", "radius", "to_world", "flip_normals"}));
   } else if (type == "cylinder") {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"radius", "p0", "p1", "to_world", "flip_normals"}));
-  } else if (type == "sdfgrid" || type == "shapegroup" ||
-             type == "instance" || type == "ellipsoids" || type == "ellipsoidsmesh" ||
-             type == "bsplinecurve" || type == "linearcurve" || type == "merge") {
+  } else if (type == "sdfgrid" || type == "shapegroup" || type == "instance" ||
+             type == "ellipsoids" || type == "ellipsoidsmesh" || type == "bsplinecurve" ||
+             type == "linearcurve" || type == "merge") {
     return Unsupported(node);
   } else {
     return node.Error("unknown shape type '" + type +

@@ -2,11 +2,11 @@
 // against the circle and the (r, φ/2π) and (φ/2π, z) parameterisations computed here.
 #include "engine/io/mitsuba_meshes.h"
 
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <cmath>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "engine/io/mitsuba_loader.h"
 #include "engine/io/shapes.h"

@@ -2,10 +2,10 @@
 // angle, cutoff) and the projector's frustum and irradiance, against values computed here.
 #include "engine/light/delta_light.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "engine/io/mitsuba_loader.h"
 #include "engine/light/light_selection.h"
@@ -54,8 +54,8 @@ TEST(DeltaLight, MitsubaSpotFollowsItsLinearFalloff) {
   const Vec3f origin{1, 2, 3}, axis{1, 0, 0};
   const double deg = kPiD / 180.0, beam = 12 * deg, cutoff = 30 * deg;
   for (const Vec3f side : {Vec3f{0, 1, 0}, Vec3f{0, 0, -1}, Vec3f{0, 0.6f, 0.8f}}) {
-    for (double theta_deg : {0.0, 5.0, 11.9, 12.1, 15.0, 20.0, 25.0, 29.0, 29.9, 30.1, 45.0,
-                             120.0}) {
+    for (double theta_deg :
+         {0.0, 5.0, 11.9, 12.1, 15.0, 20.0, 25.0, 29.0, 29.9, 30.1, 45.0, 120.0}) {
       const double theta = theta_deg * deg, r = 2.5;
       const Vec3f p = PointAt(origin, axis, side, theta, r);
       DeltaLightSample s;

@@ -1,9 +1,9 @@
 // Rendered images of Mitsuba scene features: hide_emitters and the orthographic sensor on the
 // scalar path, the oracle's wavefront and the SIMD packets; a projector on a diffuse plane.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "engine/bvh/bvh.h"
 #include "engine/io/mitsuba_loader.h"
@@ -23,8 +23,10 @@ Scene LoadOrDie(const std::string& xml) {
 // rectangle of half-size 0.75 (albedo 0.5) in a constant environment of radiance 1.
 std::string OrthographicFurnace(const std::string& integrator, bool hide) {
   return std::string(R"(<scene version="3.0.0">
-  <integrator type=")") + integrator + R"(">
-    <boolean name="hide_emitters" value=")" + (hide ? "true" : "false") + R"("/>
+  <integrator type=")") +
+         integrator + R"(">
+    <boolean name="hide_emitters" value=")" +
+         (hide ? "true" : "false") + R"("/>
   </integrator>
   <sensor type="orthographic">
     <float name="near_clip" value="0.5"/>
@@ -116,8 +118,8 @@ TEST(MitsubaFeaturesRender, ProjectorLightsASquareUniformly) {
   const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
   for (int path = 0; path < 2; ++path) {
     SCOPED_TRACE(path == 0 ? "scalar" : "simd");
-    const Image im = path == 0 ? Render(scene, bvh, options).image
-                               : RenderWithPackets(scene, options).image;
+    const Image im =
+        path == 0 ? Render(scene, bvh, options).image : RenderWithPackets(scene, options).image;
     // Pixels are 0.25 world units; the lit square spans pixels 4..11.
     for (int y = 0; y < 16; ++y) {
       for (int x = 0; x < 16; ++x) {
