@@ -181,6 +181,10 @@ Status PlaceLight(const Document& doc, const pugi::xml_node& instance, const pug
     t.cos_half_angle.push_back(
         float(std::sin((180.0 - double(desc.falloff_angle)) * std::numbers::pi / 360.0)));
     t.exponent.push_back(desc.falloff_exponent);
+    // No linear ramp: full intensity (times cos^exponent) up to the cone's edge.
+    t.cos_beam.push_back(t.cos_half_angle.back());
+    t.cutoff.push_back(float(double(desc.falloff_angle) * std::numbers::pi / 360.0));
+    t.inv_transition.push_back(0.0f);
     return Status::Ok();
   }
   case LightDesc::Kind::kAmbient: {

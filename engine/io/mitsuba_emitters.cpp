@@ -1,4 +1,5 @@
-// Mitsuba <emitter>s: area (inside shapes), point, directional, constant, envmap.
+// Mitsuba <emitter>s: area (inside shapes), point, directional, constant, envmap (spot and
+// projector: mitsuba_delta_emitters.cpp).
 #include <cmath>
 #include <numbers>
 
@@ -10,7 +11,6 @@
 #include "engine/scene/scene_limits.h"
 
 namespace ptlab::internal {
-namespace {
 
 Status CheckEmission(const MitsubaObject& obj, const char* name, const Color3f& c) {
   if (c.r >= 0 && c.g >= 0 && c.b >= 0 && c.r <= kMaxRadiance && c.g <= kMaxRadiance &&
@@ -20,9 +20,10 @@ Status CheckEmission(const MitsubaObject& obj, const char* name, const Color3f& 
                    std::string("'") + name + "' is out of range; expected components in [0, 1e20]");
 }
 
+namespace {
+
 bool IsUnsupportedEmitter(const std::string& type) {
-  return type == "spot" || type == "projector" || type == "sunsky" || type == "sky" ||
-         type == "sun" || type == "ptracer";
+  return type == "sunsky" || type == "sky" || type == "sun" || type == "ptracer";
 }
 
 }  // namespace
@@ -145,13 +146,12 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
     return Status::Ok();
   }
   if (type == "area") return node.Error("an area emitter must be inside a <shape>");
-  if (type == "spot")
-    return Unsupported(node,
-                       "Mitsuba's spot falls off linearly in angle from beam_width to "
-                       "cutoff_angle; ptlab's spot is cos^exponent with a hard cutoff");
+  if (type == "spot") return SpotEmitter(obj);
+  if (type == "projector") return ProjectorEmitter(obj);
   if (IsUnsupportedEmitter(type)) return Unsupported(node);
   return node.Error("unknown emitter type '" + type +
-                    "'; expected point, directional, constant, envmap (area inside a shape)");
+                    "'; expected point, directional, spot, projector, constant, envmap "
+                    "(area inside a shape)");
 }
 
 }  // namespace ptlab::internal

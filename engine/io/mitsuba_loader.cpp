@@ -29,6 +29,44 @@ double HorizontalFov(double fov, const std::string& axis, double aspect) {
 
 }  // namespace
 
+Status MitsubaHorizontalFov(const MitsubaObject& obj, double aspect, float* horizontal_fov) {
+  float fov = 0;
+  std::string axis = "x";
+  if (obj.Has("fov") && obj.Has("focal_length"))
+    return obj.Error("focal_length", "give either 'fov' or 'focal_length', not both");
+  if (obj.Has("focal_length")) {
+    std::string text;
+    PTLAB_RETURN_IF_ERROR(obj.String("focal_length", &text));
+    if (text.size() > 2 && text.substr(text.size() - 2) == "mm") text.resize(text.size() - 2);
+    float mm = 0;
+    if (!ParseFloat(text, &mm) || !(mm > 0))
+      return obj.Error("focal_length", "malformed focal_length; expected e.g. 50mm (> 0)");
+    fov = float(2.0 * std::atan(std::sqrt(36.0 * 36 + 24 * 24) / (2.0 * mm)) * 180.0 / kPiD);
+    axis = "diagonal";
+  } else {
+    fov = float(2.0 * std::atan(std::sqrt(36.0 * 36 + 24 * 24) / 100.0) * 180.0 / kPiD);
+    axis = "diagonal";  // Mitsuba's default: a 50 mm lens
+    if (obj.Has("fov")) {
+      axis = "x";
+      PTLAB_RETURN_IF_ERROR(obj.Float("fov", &fov));
+      PTLAB_RETURN_IF_ERROR(obj.String("fov_axis", &axis));
+      for (char& c : axis) c = char(std::tolower(static_cast<unsigned char>(c)));
+      if (axis == "smaller") axis = aspect > 1 ? "y" : "x";
+      if (axis == "larger") axis = aspect > 1 ? "x" : "y";
+      if (axis != "x" && axis != "y" && axis != "diagonal")
+        return obj.Error("fov_axis", "unknown fov_axis '" + axis +
+                                         "'; expected x, y, diagonal, smaller or larger");
+    }
+  }
+  if (!(fov > 0 && fov < 180))
+    return obj.Error("fov", "fov = " + FormatNumber(fov) + " is out of range; expected (0, 180)");
+  *horizontal_fov = float(HorizontalFov(fov, axis, aspect));
+  if (!(*horizontal_fov > 0 && *horizontal_fov < 180))
+    return obj.Error("fov", "the horizontal field of view " + FormatNumber(*horizontal_fov) +
+                                " is out of range; expected (0, 180)");
+  return Status::Ok();
+}
+
 StatusOr<std::string> MitsubaSceneBuilder::Resolve(const MitsubaObject& obj, const char* property,
                                                    const std::string& filename) const {
   const std::string path = ResolveMitsubaPath(doc_.search_paths, filename);
@@ -55,13 +93,23 @@ Status MitsubaSceneBuilder::Build() {
   PTLAB_RETURN_IF_ERROR(root->Expect({}));
   for (const MitsubaNode* child : root->children()) PTLAB_RETURN_IF_ERROR(SceneChild(*child));
   if (!have_sensor_) return doc_.root.Error("no <sensor> in the scene; expected one");
-  // Mitsuba 3's direct integrator weights each sample of a delta emitter (point, directional)
-  // by 1 instead of 1 / emitter_samples, so its images count those lights emitter_samples
-  // times; ptlab's direct_mis does not, and would not match them.
-  if (multi_sample_direct_ && scene_.point_lights.size() + scene_.directional_lights.size() > 0)
+  // Mitsuba 3's direct integrator weights each sample of a delta emitter (point, directional,
+  // spot, projector) by 1 instead of 1 / emitter_samples, so its images count those lights
+  // emitter_samples times; ptlab's direct_mis does not, and would not match them.
+  if (multi_sample_direct_ && scene_.point_lights.size() + scene_.directional_lights.size() +
+                                      scene_.spot_lights.size() + scene_.projectors.size() >
+                                  0)
     return Unsupported(*multi_sample_direct_,
-                       "emitter_samples > 1 with point or directional emitters: Mitsuba 3 counts "
-                       "each such sample with weight 1, not 1 / emitter_samples");
+                       "emitter_samples > 1 with point, directional, spot or projector "
+                       "emitters: Mitsuba 3 counts each such sample with weight 1, not 1 / "
+                       "emitter_samples");
+  // hide_emitters and area emitters: Mitsuba 3 up to 3.5 draws a directly seen area emitter
+  // black (its emission dropped, its surface shaded), Mitsuba 3.6 lets camera rays pass
+  // through it; ptlab does neither until one is chosen.
+  if (hide_emitters_ && scene_.area_lights.size() > 0)
+    return Unsupported(*hide_emitters_,
+                       "hide_emitters = true with area emitters (Mitsuba's versions differ: a "
+                       "black emitter, or one that camera rays pass through)");
   if (!have_integrator_) {  // Mitsuba's default: path, unbounded depth
     scene_.integrator = IntegratorDesc{};
     scene_.integrator.type = IntegratorDesc::Type::kPathMis;
@@ -112,12 +160,18 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
         obj->Expect({"fov", "fov_axis", "focal_length", "near_clip", "far_clip", "focus_distance",
                      "aperture_radius", "to_world", "shutter_open", "shutter_close"}));
     PTLAB_RETURN_IF_ERROR(obj->Require("aperture_radius"));
-  } else if (type == "orthographic" || type == "radiancemeter" || type == "irradiancemeter" ||
-             type == "batch" || type == "distant") {
+  } else if (type == "orthographic") {
+    PTLAB_RETURN_IF_ERROR(
+        obj->Expect({"near_clip", "far_clip", "to_world", "shutter_open", "shutter_close"}));
+    camera.projection = CameraDesc::Projection::kOrthographic;
+  } else if (type == "radiancemeter" || type == "irradiancemeter" || type == "batch" ||
+             type == "distant") {
     return Unsupported(node);
   } else {
-    return node.Error("unknown sensor type '" + type + "'; expected perspective or thinlens");
+    return node.Error("unknown sensor type '" + type +
+                      "'; expected perspective, thinlens or orthographic");
   }
+  const bool orthographic = camera.projection == CameraDesc::Projection::kOrthographic;
   const MitsubaNode *film = nullptr, *sampler = nullptr, *filter = nullptr;
   for (const MitsubaNode* child : obj->children()) {
     const MitsubaNode** slot = child->tag == "film"      ? &film
@@ -170,40 +224,7 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
   if (sampler) PTLAB_RETURN_IF_ERROR(Sampler(*sampler));
 
   const double aspect = double(camera.width) / camera.height;
-  float fov = 0;
-  std::string axis = "x";
-  if (obj->Has("fov") && obj->Has("focal_length"))
-    return obj->Error("focal_length", "give either 'fov' or 'focal_length', not both");
-  if (obj->Has("focal_length")) {
-    std::string text;
-    PTLAB_RETURN_IF_ERROR(obj->String("focal_length", &text));
-    if (text.size() > 2 && text.substr(text.size() - 2) == "mm") text.resize(text.size() - 2);
-    float mm = 0;
-    if (!ParseFloat(text, &mm) || !(mm > 0))
-      return obj->Error("focal_length", "malformed focal_length; expected e.g. 50mm (> 0)");
-    fov = float(2.0 * std::atan(std::sqrt(36.0 * 36 + 24 * 24) / (2.0 * mm)) * 180.0 / kPiD);
-    axis = "diagonal";
-  } else {
-    fov = float(2.0 * std::atan(std::sqrt(36.0 * 36 + 24 * 24) / 100.0) * 180.0 / kPiD);
-    axis = "diagonal";  // Mitsuba's default: a 50 mm lens
-    if (obj->Has("fov")) {
-      axis = "x";
-      PTLAB_RETURN_IF_ERROR(obj->Float("fov", &fov));
-      PTLAB_RETURN_IF_ERROR(obj->String("fov_axis", &axis));
-      for (char& c : axis) c = char(std::tolower(static_cast<unsigned char>(c)));
-      if (axis == "smaller") axis = aspect > 1 ? "y" : "x";
-      if (axis == "larger") axis = aspect > 1 ? "x" : "y";
-      if (axis != "x" && axis != "y" && axis != "diagonal")
-        return obj->Error("fov_axis", "unknown fov_axis '" + axis +
-                                          "'; expected x, y, diagonal, smaller or larger");
-    }
-  }
-  if (!(fov > 0 && fov < 180))
-    return obj->Error("fov", "fov = " + FormatNumber(fov) + " is out of range; expected (0, 180)");
-  camera.fov_deg = float(HorizontalFov(fov, axis, aspect));
-  if (!(camera.fov_deg > 0 && camera.fov_deg < 180))
-    return obj->Error("fov", "the horizontal field of view " + FormatNumber(camera.fov_deg) +
-                                 " is out of range; expected (0, 180)");
+  if (!orthographic) PTLAB_RETURN_IF_ERROR(MitsubaHorizontalFov(*obj, aspect, &camera.fov_deg));
   camera.near_clip = 1e-2f, camera.far_clip = 1e4f;  // Mitsuba's defaults
   PTLAB_RETURN_IF_ERROR(obj->Float("near_clip", &camera.near_clip));
   PTLAB_RETURN_IF_ERROR(obj->Float("far_clip", &camera.far_clip));
@@ -233,8 +254,21 @@ Status MitsubaSceneBuilder::Sensor(const MitsubaNode& node) {
                                            "\" motion blur (shutter_close != "
                                            "shutter_open)");
   PTLAB_RETURN_IF_ERROR(obj->TransformProperty("to_world", &camera.camera_to_world));
-  // Mitsuba refuses scale in a camera's to_world: its upper 3x3 must be orthonormal.
   const Matrix4& m = camera.camera_to_world.matrix();
+  if (orthographic) {
+    // The scale sets the view's extent (Mitsuba's [-1, 1]² film rectangle in camera space);
+    // it must not collapse an axis.
+    const float det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
+                      m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
+                      m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
+    if (!(std::fabs(det) > 0 && std::isfinite(det)))
+      return obj->Error("to_world",
+                        "the orthographic sensor's to_world is singular; expected an "
+                        "invertible transform (its scale sets the view's extent)");
+    scene_.camera = camera;
+    return Status::Ok();
+  }
+  // Mitsuba refuses scale in a perspective camera's to_world: its upper 3x3 must be orthonormal.
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const float dot = m.m[0][i] * m.m[0][j] + m.m[1][i] * m.m[1][j] + m.m[2][i] * m.m[2][j];
@@ -371,9 +405,8 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
   } else {
     return Unsupported(node);
   }
-  if (hide)
-    return obj->Error("hide_emitters",
-                      "unsupported: integrator \"" + type + "\" with hide_emitters = true");
+  desc.hide_emitters = hide;
+  if (hide) hide_emitters_ = &node;
   scene_.integrator = desc;
   return Status::Ok();
 }

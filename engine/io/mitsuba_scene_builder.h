@@ -15,6 +15,14 @@
 
 namespace ptlab::internal {
 
+/// Emission colour `name` of `obj` within [0, 1e20] per component; an error at it otherwise.
+Status CheckEmission(const MitsubaObject& obj, const char* name, const Color3f& c);
+
+/// Mitsuba's parse_fov: `fov` along `fov_axis` (x, y, diagonal, smaller, larger; default x) or
+/// `focal_length` (35 mm film diagonal; default 50mm) of a sensor or projector whose image has
+/// width / height = aspect, as the horizontal field of view in degrees, in (0, 180).
+Status MitsubaHorizontalFov(const MitsubaObject& obj, double aspect, float* horizontal_fov);
+
 class MitsubaSceneBuilder {
  public:
   MitsubaSceneBuilder(const MitsubaDocument* doc, const LoadOptions& options)
@@ -55,6 +63,9 @@ class MitsubaSceneBuilder {
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);
   Status Rotation(const MitsubaObject& obj, const Transform& to_world, Frame* frame) const;
+  // mitsuba_delta_emitters.cpp: Mitsuba's spot and projector.
+  Status SpotEmitter(const MitsubaObject& obj);
+  Status ProjectorEmitter(const MitsubaObject& obj);
 
   const MitsubaDocument& doc_;
   const LoadOptions& options_;
@@ -63,6 +74,7 @@ class MitsubaSceneBuilder {
   Scene scene_;
   bool have_sensor_ = false, have_integrator_ = false;
   const MitsubaNode* multi_sample_direct_ = nullptr;  // a direct integrator, emitter_samples > 1
+  const MitsubaNode* hide_emitters_ = nullptr;        // an integrator with hide_emitters
   std::map<const MitsubaNode*, MaterialRef> bsdfs_;   // one row per <bsdf> element
   std::map<std::string, MeshData> meshes_;            // one read per mesh file
   std::map<const MitsubaNode*, uint32_t> textures_;   // one row per <texture> element

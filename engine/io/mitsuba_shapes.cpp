@@ -1,9 +1,11 @@
 // Mitsuba <shape>s: obj (ply and serialized once their readers are wired in), rectangle, cube,
-// disk, sphere; with their BSDF and area emitter.
+// disk, cylinder, sphere; with their BSDF and area emitter.
 #include <cmath>
 #include <numbers>
 
 #include "engine/bvh/sphere_intersect.h"
+#include "engine/core/frame.h"
+#include "engine/io/mitsuba_meshes.h"
 #include "engine/io/mitsuba_scene_builder.h"
 #include "engine/io/obj_loader.h"
 #include "engine/io/ply_loader.h"
@@ -14,7 +16,8 @@
 namespace ptlab::internal {
 namespace {
 
-// Rim vertices of a Mitsuba disk: its edge is then within 5e-6 (relative) of the circle.
+// Rim vertices of a Mitsuba disk and cylinder: the edge is then within 5e-6 (relative) of the
+// circle.
 constexpr int kMitsubaDiskSegments = 1024;
 
 // Mitsuba's vertex normals for a mesh without them: at each vertex, the sum of its triangles'
@@ -98,13 +101,16 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"to_world", "flip_normals"}));
   } else if (type == "sphere") {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"center", "radius", "to_world", "flip_normals"}));
-  } else if (type == "cylinder" || type == "sdfgrid" || type == "shapegroup" ||
-             type == "instance" || type == "ellipsoids" || type == "ellipsoidsmesh" ||
-             type == "bsplinecurve" || type == "linearcurve" || type == "merge") {
+  } else if (type == "cylinder") {
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"radius", "p0", "p1", "to_world", "flip_normals"}));
+  } else if (type == "sdfgrid" || type == "shapegroup" || type == "instance" ||
+             type == "ellipsoids" || type == "ellipsoidsmesh" || type == "bsplinecurve" ||
+             type == "linearcurve" || type == "merge") {
     return Unsupported(node);
   } else {
     return node.Error("unknown shape type '" + type +
-                      "'; expected obj, ply, serialized, rectangle, cube, disk or sphere");
+                      "'; expected obj, ply, serialized, rectangle, cube, disk, cylinder or "
+                      "sphere");
   }
   // Mitsuba flips v of OBJ files by default and of PLY files only when asked; a serialized file
   // stores v flipped already, which LoadSerialized undoes (it returns the OBJ convention), so
@@ -178,10 +184,35 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
       ComputeAngleWeightedNormals(&mesh);
     if (flip_tex_coords)
       for (Vec2f& uv : mesh.uvs) uv.y = 1.0f - uv.y;
+  } else if (type == "cylinder") {
+    // Mitsuba's cylinder: the unit one (radius 1, z from 0 to 1) scaled to (radius, radius,
+    // |p1 - p0|), turned so that +z runs along p1 - p0 (the frame of that axis, Duff et al.'s
+    // basis as Mitsuba's coordinate_system), moved to p0, then to_world.
+    float radius = 1;
+    Vec3f p0{0, 0, 0}, p1{0, 0, 1};
+    PTLAB_RETURN_IF_ERROR(obj.Float("radius", &radius));
+    PTLAB_RETURN_IF_ERROR(obj.Point("p0", &p0));
+    PTLAB_RETURN_IF_ERROR(obj.Point("p1", &p1));
+    if (!(radius > 0 && radius <= kMaxWorldCoordinate))
+      return obj.Error("radius", "cylinder radius must be in (0, " +
+                                     std::to_string(int(kMaxWorldCoordinate)) + "]");
+    const float length = Length(p1 - p0);
+    if (!(length > 0 && length <= kMaxWorldCoordinate))
+      return obj.Error(obj.Has("p1") ? "p1" : "p0",
+                       "the cylinder's axis p1 - p0 must have a length in (0, " +
+                           std::to_string(int(kMaxWorldCoordinate)) + "]");
+    const Frame axis(Normalize(p1 - p0));
+    Matrix4 frame;
+    for (int r = 0; r < 3; ++r) {
+      frame.m[r][0] = axis.s[r], frame.m[r][1] = axis.t[r], frame.m[r][2] = axis.n[r];
+    }
+    to_world = to_world * Transform::Translate(p0) * Transform(frame, Transpose(frame)) *
+               Transform::Scale({radius, radius, length});
+    mesh = MakeMitsubaCylinder(kMitsubaDiskSegments);
   } else {
     mesh = type == "rectangle" ? MakeRectangle()
            : type == "cube"    ? MakeCube()
-                               : MakeDisk(kMitsubaDiskSegments);
+                               : MakeMitsubaDisk(kMitsubaDiskSegments);
   }
   if (flip_normals) {
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)

@@ -1,9 +1,12 @@
-// Delta emitters (point, directional, spot lights): the one direction each lights a point from.
+// Delta emitters (point, directional, spot lights, projectors): the one direction each lights a
+// point from.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/vec.h"
+#include "engine/light/projector.h"
 #include "engine/scene/refs.h"
 #include "engine/scene/scene.h"
 
@@ -13,7 +16,7 @@ namespace ptlab {
 /// Dirac delta): they are sampled without MIS, weighted by the probability of choosing them.
 constexpr bool IsDeltaLight(EmitterRef e) {
   return e.valid() && (e.tag() == EmitterTag::kPoint || e.tag() == EmitterTag::kDirectional ||
-                       e.tag() == EmitterTag::kSpot);
+                       e.tag() == EmitterTag::kSpot || e.tag() == EmitterTag::kProjector);
 }
 
 /// The light a delta emitter sends to a point: from direction wi (world, unit, towards the
@@ -28,7 +31,7 @@ struct DeltaLightSample {
 };
 
 /// The sample of delta emitter e at world point p. False when it sends p nothing (p on the
-/// light, outside a spot's cone) or for any other emitter.
+/// light, outside a spot's cone or a projector's frustum) or for any other emitter.
 inline bool SampleDeltaLight(const Scene& scene, EmitterRef e, const Vec3f& p,
                              DeltaLightSample* out) {
   const uint32_t i = e.index();
@@ -52,11 +55,25 @@ inline bool SampleDeltaLight(const Scene& scene, EmitterRef e, const Vec3f& p,
         out->radiance = intensity * (1.0f / dist2);
         return true;
       }
-      // The spot's intensity at angle θ off its axis: I cos(θ)^exponent inside the cone.
-      const float cos_theta = -Dot(out->wi, scene.spot_lights.axis[i]);
-      if (!(cos_theta > scene.spot_lights.cos_half_angle[i])) return false;
-      const float falloff = std::pow(cos_theta, scene.spot_lights.exponent[i]);
-      out->radiance = scene.spot_lights.intensity[i] * (falloff / dist2);
+      // The spot's intensity at angle θ off its axis: I cos(θ)^exponent inside the cone, times
+      // Mitsuba's linear ramp outside the full beam (SpotLightTable).
+      const SpotLightTable& t = scene.spot_lights;
+      const float cos_theta = -Dot(out->wi, t.axis[i]);
+      if (!(cos_theta > t.cos_half_angle[i])) return false;
+      float falloff = std::pow(cos_theta, t.exponent[i]);
+      if (cos_theta < t.cos_beam[i])
+        falloff *= std::max((t.cutoff[i] - std::acos(cos_theta)) * t.inv_transition[i], 0.0f);
+      out->radiance = t.intensity[i] * (falloff / dist2);
+      return true;
+    }
+    case EmitterTag::kProjector: {
+      const ProjectorTable& t = scene.projectors;
+      out->position = t.position[i];
+      const Vec3f d = out->position - p;
+      const float dist2 = Dot(d, d);
+      if (!(dist2 > 0) || !ProjectorRadianceAt(t, i, p, &out->radiance)) return false;
+      out->wi = d / std::sqrt(dist2);
+      out->infinite = false;
       return true;
     }
     case EmitterTag::kArea:

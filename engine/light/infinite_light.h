@@ -27,6 +27,7 @@ inline Color3f InfiniteLightRadiance(const Scene& scene, EmitterRef e, const Vec
     case EmitterTag::kPoint:
     case EmitterTag::kDirectional:
     case EmitterTag::kSpot:
+    case EmitterTag::kProjector:
       return {};
   }
   return {};  // an invalid ref
@@ -45,6 +46,7 @@ inline bool SampleInfiniteLight(const Scene& scene, EmitterRef e, const Vec2f& u
     case EmitterTag::kPoint:
     case EmitterTag::kDirectional:
     case EmitterTag::kSpot:
+    case EmitterTag::kProjector:
       return false;
   }
   return false;  // an invalid ref
@@ -62,6 +64,7 @@ inline float InfiniteLightPdf(const Scene& scene, EmitterRef e, const Vec3f& w) 
     case EmitterTag::kPoint:
     case EmitterTag::kDirectional:
     case EmitterTag::kSpot:
+    case EmitterTag::kProjector:
       return 0.0f;
   }
   return 0.0f;  // an invalid ref

@@ -45,6 +45,7 @@ void BuildEmitterSelection(Scene* scene) {
   t.slot_point.assign(scene->point_lights.size(), 0);
   t.slot_directional.assign(scene->directional_lights.size(), 0);
   t.slot_spot.assign(scene->spot_lights.size(), 0);
+  t.slot_projector.assign(scene->projectors.size(), 0);
   if (n == 0) return;
   const double radius = SceneRadius(scene->triangles, scene->spheres);
   // An infinite or directional emitter in a scene without geometry lights nothing; a unit
@@ -82,12 +83,32 @@ void BuildEmitterSelection(Scene* scene) {
         power = disk_area * double(Luminance(scene->directional_lights.radiance[i]));
         break;
       case EmitterTag::kSpot: {
-        // ∫ cos^e θ dω over the cone cos θ > c: 2π (1 - c^(e+1)) / (e + 1).
         t.slot_spot[i] = uint32_t(k);
-        const double c = std::max(double(scene->spot_lights.cos_half_angle[i]), 0.0);
-        const double e1 = double(scene->spot_lights.exponent[i]) + 1.0;
-        power = 2.0 * kPiD * (1.0 - std::pow(c, e1)) / e1 *
-                double(Luminance(scene->spot_lights.intensity[i]));
+        const SpotLightTable& s = scene->spot_lights;
+        if (s.inv_transition[i] > 0) {
+          // Mitsuba's spot (exponent 0): ∫ ramp dω = 2π [(1 - cos β) + ∫_β^γ (γ - θ)/(γ - β)
+          // sin θ dθ], the second term (w cos β + sin β - sin γ) / w with w = γ - β.
+          const double gamma = double(s.cutoff[i]);
+          const double w = 1.0 / double(s.inv_transition[i]), beta = gamma - w;
+          power = 2.0 * kPiD *
+                  ((1.0 - std::cos(beta)) +
+                   (w * std::cos(beta) + std::sin(beta) - std::sin(gamma)) / w) *
+                  double(Luminance(s.intensity[i]));
+          break;
+        }
+        // ∫ cos^e θ dω over the cone cos θ > c: 2π (1 - c^(e+1)) / (e + 1).
+        const double c = std::max(double(s.cos_half_angle[i]), 0.0);
+        const double e1 = double(s.exponent[i]) + 1.0;
+        power = 2.0 * kPiD * (1.0 - std::pow(c, e1)) / e1 * double(Luminance(s.intensity[i]));
+        break;
+      }
+      case EmitterTag::kProjector: {
+        // The constant image's irradiance π·scale·E on the plane z = 1 over the frustum's
+        // window there, (2 tan_half_x)(2 tan_half_y).
+        t.slot_projector[i] = uint32_t(k);
+        const ProjectorTable& p = scene->projectors;
+        power = kPiD * double(p.scale[i]) * double(Luminance(p.irradiance[i])) * 4.0 *
+                double(p.tan_half_x[i]) * double(p.tan_half_y[i]);
         break;
       }
     }

@@ -28,6 +28,7 @@ inline float EmitterSelectionPmf(const Scene& scene, EmitterRef e) {
     case EmitterTag::kPoint: return t.pmf[t.slot_point[e.index()]];
     case EmitterTag::kDirectional: return t.pmf[t.slot_directional[e.index()]];
     case EmitterTag::kSpot: return t.pmf[t.slot_spot[e.index()]];
+    case EmitterTag::kProjector: return t.pmf[t.slot_projector[e.index()]];
   }
   return 0.0f;
 }

@@ -1,4 +1,5 @@
-// Camera ray generation: Nori's perspective projection, with an optional thin lens.
+// Camera ray generation: Nori's perspective projection, with an optional thin lens, and
+// Mitsuba's orthographic projection.
 #include "engine/render/camera.h"
 
 #include <cmath>
@@ -22,12 +23,61 @@ void ResizeFilm(CameraDesc* camera, int width, int height) {
 Camera::Camera(const CameraDesc& desc)
     : desc_(desc),
       tan_half_fov_(std::tan(Radians(desc.fov_deg) * 0.5f)),
-      aspect_(float(desc.width) / float(desc.height)) {}
+      aspect_(float(desc.width) / float(desc.height)),
+      ortho_dir_(Normalize(desc.camera_to_world.ApplyVector({0, 0, 1}))) {}
+
+Ray Camera::OrthographicRay(float sx, float sy) const {
+  // Mitsuba's orthographic_projection: film (sx, sy) to (1 - 2 sx, (1 - 2 sy) / aspect) on
+  // the plane z = near_clip (camera +x is image left, as the perspective camera's).
+  Ray ray;
+  ray.o = desc_.camera_to_world.ApplyPoint(
+      {1.0f - 2.0f * sx, (1.0f - 2.0f * sy) / aspect_, desc_.near_clip});
+  ray.d = ortho_dir_;
+  ray.t_min = 0.0f;
+  ray.t_max = desc_.far_clip - desc_.near_clip;
+  return ray;
+}
+
+void Camera::OrthographicRay8(const float* px, const float* py, RayPacket8* out) const {
+  // OrthographicRay with ApplyPoint written out (the same operations in the same order).
+  constexpr int kLanes = int(kPacketWidth);
+  const auto& m = desc_.camera_to_world.matrix().m;
+  const float a00 = m[0][0], a01 = m[0][1], a02 = m[0][2], a03 = m[0][3], a10 = m[1][0],
+              a11 = m[1][1], a12 = m[1][2], a13 = m[1][3], a20 = m[2][0], a21 = m[2][1],
+              a22 = m[2][2], a23 = m[2][3], a30 = m[3][0], a31 = m[3][1], a32 = m[3][2],
+              a33 = m[3][3];
+  const float width = float(desc_.width), height = float(desc_.height), aspect = aspect_;
+  const float z = desc_.near_clip, t_max = desc_.far_clip - desc_.near_clip;
+  float in_x[kPacketWidth], in_y[kPacketWidth];
+  float o_x[kPacketWidth], o_y[kPacketWidth], o_z[kPacketWidth];
+  std::memcpy(in_x, px, sizeof(in_x));
+  std::memcpy(in_y, py, sizeof(in_y));
+  for (int j = 0; j < kLanes; ++j) {
+    const float sx = in_x[j] / width, sy = in_y[j] / height;
+    const float x = 1.0f - 2.0f * sx, y = (1.0f - 2.0f * sy) / aspect;
+    const float wx = a00 * x + a01 * y + a02 * z + a03;
+    const float wy = a10 * x + a11 * y + a12 * z + a13;
+    const float wz = a20 * x + a21 * y + a22 * z + a23;
+    const float w = a30 * x + a31 * y + a32 * z + a33;
+    const bool affine = w == 1.0f;
+    o_x[j] = affine ? wx : wx / w;
+    o_y[j] = affine ? wy : wy / w;
+    o_z[j] = affine ? wz : wz / w;
+  }
+  std::memcpy(out->org_x, o_x, sizeof(o_x));
+  std::memcpy(out->org_y, o_y, sizeof(o_y));
+  std::memcpy(out->org_z, o_z, sizeof(o_z));
+  for (int j = 0; j < kLanes; ++j) {
+    out->dir_x[j] = ortho_dir_.x, out->dir_y[j] = ortho_dir_.y, out->dir_z[j] = ortho_dir_.z;
+    out->t_min[j] = 0.0f, out->t_max[j] = t_max;
+  }
+}
 
 Ray Camera::GenerateRay(float px, float py, const Vec2f& lens_u) const {
   // Nori maps film (sx, sy) in [0,1]² to the near plane with x' = 1 - 2 sx and
   // y' = (1 - 2 sy) / aspect (in units of tan(fov/2)): camera +x is image left, +y is up.
   const float sx = px / float(desc_.width), sy = py / float(desc_.height);
+  if (desc_.projection == CameraDesc::Projection::kOrthographic) return OrthographicRay(sx, sy);
   const Vec3f p_film{(1.0f - 2.0f * sx) * tan_half_fov_,
                      (1.0f - 2.0f * sy) * tan_half_fov_ / aspect_, 1.0f};
   Vec3f d = Normalize(p_film);
@@ -53,6 +103,10 @@ Ray Camera::GenerateRay(float px, float py, const Vec2f& lens_u) const {
 void Camera::GenerateRay8(const float* px, const float* py, const Vec2f* lens_u,
                           RayPacket8* out) const {
   constexpr int kLanes = int(kPacketWidth);
+  if (desc_.projection == CameraDesc::Projection::kOrthographic) {
+    OrthographicRay8(px, py, out);
+    return;
+  }
   if (desc_.aperture_radius > 0) {
     for (int j = 0; j < kLanes; ++j) SetLaneRay(out, j, GenerateRay(px[j], py[j], lens_u[j]));
     return;

@@ -48,11 +48,13 @@ Color3f LiNormals(const RenderContext& ctx, const Ray& ray, RayCounters* c) {
 Color3f LiDirect(const RenderContext& ctx, const Ray& ray, Type type, PathSampler& sampler,
                  RayCounters* c) {
   const Scene& scene = ctx.scene;
+  const bool hide = scene.integrator.hide_emitters;
   Hit hit;
-  if (!Trace(ctx, ray, &hit, c)) return Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
+  if (!Trace(ctx, ray, &hit, c))
+    return hide ? Color3f{} : Escaped(scene, ray.d / Length(ray.d), false, 0.0f);
   const SurfaceInteraction its = MakeInteraction(scene, ray, hit);
   const Vec3f wo_world = -ray.d / Length(ray.d);
-  Color3f L = Emitted(scene, its, wo_world);
+  Color3f L = hide ? Color3f{} : Emitted(scene, its, wo_world);
   const Vec3f wo = its.frame.ToLocal(wo_world);
   const bool mis = type == Type::kDirectMis;
   if (type != Type::kDirectMats) L += SampleEmitterDirect(ctx, its, wo, mis, sampler, 0, c);
@@ -128,18 +130,21 @@ Color3f LiPath(const RenderContext& ctx, Ray ray, Type type, PathSampler& sample
   float prev_pdf = 0.0f;        // BSDF pdf of the bounce that produced `ray`
   Vec3f prev_p;
   for (int depth = 0;; ++depth) {
+    // hide_emitters: the camera ray's emitted light is not counted.
+    const bool hidden = depth == 0 && desc.hide_emitters;
     Hit hit;
     if (!Trace(ctx, ray, &hit, c)) {
       // Escaped: environment light, counted unless emitter sampling already did (ems after a
       // non-specular bounce), MIS-weighted for path_mis.
       const Vec3f w = ray.d / Length(ray.d);
+      if (hidden) break;
       if (!nee || specular_bounce) L += throughput * Escaped(scene, w, false, 0.0f);
       else if (mis) L += throughput * Escaped(scene, w, true, prev_pdf);
       break;
     }
     const SurfaceInteraction its = MakeInteraction(scene, ray, hit);
     const Vec3f wo_world = -ray.d / Length(ray.d);
-    const Color3f Le = Emitted(scene, its, wo_world);
+    const Color3f Le = hidden ? Color3f{} : Emitted(scene, its, wo_world);
     if (!IsBlack(Le)) {
       float w = 1.0f;
       if (nee && !specular_bounce) {

@@ -96,6 +96,10 @@ Status CheckRenderSetup(const Scene& scene) {
       return Status::Error("spot light " + std::to_string(i) + ": axis " + Point(a) +
                            " is not a unit vector (a degenerate or non-finite transform)");
   }
+  for (size_t i = 0; i < scene.projectors.size(); ++i)
+    if (!FiniteWithin(scene.projectors.position[i], kMaxWorldCoordinate))
+      return Status::Error("projector " + std::to_string(i) + ": position " +
+                           Point(scene.projectors.position[i]) + bounds);
   for (size_t i = 0; i < scene.directional_lights.size(); ++i) {
     const Vec3f& d = scene.directional_lights.direction[i];
     if (!(std::fabs(Length(d) - 1.0f) < 1e-3f))

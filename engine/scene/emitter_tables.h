@@ -1,4 +1,5 @@
-// Emitter components: area lights on meshes, environment maps, distant disks and delta lights.
+// Emitter components: area lights on meshes, environment maps, distant disks, delta lights and
+// projectors.
 #pragma once
 
 #include <cstdint>
@@ -93,14 +94,34 @@ struct DirectionalLightTable {
   size_t size() const { return direction.size(); }
 };
 
-/// Spot lights (COLLADA `<spot>`): a point at `position` sending radiant intensity
-/// intensity · cos(θ)^exponent (W/sr per channel) at angle θ from `axis` (world, unit) while
-/// cos θ > cos_half_angle, and nothing outside; the irradiance falls off as 1/r² as for point
-/// lights. Delta lights: reached by emitter sampling only.
+/// Spot lights (COLLADA `<spot>`, Mitsuba `spot`): a point at `position` sending radiant
+/// intensity intensity · cos(θ)^exponent · ramp(θ) (W/sr per channel) at angle θ from `axis`
+/// (world, unit) while cos θ > cos_half_angle, and nothing outside; the irradiance falls off as
+/// 1/r² as for point lights. ramp(θ) is Mitsuba's linear falloff: 1 while cos θ >= cos_beam,
+/// else (cutoff - θ) · inv_transition (cutoff = the cone's half-angle in radians,
+/// inv_transition = 1 / (cutoff - beam width)). COLLADA rows have exponent ≥ 0 and no ramp
+/// (cos_beam = cos_half_angle); Mitsuba rows have exponent 0. Delta lights: reached by emitter
+/// sampling only.
 struct SpotLightTable {
   std::vector<Vec3f> position, axis;
   std::vector<Color3f> intensity;
   std::vector<float> cos_half_angle, exponent;
+  std::vector<float> cos_beam, cutoff, inv_transition;
+
+  size_t size() const { return position.size(); }
+};
+
+/// Projectors (Mitsuba `projector`): a pinhole at `position` projecting an image through the
+/// frustum |x/z| <= tan_half_x, |y/z| <= tan_half_y of its local frame `to_world` (rotation;
+/// it looks along to_world.n). The image is the irradiance on the virtual image plane z = 1 at
+/// image coordinates (u, v) = (0.5 - x/(2 z tan_half_x), 0.5 - y/(2 z tan_half_y)), row v = 0
+/// at the top as a camera's film (ProjectorIrradiance, engine/light/projector.h, looks it up);
+/// `scale` multiplies it. Delta lights: reached by emitter sampling only.
+struct ProjectorTable {
+  std::vector<Vec3f> position;
+  std::vector<Frame> to_world;
+  std::vector<float> tan_half_x, tan_half_y, scale;
+  std::vector<Color3f> irradiance;  // the constant image (a texture: see ProjectorIrradiance)
 
   size_t size() const { return position.size(); }
 };
@@ -116,6 +137,7 @@ struct EmitterSelectionTable {
   AlignedVector<uint32_t> guide;   // emitters.size() + 1 entries
   std::vector<uint32_t> slot_area, slot_environment, slot_disk, slot_point, slot_directional,
       slot_spot;
+  std::vector<uint32_t> slot_projector;
 
   size_t size() const { return pmf.size(); }
 };

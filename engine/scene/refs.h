@@ -23,6 +23,7 @@ enum class EmitterTag : uint8_t {
   kPoint = 3,
   kDirectional = 4,
   kSpot = 5,
+  kProjector = 6,
 };
 
 /// tag:4 | index:28, as in MaterialRef and EmitterRef.

@@ -19,6 +19,11 @@ namespace ptlab {
 /// Perspective or thin-lens camera (Nori `perspective`, Mitsuba `thinlens` names).
 /// Camera space looks along +z with +y up; +x maps to the image's left (Nori's convention).
 struct CameraDesc {
+  /// Perspective (pinhole or thin lens, fov_deg) or orthographic (Mitsuba's `orthographic`:
+  /// rays along camera +z from the film rectangle x in [-1, 1], y in [-1/aspect, 1/aspect] on
+  /// the plane z = near_clip, mapped by camera_to_world, whose scale sets the view's extent).
+  enum class Projection : uint8_t { kPerspective, kOrthographic };
+  Projection projection = Projection::kPerspective;
   Transform camera_to_world;
   float fov_deg = 30.0f;  // horizontal field of view
   int width = 1280, height = 720;
@@ -70,6 +75,9 @@ struct IntegratorDesc {
   bool power_heuristic = false;
   LightSelection light_selection = LightSelection::kPower;
   TriangleSampling triangle_sampling = TriangleSampling::kArea;
+  /// Mitsuba's hide_emitters (path and direct integrators): the camera ray's own emitted light
+  /// (an emitter it hits, or the environment it escapes to) is not counted.
+  bool hide_emitters = false;
 };
 
 struct Scene {
@@ -86,6 +94,7 @@ struct Scene {
   PointLightTable point_lights;
   DirectionalLightTable directional_lights;
   SpotLightTable spot_lights;
+  ProjectorTable projectors;
   std::vector<EmitterRef> emitters;  // all emitters, in selection order
   EmitterSelectionTable emitter_selection;
 

@@ -23,8 +23,9 @@ static_assert(sizeof(EnvironmentMapTable) == 13 * kColumn);
 static_assert(sizeof(DistantDiskTable) == 4 * kColumn);
 static_assert(sizeof(PointLightTable) == 2 * kColumn);
 static_assert(sizeof(DirectionalLightTable) == 2 * kColumn);
-static_assert(sizeof(SpotLightTable) == 5 * kColumn);
-static_assert(sizeof(EmitterSelectionTable) == 10 * kColumn);
+static_assert(sizeof(SpotLightTable) == 8 * kColumn);
+static_assert(sizeof(ProjectorTable) == 6 * kColumn);
+static_assert(sizeof(EmitterSelectionTable) == 11 * kColumn);
 
 size_t TableBytes(const TriangleShadingTable& t) {
   return VectorsBytes(t.mesh, t.material, t.vertex0, t.vertex1, t.vertex2);
@@ -66,9 +67,12 @@ size_t EmitterTablesBytes(const Scene& s) {
          VectorsBytes(s.directional_lights.direction, s.directional_lights.radiance) +
          VectorsBytes(s.spot_lights.position, s.spot_lights.axis, s.spot_lights.intensity,
                       s.spot_lights.cos_half_angle, s.spot_lights.exponent) +
+         VectorsBytes(s.spot_lights.cos_beam, s.spot_lights.cutoff, s.spot_lights.inv_transition) +
          VectorsBytes(s.emitters, sel.power, sel.pmf, sel.cdf, sel.guide, sel.slot_area,
                       sel.slot_environment, sel.slot_disk, sel.slot_point, sel.slot_directional,
-                      sel.slot_spot);
+                      sel.slot_spot, sel.slot_projector) +
+         VectorsBytes(s.projectors.position, s.projectors.to_world, s.projectors.tan_half_x,
+                      s.projectors.tan_half_y, s.projectors.scale, s.projectors.irradiance);
 }
 
 }  // namespace

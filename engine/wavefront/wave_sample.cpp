@@ -162,6 +162,7 @@ void Wavefront::SampleGroup(int depth, bool delta, int g, size_t k, size_t end) 
           case EmitterTag::kPoint:
           case EmitterTag::kDirectional:
           case EmitterTag::kSpot:
+          case EmitterTag::kProjector:
             StoreRequest(request, PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis, emitter,
                                                            pick_pmf, u));
             break;

@@ -42,7 +42,9 @@ void Wavefront::Shade(int depth) {
   // throughput adds ±0, which leaves L as it is (it starts at +0 and never becomes -0), so only
   // the paths whose throughput is not finite (0 times Inf or NaN is NaN) take the loop below.
   const bool infinite = scene_->environment_maps.size() + scene_->distant_disks.size() != 0;
-  for (size_t k = 0; k < packets; ++k) {
+  // hide_emitters: the camera rays' emitted light is not counted (neither loop runs).
+  const bool hidden = depth == 0 && scene_->integrator.hide_emitters;
+  for (size_t k = 0; k < packets && !hidden; ++k) {
     for (Mask8 todo = rays_.Active(k) & ~hit_mask_[k]; todo != 0; todo &= todo - 1) {
       // Escaped: environment light, counted unless emitter sampling already did (after a
       // non-specular bounce), MIS-weighted when mis is on.
@@ -61,7 +63,7 @@ void Wavefront::Shade(int depth) {
     }
   }
   // Only area lights emit at a surface (Emitted's test; EmitterRef::None's tag is not kArea).
-  if (lists.area_hits != 0) {
+  if (lists.area_hits != 0 && !hidden) {
     kernels_->emission(
         *scene_, {.nee = rules_.nee, .mis = rules_.mis}, lists.area_hits,
         {area_hits_.data(), rays_.packets.data(), rays_.owner.data(), its_.data()},

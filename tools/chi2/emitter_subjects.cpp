@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "engine/io/mesh_builder.h"
+#include "engine/io/mitsuba_meshes.h"
 #include "engine/light/area_light.h"
 #include "engine/light/light_selection.h"
 #include "engine/sampling/spherical_triangle.h"
@@ -311,6 +313,36 @@ void RegisterEmitterSubjects(Chi2Registry* r) {
                               Chi2Expect::kPass));
   r->Add(SimdAreaLightSubject("broken/simd_area_light_fan_claims_solid_angle_pdf", fan, kArea,
                               kSolidAngle, Chi2Expect::kFail));
+
+  // Mitsuba's cylinder and disk as emitters (engine/io/mitsuba_meshes.h, far coarser than the
+  // loader's 1024 segments to keep the pdf's loop over triangles short). Emitters are one-sided,
+  // so both face the origin: the origin is on the axis inside the cylinder (radius 0.9, z from
+  // -0.8 to 0.8), its normals flipped inward, and an elliptic disk above it faces down; uniform
+  // pick, area sampling, scalar and SIMD.
+  auto shapes = std::make_shared<Scene>();
+  const MaterialRef grey = shapes->materials.AddDiffuse({0.5f, 0.5f, 0.5f});
+  MeshData tube = MakeMitsubaCylinder(8);
+  for (size_t t = 0; t + 2 < tube.indices.size(); t += 3)
+    std::swap(tube.indices[t + 1], tube.indices[t + 2]);
+  for (Vec3f& n : tube.normals) n = -n;
+  const uint32_t cylinder =
+      AddMesh(shapes.get(), tube,
+              Transform::Translate({0.0f, 0.0f, -0.8f}) * Transform::Scale({0.9f, 0.9f, 1.6f}),
+              grey, "cylinder");
+  AttachAreaLight(shapes.get(), cylinder, {1.0f, 1.0f, 1.0f});
+  const uint32_t disk = AddMesh(shapes.get(), MakeMitsubaDisk(6),
+                                Transform::Translate({0.1f, 0.05f, 0.6f}) *
+                                    Transform::Rotate({1.0f, 0.2f, 0.0f}, 165.0f) *
+                                    Transform::Scale({0.5f, 0.3f, 1.0f}),
+                                grey, "disk");
+  AttachAreaLight(shapes.get(), disk, {2.0f, 2.0f, 2.0f});
+  FinalizeAreaLights(shapes.get());
+  shapes->integrator.light_selection = LightSelection::kUniform;
+  shapes->integrator.triangle_sampling = kArea;
+  r->Add(EmitterSelectionSubject("emitter/mitsuba_cylinder_and_disk_area", shapes, false,
+                                 Chi2Expect::kPass));
+  r->Add(SimdAreaLightSubject("simd/area_light_mitsuba_cylinder_and_disk_area", shapes, kArea,
+                              kArea, Chi2Expect::kPass));
 }
 
 }  // namespace ptlab

@@ -21,7 +21,10 @@ namespace ptlab {
 ///   angle; "simd/area_light_four_quads_area": the four quads, u1 picking a light per row
 ///   uniformly; pdf = AreaLightPdf (× 1/4 for the quads), the scalar oracle's density;
 /// - "broken/simd_area_light_fan_claims_solid_angle_pdf": the fan's area samples against the
-///   solid-angle pdf.
+///   solid-angle pdf;
+/// - "emitter/mitsuba_cylinder_and_disk_area", "simd/area_light_mitsuba_cylinder_and_disk_area":
+///   an emitting Mitsuba cylinder and disk (engine/io/mitsuba_meshes.h), uniform pick, area
+///   sampling, scalar and SIMD.
 void RegisterEmitterSubjects(Chi2Registry* registry);
 
 }  // namespace ptlab

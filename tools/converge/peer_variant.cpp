@@ -225,6 +225,10 @@ Status RunPeer(const PeerVariant& variant, const PeerRunOptions& o,
   if (!fs::exists(script)) return Status::Error("the peer runner " + script + " is missing");
   const Scene& scene = *o.scene;
   const CameraDesc& cam = scene.camera;
+  // The peer runner builds a perspective or thin-lens sensor from these arguments.
+  if (cam.projection != CameraDesc::Projection::kPerspective)
+    return Status::Error("the mitsuba3 peer renders perspective and thin-lens cameras; this "
+                         "scene's camera is orthographic");
   std::string to_world;
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)

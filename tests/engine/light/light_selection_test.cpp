@@ -62,11 +62,17 @@ TEST(LightSelection, DirectionalAndSpotPower) {
   scene.spot_lights.intensity.push_back({3, 3, 3});
   scene.spot_lights.cos_half_angle.push_back(0.5f);
   scene.spot_lights.exponent.push_back(2.0f);
+  scene.spot_lights.cos_beam.push_back(0.5f);  // no ramp (COLLADA's spots)
+  scene.spot_lights.cutoff.push_back(std::acos(0.5f));
+  scene.spot_lights.inv_transition.push_back(0.0f);
   scene.spot_lights.position.push_back({0, 1, 0});
   scene.spot_lights.axis.push_back({0, -1, 0});
   scene.spot_lights.intensity.push_back({1, 1, 1});
   scene.spot_lights.cos_half_angle.push_back(0.0f);  // 180°, exponent 0: a hemisphere
   scene.spot_lights.exponent.push_back(0.0f);
+  scene.spot_lights.cos_beam.push_back(0.0f);
+  scene.spot_lights.cutoff.push_back(0.5f * 3.14159265f);
+  scene.spot_lights.inv_transition.push_back(0.0f);
   scene.emitters = {EmitterRef::Make(EmitterTag::kSpot, 1),
                     EmitterRef::Make(EmitterTag::kDirectional, 0),
                     EmitterRef::Make(EmitterTag::kSpot, 0)};

@@ -1,6 +1,7 @@
 // Camera: Nori's projection conventions and the thin lens.
 #include "engine/render/camera.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -74,20 +75,51 @@ TEST(Camera, ThinLensRaysMeetOnThePlaneOfFocus) {
   }
 }
 
-// GenerateRay8 against GenerateRay, bit for bit, lane by lane: pinhole (the vectorised loop)
-// and thin lens, scaled and rotated transforms, film positions at the edges, centre, outside
-// the film and random, lens numbers at 0 and just under 1.
+// Mitsuba's orthographic camera: the film spans x in [-1, 1] and y in [-1/aspect, 1/aspect] of
+// camera space (image left = +x, top = +y) on the plane z = near_clip, mapped by the transform
+// (whose scale sets the extent); rays go along its +z, from t = 0 to far - near.
+TEST(Camera, OrthographicRaysAreParallelFromTheNearPlane) {
+  CameraDesc d = MakeDesc(30, 200, 100);
+  d.projection = CameraDesc::Projection::kOrthographic;
+  d.near_clip = 2.0f, d.far_clip = 50.0f;
+  d.camera_to_world = Transform::Translate({1, 2, 3}) * Transform::Scale({3, 3, 1});
+  const Camera cam(d);
+  const Ray centre = cam.GenerateRay(100, 50, {0.5f, 0.5f});
+  EXPECT_NEAR(centre.o.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(centre.o.y, 2.0f, 1e-6f);
+  EXPECT_NEAR(centre.o.z, 5.0f, 1e-6f);  // 3 + near_clip
+  EXPECT_EQ(centre.d, (Vec3f{0, 0, 1}));
+  EXPECT_EQ(centre.t_min, 0.0f);
+  EXPECT_EQ(centre.t_max, 48.0f);
+  const Ray top_left = cam.GenerateRay(0, 0, {0.5f, 0.5f});
+  EXPECT_NEAR(top_left.o.x, 1.0f + 3.0f, 1e-6f);
+  EXPECT_NEAR(top_left.o.y, 2.0f + 3.0f / 2.0f, 1e-6f);
+  const Ray bottom_right = cam.GenerateRay(200, 100, {0.5f, 0.5f});
+  EXPECT_NEAR(bottom_right.o.x, 1.0f - 3.0f, 1e-6f);
+  EXPECT_NEAR(bottom_right.o.y, 2.0f - 3.0f / 2.0f, 1e-6f);
+  EXPECT_EQ(bottom_right.d, centre.d);
+  // A rotated camera: the direction is the unit image of +z.
+  d.camera_to_world = Transform::Rotate({0, 1, 0}, 90) * Transform::Scale({2, 2, 4});
+  const Ray turned = Camera(d).GenerateRay(10, 20, {0.5f, 0.5f});
+  EXPECT_NEAR(turned.d.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(Length(turned.d), 1.0f, 1e-6f);
+}
+
+// GenerateRay8 against GenerateRay, bit for bit, lane by lane: pinhole and orthographic (the
+// vectorised loops) and thin lens, scaled and rotated transforms, film positions at the edges,
+// centre, outside the film and random, lens numbers at 0 and just under 1.
 TEST(Camera, GenerateRay8IsGenerateRayPerLane) {
   const auto bits = [](float v) { return std::bit_cast<uint32_t>(v); };
   Pcg32 rng(11, 3);
-  for (float aperture : {0.0f, 0.15f}) {
+  for (float aperture : {0.0f, 0.15f, -1.0f}) {  // -1: orthographic
     for (int t = 0; t < 3; ++t) {
       CameraDesc d = MakeDesc(t == 2 ? 120.0f : 35.0f, 97, 61);
+      if (aperture < 0) d.projection = CameraDesc::Projection::kOrthographic;
       if (t >= 1)
         d.camera_to_world = Transform::Translate({-3, 0.5f, 7}) *
                             Transform::Rotate({0.2f, 1, -0.4f}, 71) *
                             Transform::Scale({1, t == 2 ? -2.0f : 1.0f, 1});
-      d.aperture_radius = aperture;
+      d.aperture_radius = std::max(aperture, 0.0f);
       d.focus_distance = 4.0f;
       d.near_clip = 1e-3f, d.far_clip = 1e3f;
       const Camera cam(d);

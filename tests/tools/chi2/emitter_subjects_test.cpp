@@ -16,7 +16,9 @@ TEST(EmitterChi2Registry, HoldsTheScalarAndSimdAreaLightSubjects) {
   RegisterEmitterSubjects(&r);
   for (const char* name : {"emitter/spherical_triangle_near", "emitter/power_selection_four_quads",
                            "simd/area_light_fan_area", "simd/area_light_fan_solid_angle",
-                           "simd/area_light_four_quads_area"}) {
+                           "simd/area_light_four_quads_area",
+                           "emitter/mitsuba_cylinder_and_disk_area",
+                           "simd/area_light_mitsuba_cylinder_and_disk_area"}) {
     const Chi2Subject* s = r.Find(name);
     ASSERT_NE(s, nullptr) << name;
     EXPECT_EQ(s->expect, Chi2Expect::kPass) << name;
