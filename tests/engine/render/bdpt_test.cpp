@@ -64,6 +64,31 @@ bool SameBits(const Image& a, const Image& b) {
   return true;
 }
 
+// <integrator type="bdpt"> takes the power heuristic unless told `balance`; ptracer takes
+// maxDepth and nothing about MIS.
+TEST(BdptScene, XmlIntegratorOptions) {
+  const auto load = [](const std::string& integrator) {
+    return LoadSceneFromString("<scene>" + integrator +
+                                   "<camera type=\"perspective\"/></scene>",
+                               ".", "i.xml");
+  };
+  StatusOr<Scene> bdpt = load(R"(<integrator type="bdpt"><integer name="maxDepth" value="4"/></integrator>)");
+  ASSERT_TRUE(bdpt.ok()) << bdpt.status().message();
+  EXPECT_EQ(bdpt->integrator.type, T::kBdpt);
+  EXPECT_TRUE(bdpt->integrator.power_heuristic);
+  EXPECT_EQ(bdpt->integrator.max_depth, 4);
+  StatusOr<Scene> balance =
+      load(R"(<integrator type="bdpt"><string name="heuristic" value="balance"/></integrator>)");
+  ASSERT_TRUE(balance.ok()) << balance.status().message();
+  EXPECT_FALSE(balance->integrator.power_heuristic);
+  StatusOr<Scene> ptracer = load(R"(<integrator type="ptracer"/>)");
+  ASSERT_TRUE(ptracer.ok()) << ptracer.status().message();
+  EXPECT_EQ(ptracer->integrator.type, T::kPtracer);
+  EXPECT_FALSE(
+      load(R"(<integrator type="ptracer"><string name="heuristic" value="power"/></integrator>)")
+          .ok());
+}
+
 // Splats land in other tiles' pixels; they are merged in tile order, so 1 and 2 threads (and
 // a kernel table, which bdpt falls back from) give the same bits, over several passes.
 TEST(BdptRender, DeterministicAcrossThreadCounts) {
