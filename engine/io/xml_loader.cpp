@@ -256,6 +256,8 @@ Status SceneParser::ParseIntegrator(const pugi::xml_node& node) {
       {"path_mats", Type::kPathMats, true, false, false},
       {"path_ems", Type::kPathEms, true, true, false},
       {"path_mis", Type::kPathMis, true, true, true},
+      {"bdpt", Type::kBdpt, true, false, true},
+      {"ptracer", Type::kPtracer, true, false, false},
   };
   const Kind* kind = nullptr;
   for (const Kind& k : kKinds)
@@ -263,7 +265,7 @@ Status SceneParser::ParseIntegrator(const pugi::xml_node& node) {
   if (!kind)
     return at_.Error(node, "unknown integrator type '" + type +
                                "'; expected normals, direct_ems, direct_mats, direct_mis, "
-                               "whitted, path_mats, path_ems or path_mis");
+                               "whitted, path_mats, path_ems, path_mis, bdpt or ptracer");
   std::vector<const char*> names;
   if (kind->depth) names.push_back("maxDepth");
   if (kind->light_samples) {
@@ -298,7 +300,8 @@ Status SceneParser::ParseIntegrator(const pugi::xml_node& node) {
         triangles == "area" ? TriangleSampling::kArea : TriangleSampling::kSolidAngle;
   }
   if (kind->heuristic) {
-    std::string heuristic = "balance";
+    // bdpt combines many strategies, where the power heuristic is Veach's recommendation.
+    std::string heuristic = kind->type == Type::kBdpt ? "power" : "balance";
     PTLAB_RETURN_IF_ERROR(props.String("heuristic", &heuristic));
     if (heuristic != "balance" && heuristic != "power")
       return props.Error("heuristic",

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/bsdf/bsdf.h"
+#include "engine/core/check.h"
 #include "engine/bvh/intersect1.h"
 #include "engine/bvh/ray_offset.h"
 #include "engine/light/area_light.h"
@@ -197,6 +198,11 @@ Color3f Li(const RenderContext& ctx, const Ray& ray, PathSampler& sampler,
     case Type::kPathMats:
     case Type::kPathEms:
     case Type::kPathMis: return LiPath(ctx, ray, ctx.scene.integrator.type, sampler, counters);
+    case Type::kBdpt:
+    case Type::kPtracer:
+      // They splat into other pixels: LiBidirectional (bdpt.h), called by RenderTileScalar.
+      PTLAB_CHECK(false && "bdpt and ptracer run through LiBidirectional");
+      return {};
   }
   return {};
 }

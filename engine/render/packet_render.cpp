@@ -6,7 +6,8 @@ namespace ptlab {
 void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const PixelFilter& filter,
                       int x0, int y0, int x1, int y1, uint32_t s_begin, uint32_t s_end,
                       uint64_t seed, FilmBlock* block, TileSampleStats* stats,
-                      const PixelSampling* pixels) {
+                      const PixelSampling* pixels, const BidirectionalSetup* bidirectional,
+                      std::vector<LightSplat>* splats) {
   RayCounters counters;
   const uint64_t width = uint64_t(camera.width());
   for (int y = y0; y < y1; ++y) {
@@ -20,7 +21,9 @@ void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const Pixe
         const Vec2f lens = sampler.Get2D(kDimensionLens);
         const float sx = float(x) + jitter.x, sy = float(y) + jitter.y;
         const Ray ray = camera.GenerateRay(sx, sy, lens);
-        const Color3f L = Li(ctx, ray, sampler, &counters);
+        const Color3f L = bidirectional != nullptr
+                              ? LiBidirectional(ctx, *bidirectional, ray, sampler, &counters, splats)
+                              : Li(ctx, ray, sampler, &counters);
         if (moments) AddPixelSample(L, moments);
         if (!IsFinite(L)) {
           if (stats->nonfinite++ == 0) stats->first_x = x, stats->first_y = y;

@@ -8,6 +8,7 @@
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
+#include "engine/render/bdpt.h"
 #include "engine/render/integrator.h"
 
 namespace ptlab {
@@ -75,10 +76,14 @@ struct TileSampleStats {
 
 /// The scalar reference of RenderTilePacket8 (wavefront.h): one Li per sample, in the same
 /// splat order. render.cpp uses it when no kernel table is given; tests and benchmarks compare
-/// the two.
+/// the two. For bdpt and ptracer (IsBidirectional) `bidirectional` must be given: each sample
+/// is LiBidirectional's, and its light-tracing contributions are appended to *splats in sample
+/// order (the caller merges them into a LightFilm).
 void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const PixelFilter& filter,
                       int x0, int y0, int x1, int y1, uint32_t s_begin, uint32_t s_end,
                       uint64_t seed, FilmBlock* block, TileSampleStats* stats,
-                      const PixelSampling* pixels = nullptr);
+                      const PixelSampling* pixels = nullptr,
+                      const BidirectionalSetup* bidirectional = nullptr,
+                      std::vector<LightSplat>* splats = nullptr);
 
 }  // namespace ptlab

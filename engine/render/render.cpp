@@ -8,6 +8,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <system_error>
@@ -18,6 +19,7 @@
 #include "engine/render/camera.h"
 #include "engine/render/film.h"
 #include "engine/render/integrator.h"
+#include "engine/render/light_film.h"
 #include "engine/render/packet_render.h"
 #include "engine/wavefront/wavefront.h"
 
@@ -86,12 +88,32 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   AlignedVector<float> block_sums(block_first.back());
   std::vector<TileStats> stats(tiles.size());
   RenderResult result;
+  // bdpt and ptracer: the light films (this pass's and the completed passes'), the film the
+  // caller sees (camera + light), and the splats of tiles done ahead of their turn.
+  const bool bidirectional = IsBidirectional(scene.integrator.type);
+  std::optional<BidirectionalSetup> bidirectional_setup;
+  std::optional<LightFilm> light_pass, light_total;
+  FilmBlock composed;
+  std::vector<std::vector<LightSplat>> tile_splats;
+  if (bidirectional) {
+    if (options.adaptive.batch > 0 || options.distribution != nullptr) {
+      result.error = std::string(IntegratorTypeName(scene.integrator.type)) +
+                     " does not run with adaptive sampling or under mpirun yet";
+      return result;
+    }
+    bidirectional_setup.emplace(scene);
+    light_pass.emplace(filter, width, height);
+    light_total.emplace(filter, width, height);
+    tile_splats.resize(tiles.size());
+    result.scalar_fallback = options.kernels != nullptr;
+  }
+  const WavefrontKernels* kernels = bidirectional ? nullptr : options.kernels;
   RenderProgress progress;
   progress.samples_total = uint64_t(width) * uint64_t(height) * options.spp;
 
   const int threads = std::max(1, options.threads);
   // One wavefront per worker slot, kept over the tiles and passes that slot renders.
-  std::vector<WavefrontWorkspace> workspaces(options.kernels != nullptr ? size_t(threads) : 0);
+  std::vector<WavefrontWorkspace> workspaces(kernels != nullptr ? size_t(threads) : 0);
   const bool adaptive = options.adaptive.batch > 0 && options.distribution == nullptr;
   const uint32_t per_pass = adaptive ? std::min(options.adaptive.batch, options.spp)
                                      : std::max<uint32_t>(1, SamplesPerPass(options.spp));
@@ -142,6 +164,9 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     std::mutex mutex;
     std::condition_variable worker_stopped;
     size_t tiles_done = 0;
+    size_t next_splat_tile = 0;  // bidirectional: the tile whose splats go in next
+    std::vector<uint8_t> splats_ready(bidirectional ? tiles.size() : 0, 0);
+    if (bidirectional) light_pass->Clear();
     auto take_tile = [&] {
       return dist != nullptr ? dist->next_tile(pass, tiles.size()) : next_tile.fetch_add(1);
     };
@@ -153,22 +178,35 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         const Tile& t = tiles[i];
         const auto tile_start = Clock::now();
         reset_block(i);
+        if (bidirectional) tile_splats[i].clear();
         // The tile's counters live on this thread's stack while it renders: stats[i] and the
         // stats of the tile another thread renders beside it share cache lines, and the
         // wavefront adds to them for every packet.
         TileStats tile_stats;
         tile_stats.time_stages = options.time_stages;
-        if (options.kernels != nullptr) {
-          RenderTilePacket8(ctx, *options.kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1,
+        if (kernels != nullptr) {
+          RenderTilePacket8(ctx, *kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1,
                             options.seed, &blocks[i], &tile_stats, pixels,
                             &workspaces[size_t(slot)]);
         } else {
           RenderTileScalar(ctx, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1, options.seed,
-                           &blocks[i], &tile_stats, pixels);
+                           &blocks[i], &tile_stats, pixels,
+                           bidirectional ? &*bidirectional_setup : nullptr,
+                           bidirectional ? &tile_splats[i] : nullptr);
         }
         tile_stats.wall_seconds = std::chrono::duration<double>(Clock::now() - tile_start).count();
         stats[i] = tile_stats;
         std::lock_guard<std::mutex> lock(mutex);
+        if (bidirectional) {
+          // Splats join the light film in tile order, whatever order the tiles finish in.
+          splats_ready[i] = 1;
+          for (; next_splat_tile < tiles.size() && splats_ready[next_splat_tile];
+               ++next_splat_tile) {
+            std::vector<LightSplat>& list = tile_splats[next_splat_tile];
+            for (const LightSplat& s : list) light_pass->Splat(s.sx, s.sy, s.value);
+            std::vector<LightSplat>().swap(list);
+          }
+        }
         rendered[i] = 1;
         ++tiles_done;
         progress.samples_done += uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0) * (s1 - s0);
@@ -233,6 +271,11 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       result.nonfinite_samples += stats[i].nonfinite;
     }
     result.spp_done = s1;
+    if (bidirectional) {
+      light_total->Add(*light_pass);
+      light_total->ComposeInto(film, s1, &composed);
+    }
+    const FilmBlock& seen = bidirectional ? composed : film;
     if (adaptive) {
       moments_done = moments;
       all_converged = true;
@@ -252,7 +295,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
       info.seconds =
           std::chrono::duration<double>(pass_start - start).count() - on_pass_seconds;
       info.cpu_seconds = pass_cpu_start - cpu_start - on_pass_cpu_seconds;
-      info.film = &film;
+      info.film = &seen;
       info.blocks = &blocks;
       info.pixels = adaptive ? &moments_done : nullptr;
       options.on_pass(info);
@@ -278,7 +321,15 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   result.memory.film += VectorBytes(block_sums);
   for (const FilmBlock& b : blocks) result.memory.film += b.Bytes();
   result.interrupted = result.spp_done < options.spp && !budget_spent && !all_converged;
-  result.image = film.Resolve();
+  if (bidirectional) {
+    // An interrupted pass's splats never joined light_total; the composed film holds the
+    // completed passes (the camera's film alone when none completed).
+    if (result.spp_done == 0) composed = film;
+    result.image = composed.Resolve();
+    result.memory.film += composed.Bytes() + 2 * light_total->sums().size() * sizeof(float);
+  } else {
+    result.image = film.Resolve();
+  }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

@@ -137,11 +137,19 @@ struct RenderResult {
   std::vector<uint32_t> pixel_samples;
   uint64_t samples_taken = 0;  // every pixel sample of the completed passes
   RenderMemory memory;
+  /// The integrator (bdpt, ptracer) has no wavefront: a kernel table was given but every tile
+  /// ran on the scalar oracle (RenderTileScalar). `ptlab render --stats` says so.
+  bool scalar_fallback = false;
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of
 /// (scene, spp, seed) only: every pixel sample has its own random stream, and tile blocks are
-/// merged in tile order, so any thread count gives the same bits.
+/// merged in tile order, so any thread count gives the same bits. bdpt and ptracer also splat
+/// into other tiles' pixels: each tile's splats are merged into the pass's light film in tile
+/// order as tiles complete (a tile waits for the tiles before it), never with atomics, and the
+/// light film joins the camera's film after each complete pass (LightFilm::ComposeInto). They
+/// run on the scalar path (RenderResult::scalar_fallback), and refuse adaptive sampling and a
+/// distribution (RenderResult::error).
 RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& options);
 
 /// Samples per pass for a render of spp samples (passes are the unit kept on interruption).

@@ -26,12 +26,16 @@ const char* IntegratorTypeName(IntegratorDesc::Type type) {
       return "path_ems";
     case T::kPathMis:
       return "path_mis";
+    case T::kBdpt:
+      return "bdpt";
+    case T::kPtracer:
+      return "ptracer";
   }
   return "?";
 }
 
 bool IntegratorTypeFromName(std::string_view name, IntegratorDesc::Type* type) {
-  for (int i = 0; i <= int(IntegratorDesc::Type::kPathMis); ++i) {
+  for (int i = 0; i <= int(IntegratorDesc::Type::kPtracer); ++i) {
     if (name == IntegratorTypeName(IntegratorDesc::Type(i))) {
       *type = IntegratorDesc::Type(i);
       return true;

@@ -68,11 +68,13 @@ struct IntegratorDesc {
     kPathMats,
     kPathEms,
     kPathMis,
+    kBdpt,     // bidirectional path tracing (engine/render/bdpt.h)
+    kPtracer,  // particle tracer: light tracing plus emitters seen directly
   };
   Type type = Type::kNormals;
   int max_depth = -1;      // CS184 meaning: 0 = emitted only, 1 = direct, ...; -1 = unbounded
   int light_samples = 1;   // emitter samples per hit (CS184's -l)
-  bool power_heuristic = false;
+  bool power_heuristic = false;  // bdpt/ptracer: the power heuristic unless `balance`
   LightSelection light_selection = LightSelection::kPower;
   TriangleSampling triangle_sampling = TriangleSampling::kArea;
   /// Mitsuba's hide_emitters (path and direct integrators): the camera ray's own emitted light

@@ -6,6 +6,8 @@
 #include <memory>
 #include <utility>
 
+#include "engine/core/check.h"
+
 namespace ptlab {
 
 // Every integrator of integrator.cpp as one set of vertex rules.
@@ -39,6 +41,11 @@ Wavefront::VertexRules Wavefront::RulesFor(const IntegratorDesc& desc) {
       r.max_depth = desc.max_depth;
       r.light_samples = std::max(1, desc.light_samples);
       r.roulette = VertexRules::Roulette::kNori;
+      break;
+    case Type::kBdpt:
+    case Type::kPtracer:
+      // Not a wavefront integrator yet: render.cpp runs them on the scalar path.
+      PTLAB_CHECK(false && "bdpt and ptracer have no wavefront rules");
       break;
   }
   return r;

@@ -8,10 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <thread>
+#include <vector>
 
 #include "engine/bsdf/bsdf.h"
 #include "engine/bvh/bvh.h"
 #include "engine/core/rng.h"
+#include "engine/render/bdpt.h"
 #include "engine/render/camera.h"
 #include "engine/render/integrator.h"
 #include "tools/chi2/chi2.h"
@@ -140,6 +142,7 @@ void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, in
       const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
       const Camera camera(scene.camera);
       const RenderContext ctx{scene, bvh};
+      const BidirectionalSetup bidirectional(scene);
       const uint64_t seed = MixBits(MixBits(options.seed ^ kSceneTTestSalt) + s);
       const float w = float(camera.width()), h = float(camera.height());
       const int64_t chunks = (samples + kSceneChunk - 1) / kSceneChunk;
@@ -148,6 +151,7 @@ void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, in
       std::atomic<int64_t> next{0};
       auto worker = [&] {
         RayCounters counters;
+        std::vector<LightSplat> splats;
         for (int64_t chunk; (chunk = next.fetch_add(1)) < chunks;) {
           const int64_t end = std::min(samples, (chunk + 1) * kSceneChunk);
           for (int64_t k = chunk * kSceneChunk; k < end; ++k) {
@@ -158,7 +162,17 @@ void RunSceneTTests(const NoriTestFile& file, const NoriTestOptions& options, in
             const float px = std::min(pixel.x * w, std::nextafter(w, 0.0f));
             const float py = std::min(pixel.y * h, std::nextafter(h, 0.0f));
             const Vec2f lens = sampler.Get2D(kDimensionLens);
-            const Color3f L = Li(ctx, camera.GenerateRay(px, py, lens), sampler, &counters);
+            const Ray ray = camera.GenerateRay(px, py, lens);
+            Color3f L;
+            if (IsBidirectional(scene.integrator.type)) {
+              // The image's mean: the camera strategies plus every light-tracing contribution
+              // (each splat's value is its share of the film's mean, CameraImportance).
+              splats.clear();
+              L = LiBidirectional(ctx, bidirectional, ray, sampler, &counters, &splats);
+              for (const LightSplat& s : splats) L += s.value;
+            } else {
+              L = Li(ctx, ray, sampler, &counters);
+            }
             if (!IsFinite(L)) {
               ++nonfinite[size_t(chunk)];
               continue;

@@ -2,6 +2,7 @@
 #include "tools/chi2/subjects.h"
 
 #include "tools/chi2/bsdf_subjects.h"
+#include "tools/chi2/emission_subjects.h"
 #include "tools/chi2/emitter_subjects.h"
 #include "tools/chi2/geometry_subjects.h"
 #include "tools/chi2/light_subjects.h"
@@ -175,6 +176,7 @@ Chi2Registry DefaultChi2Registry() {
   RegisterLightSubjects(&registry);
   RegisterGeometrySubjects(&registry);
   RegisterEmitterSubjects(&registry);
+  RegisterEmissionSubjects(&registry);
   RegisterBsdfSubjects(&registry);
   return registry;
 }

@@ -32,11 +32,13 @@ Status Expected(const char* key, const char* expected, const std::string& value)
 
 constexpr VariantKey kKeys[] = {
     {"integrator", "one of normals, direct_ems, direct_mats, direct_mis, whitted, path_mats, "
-                   "path_ems, path_mis",
+                   "path_ems, path_mis, bdpt, ptracer",
      [](const std::string& v, VariantTarget* t) {
        Type type;
        if (!IntegratorTypeFromName(v, &type)) return Status::Error("");
        if (t) t->scene->integrator.type = type;
+       // bdpt's default heuristic is the power heuristic (a later heuristic= key overrides).
+       if (t && type == Type::kBdpt) t->scene->integrator.power_heuristic = true;
        return Status::Ok();
      }},
     {"heuristic", "balance or power",

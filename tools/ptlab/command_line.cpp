@@ -105,6 +105,12 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
                   "Sampler, overriding the scene's: independent (PCG32) or sobol (Owen-scrambled "
                   "Sobol'; the default of scenes that name none)")
       ->check(CLI::IsMember({"independent", "sobol"}));
+  cmd->add_option("--integrator", cl->render.integrator,
+                  "Integrator, overriding the scene's (any format): normals, direct_ems, "
+                  "direct_mats, direct_mis, whitted, path_mats, path_ems, path_mis, bdpt or "
+                  "ptracer (docs/bdpt.md)")
+      ->check(CLI::IsMember({"normals", "direct_ems", "direct_mats", "direct_mis", "whitted",
+                             "path_mats", "path_ems", "path_mis", "bdpt", "ptracer"}));
   cmd->add_option("--width", cl->render.width, "Override the image width")
       ->check(CLI::Range(1, 65536))
       ->excludes(resolution_opt);

@@ -27,6 +27,7 @@
 #include "engine/image/image_io.h"
 #include "engine/light/environment_map.h"
 #include "engine/light/light_selection.h"
+#include "engine/render/bdpt.h"
 #include "engine/render/integrator.h"
 #include "engine/render/camera.h"
 #include "engine/render/render.h"
@@ -289,6 +290,20 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     return kExitUsage;
   }
   if (!args.sampler.empty()) SamplerTypeFromName(args.sampler, &scene.sampler.type);
+  if (!args.integrator.empty()) {
+    // The scene's other integrator settings (maxDepth, light selection, ...) stay; bdpt takes
+    // its default, the power heuristic (docs/bdpt.md).
+    IntegratorTypeFromName(args.integrator, &scene.integrator.type);
+    if (scene.integrator.type == IntegratorDesc::Type::kBdpt)
+      scene.integrator.power_heuristic = true;
+  }
+  if (IsBidirectional(scene.integrator.type) &&
+      (!args.adaptive.empty() || args.moments || mpi.active())) {
+    if (mpi.root())
+      std::fprintf(stderr, "error: %s does not run with -a, --moments or under mpirun yet\n",
+                   IntegratorTypeName(scene.integrator.type));
+    return kExitUsage;
+  }
   if (!args.resolution.empty()) {
     const std::string size = FilmSizeError(args.resolution[0], args.resolution[1]);
     if (!size.empty()) {
@@ -469,6 +484,10 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (!quiet) reporter.Finish();
   if (!mpi.root()) return result.interrupted ? interrupted_code : 0;  // rank 0 writes the film
   if (args.stats) {
+    if (result.scalar_fallback)
+      std::fprintf(stderr, "stats: %s has no wavefront yet: every tile ran on the scalar oracle "
+                           "(one ray at a time)\n",
+                   IntegratorTypeName(scene.integrator.type));
     PrintStats(result, options.threads * mpi.size());
     PrintMemory(scene, setup, result, options.threads, peak_loaded);
   }

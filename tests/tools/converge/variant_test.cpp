@@ -93,7 +93,7 @@ TEST(ConvergeVariant, ImportanceSamplingNeedsTheMapsDistribution) {
 }
 
 TEST(ConvergeVariant, IntegratorNamesRoundTrip) {
-  for (int i = 0; i <= int(IntegratorDesc::Type::kPathMis); ++i) {
+  for (int i = 0; i <= int(IntegratorDesc::Type::kPtracer); ++i) {
     IntegratorDesc::Type t{};
     ASSERT_TRUE(IntegratorTypeFromName(IntegratorTypeName(IntegratorDesc::Type(i)), &t));
     EXPECT_EQ(int(t), i);
