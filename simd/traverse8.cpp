@@ -50,6 +50,9 @@ int64_t TargetImpl() { return HWY_TARGET; }
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <bit>
+
+#include "engine/bvh/instance_level.h"
 #include "engine/core/check.h"
 
 namespace ptlab::simd {
@@ -75,24 +78,57 @@ uint32_t Morton3(uint32_t x, uint32_t y, uint32_t z) {
   return spread(x) | (spread(y) << 1) | (spread(z) << 2);
 }
 
+// Instancing: the instance level's walk (engine/bvh/instance_level.h, the oracle's own code)
+// with the groups' BVH8s as the group queries, lane by lane after the top level's packet.
+bool IntersectGroup8(const void* groups, uint32_t g, const Ray& ray, Hit* hit) {
+  return Intersect1(static_cast<const Bvh8*>(groups)[g], ray, hit);
+}
+
+bool OccludedGroup8(const void* groups, uint32_t g, const Ray& ray) {
+  return Occluded1(static_cast<const Bvh8*>(groups)[g], ray);
+}
+
 }  // namespace
 
 Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacket8* hits,
                  const Traverse8Options& options) {
-  return HWY_DYNAMIC_DISPATCH(Intersect8Impl)(bvh, rays, active, hits, options);
+  Mask8 hit = HWY_DYNAMIC_DISPATCH(Intersect8Impl)(bvh, rays, active, hits, options);
+  if (bvh.instances.empty()) return hit;
+  for (Mask8 todo = active & kAllLanes; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    Hit h{hits->t[j], hits->b1[j], hits->b2[j], hits->prim[j]};
+    const bool found = LaneActive(hit, j);
+    if (IntersectInstances(bvh.instances, GetLaneRay(rays, j), found, &h, IntersectGroup8,
+                           bvh.groups.data())) {
+      SetLaneHit(hits, j, h.t, h.b1, h.b2, h.prim);
+      hit |= LaneBit(j);
+    }
+  }
+  return hit;
 }
 
 Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
                 const Traverse8Options& options) {
-  return HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);
+  Mask8 hit = HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);
+  if (bvh.instances.empty()) return hit;
+  for (Mask8 todo = active & kAllLanes & ~hit; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    if (OccludedInstances(bvh.instances, GetLaneRay(rays, j), OccludedGroup8, bvh.groups.data()))
+      hit |= LaneBit(j);
+  }
+  return hit;
 }
 
 bool Intersect1(const Bvh8& bvh, const Ray& ray, Hit* hit) {
-  return HWY_DYNAMIC_DISPATCH(Intersect1Impl)(bvh, ray, hit);
+  const bool found = HWY_DYNAMIC_DISPATCH(Intersect1Impl)(bvh, ray, hit);
+  if (bvh.instances.empty()) return found;
+  return IntersectInstances(bvh.instances, ray, found, hit, IntersectGroup8, bvh.groups.data());
 }
 
 bool Occluded1(const Bvh8& bvh, const Ray& ray) {
-  return HWY_DYNAMIC_DISPATCH(Occluded1Impl)(bvh, ray);
+  if (HWY_DYNAMIC_DISPATCH(Occluded1Impl)(bvh, ray)) return true;
+  return !bvh.instances.empty() &&
+         OccludedInstances(bvh.instances, ray, OccludedGroup8, bvh.groups.data());
 }
 
 void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint8_t* hit_mask,

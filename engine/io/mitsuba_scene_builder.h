@@ -45,6 +45,12 @@ class MitsubaSceneBuilder {
 
   StatusOr<MaterialRef> Bsdf(const MitsubaNode& node);
 
+  // Instancing (mitsuba_instances.cpp): a <shape> of the scene, dispatched to ShapeGroup,
+  // Instance or Shape; a shape group built once (its InstanceTable group); an instance.
+  Status SceneShape(const MitsubaNode& node);
+  StatusOr<uint32_t> ShapeGroup(const MitsubaNode& node);
+  Status Instance(const MitsubaNode& node);
+
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);
   Status Rotation(const MitsubaObject& obj, const Transform& to_world, Frame* frame) const;
@@ -58,6 +64,13 @@ class MitsubaSceneBuilder {
   const MitsubaNode* multi_sample_direct_ = nullptr;  // a direct integrator, emitter_samples > 1
   std::map<const MitsubaNode*, MaterialRef> bsdfs_;   // one row per <bsdf> element
   std::map<std::string, MeshData> meshes_;            // one read per mesh file
+  // Shape groups by element: their group row, group-space spheres and triangle bounds.
+  struct GroupShapes {
+    uint32_t group = 0;
+    SphereTable spheres;
+    Vec3f lo, hi;
+  };
+  std::map<const MitsubaNode*, GroupShapes> shape_groups_;
 };
 
 }  // namespace ptlab::internal

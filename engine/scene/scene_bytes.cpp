@@ -24,6 +24,7 @@ static_assert(sizeof(PointLightTable) == 2 * kColumn);
 static_assert(sizeof(DirectionalLightTable) == 2 * kColumn);
 static_assert(sizeof(SpotLightTable) == 5 * kColumn);
 static_assert(sizeof(EmitterSelectionTable) == 10 * kColumn);
+static_assert(sizeof(InstanceTable) == 5 * kColumn);  // counted with the meshes
 
 size_t TableBytes(const TriangleShadingTable& t) {
   return VectorsBytes(t.mesh, t.material, t.vertex0, t.vertex1, t.vertex2);
@@ -88,6 +89,9 @@ SceneBytes SceneTableBytes(const Scene& scene) {
   b.materials = TableBytes(scene.materials);
   b.emitters = EmitterTablesBytes(scene);
   b.meshes = TableBytes(scene.meshes);
+  const InstanceTable& in = scene.instances;
+  b.meshes += VectorsBytes(in.group_first_row, in.group_row_count, in.group, in.to_world,
+                           in.first_prim);
   return b;
 }
 
