@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 
 #include "engine/bvh/intersect1.h"
@@ -44,6 +45,14 @@ TEST(Traverse8Instances, MatchesOracleOnEveryTarget) {
       if ((base / 8) % 4 == 0)
         for (int j = 1; j < 8; ++j) p.org_x[j] = p.org_x[0], p.org_y[j] = p.org_y[0],
                                     p.org_z[j] = p.org_z[0];
+      // Every other packet points all lanes into lane 0's octant (the instance level's packet
+      // walk; the others take the lane-by-lane walk).
+      if ((base / 8) % 2 == 1)
+        for (int j = 1; j < 8; ++j) {
+          p.dir_x[j] = std::copysign(p.dir_x[j], p.dir_x[0]);
+          p.dir_y[j] = std::copysign(p.dir_y[j], p.dir_y[0]);
+          p.dir_z[j] = std::copysign(p.dir_z[j], p.dir_z[0]);
+        }
       const Mask8 active = (base / 8) % 3 == 0 ? kAllLanes : (rng.NextUint() & kAllLanes);
       HitPacket8 h;
       for (int j = 0; j < 8; ++j) {
@@ -77,7 +86,7 @@ TEST(Traverse8Instances, MatchesOracleOnEveryTarget) {
       }
     }
     EXPECT_EQ(failures, 0);
-    EXPECT_GT(instanced_hits, 2000);
+    EXPECT_GT(instanced_hits, 1000);
   });
 }
 
