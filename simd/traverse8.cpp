@@ -209,10 +209,67 @@ Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacke
   return hit;
 }
 
+// Any hit on the instances for a packet: the instance tree walked once for the open lanes, each
+// instance's entering lanes moved into the group and traced with Occluded8; a lane closes at its
+// first hit. Returns the lanes of `open` that are occluded.
+Mask8 OccludedInstancesPacket(const Bvh8& bvh, const RayPacket8& rays, Mask8 open,
+                              const Traverse8Options& options) {
+  const InstanceLevel& level = bvh.instances;
+  Ray ray[8];
+  SlabRay slab[8];
+  for (Mask8 todo = open; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    ray[j] = GetLaneRay(rays, j);
+    if (!(ray[j].t_min < ray[j].t_max)) open &= ~LaneBit(j);
+    slab[j] = MakeSlabRay(ray[j]);
+  }
+  Mask8 done = 0;
+  const auto lanes_in = [&](uint32_t node) {
+    Mask8 in = 0;
+    for (Mask8 todo = open & ~done; todo != 0; todo &= todo - 1) {
+      const int j = std::countr_zero(todo);
+      float t_entry;
+      if (IntersectBox(level.nodes[node], slab[j], ray[j].t_min, ray[j].t_max, &t_entry))
+        in |= LaneBit(j);
+    }
+    return in;
+  };
+  uint32_t stack[kBvhMaxDepth];
+  int stack_size = 0;
+  if (open == 0 || lanes_in(0) == 0) return 0;
+  uint32_t current = 0;
+  for (;;) {
+    const BvhNode& node = level.nodes[current];
+    if (!node.IsLeaf()) {
+      const uint32_t left = current + 1, right = node.offset;
+      const bool l = lanes_in(left) != 0, r = lanes_in(right) != 0;
+      if (l && r) stack[stack_size++] = right;
+      if (l || r) {
+        current = l ? left : right;
+        continue;
+      }
+    } else {
+      const uint32_t i = level.order[node.offset];
+      const Mask8 lanes = lanes_in(current);
+      RayPacket8 local;
+      for (Mask8 todo = lanes; todo != 0; todo &= todo - 1) {
+        const int j = std::countr_zero(todo);
+        SetLaneRay(&local, j, RayToInstance(level, i, ray[j]));
+      }
+      done |= Occluded8(bvh.groups[level.group[i]], local, lanes, options);
+      if (done == open) return done;
+    }
+    if (stack_size == 0) return done;
+    current = stack[--stack_size];
+  }
+}
+
 Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
                 const Traverse8Options& options) {
   Mask8 hit = HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);
   if (bvh.instances.empty()) return hit;
+  if (OneOctant(rays, active & kAllLanes & ~hit))
+    return hit | OccludedInstancesPacket(bvh, rays, active & kAllLanes & ~hit, options);
   for (Mask8 todo = active & kAllLanes & ~hit; todo != 0; todo &= todo - 1) {
     const int j = std::countr_zero(todo);
     if (OccludedInstances(bvh.instances, GetLaneRay(rays, j), OccludedGroup8, bvh.groups.data()))
