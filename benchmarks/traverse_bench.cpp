@@ -19,6 +19,7 @@
 #include "benchmarks/fractal_terrain.h"
 #include "engine/bvh/bvh.h"
 #include "engine/bvh/intersect1.h"
+#include "engine/bvh/scene_bvh.h"
 #include "engine/bvh/ray_offset.h"
 #include "engine/core/frame.h"
 #include "engine/core/ray.h"
@@ -105,6 +106,7 @@ struct BenchScene {
 #ifdef PTLAB_HAVE_EMBREE
   RTCDevice device = nullptr;
   RTCScene rtc_scene = nullptr;
+  RTCScene rtc_group = nullptr;  // terrain16: the instanced scene
 #endif
 };
 
@@ -167,7 +169,15 @@ void MakeRays(const CameraDesc& desc, const LightSampler& light, BenchScene* s) 
   for (const Ray& r : s->coherent.rays) {
     Hit hit;
     if (!Intersect1(s->bvh, r, &hit)) continue;
-    const Vec3f v0 = t.V0(hit.prim), v1 = t.V1(hit.prim), v2 = t.V2(hit.prim);
+    Vec3f v0, v1, v2;
+    if (s->scene && IsInstancedHit(hit.prim, t.size())) {  // terrain16: the world triangle
+      const InstancedRow at = FindInstancedRow(s->scene->instances, t.size(), hit.prim);
+      const Transform& w = s->scene->instances.to_world[at.instance];
+      v0 = w.ApplyPoint(t.V0(at.row)), v1 = w.ApplyPoint(t.V1(at.row));
+      v2 = w.ApplyPoint(t.V2(at.row));
+    } else {
+      v0 = t.V0(hit.prim), v1 = t.V1(hit.prim), v2 = t.V2(hit.prim);
+    }
     const Vec3f p = v0 * (1.0f - hit.b1 - hit.b2) + v1 * hit.b1 + v2 * hit.b2;
     Vec3f n = Normalize(Cross(v1 - v0, v2 - v0));
     if (Dot(n, r.d) > 0) n = -n;
@@ -214,6 +224,22 @@ std::unique_ptr<BenchScene> MakeScene(const std::string& name) {
     s->triangles = &s->terrain;
     const TerrainView& v = kTerrainView;
     camera = LookAtCamera(v.eye, v.target, v.up, v.fov_deg, v.width, v.height);
+  } else if (name == "terrain16") {
+    // The terrain as one shape group, instanced 16 times on a 4 x 4 grid: each turned about z
+    // by a multiple of 90 degrees plus 10, every third one scaled by 0.8, one mirrored.
+    s->scene = std::make_unique<Scene>();
+    s->scene->triangles = MakeFractalTerrain(kTerrainGridSize);
+    s->triangles = &s->scene->triangles;
+    InstanceTable& in = s->scene->instances;
+    const uint32_t g = in.AddGroup(0, uint32_t(s->triangles->size()));
+    for (int i = 0; i < 16; ++i) {
+      const Vec3f at{-3.3f + 2.2f * float(i % 4), 2.2f * float(i / 4), 0.0f};
+      const float scale = i % 3 == 0 ? 0.8f : 1.0f;
+      Transform t = Transform::Translate(at) * Transform::Rotate({0, 0, 1}, 90.0f * float(i % 4) + 10.0f) *
+                    Transform::Scale({i == 5 ? -scale : scale, scale, scale});
+      in.AddInstance(g, t);
+    }
+    camera = LookAtCamera({0.0f, -4.0f, 2.5f}, {0.0f, 3.0f, -0.2f}, {0, 0, 1}, 60.0f, 768, 512);
   } else {
     const std::string path =
         DataPath(name == "table" ? "table/table_mis.xml" : "veach_mi/veach_mis.xml");
@@ -231,7 +257,7 @@ std::unique_ptr<BenchScene> MakeScene(const std::string& name) {
     camera = s->scene->camera;
     light.scene = s->scene.get();
   }
-  s->bvh = BuildBvh(*s->triangles);
+  s->bvh = s->scene ? BuildSceneBvh(*s->scene) : BuildBvh(*s->triangles);
   s->bvh8 = simd::BuildBvh8(s->bvh);
   MakeRays(camera, light, s.get());
 #ifdef PTLAB_HAVE_EMBREE
@@ -243,6 +269,24 @@ std::unique_ptr<BenchScene> MakeScene(const std::string& name) {
   }
   s->device = rtcNewDevice(config.c_str());
   s->rtc_scene = MakeEmbreeScene(s->device, *s->triangles, /*commit=*/true);
+  if (s->scene && !s->scene->instances.empty()) {
+    // Embree's own instancing: the group's scene once, one RTC_GEOMETRY_TYPE_INSTANCE each.
+    s->rtc_group = s->rtc_scene;
+    s->rtc_scene = rtcNewScene(s->device);
+    const InstanceTable& in = s->scene->instances;
+    for (size_t i = 0; i < in.size(); ++i) {
+      RTCGeometry inst = rtcNewGeometry(s->device, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(inst, s->rtc_group);
+      float xfm[12];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) xfm[4 * r + c] = in.to_world[i].matrix().m[r][c];
+      rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+      rtcCommitGeometry(inst);
+      rtcAttachGeometry(s->rtc_scene, inst);
+      rtcReleaseGeometry(inst);
+    }
+    rtcCommitScene(s->rtc_scene);
+  }
 #endif
   return s;
 }
@@ -751,6 +795,30 @@ int RegisterAll() {
         }
       }
     }
+  }
+  // The instanced terrain (terrain16): the traversal rows and the paired Embree rows only.
+  for (const char* set : {"coherent", "incoherent", "shadow"}) {
+    const std::string sc = "terrain16", st_name = set;
+    for (const CaseName& cn : cases) {
+      if (cn.c == Case::kIntersectStream) continue;
+      const Case c = cn.c;
+      benchmark::RegisterBenchmark(
+          ("BM_Traverse_" + std::string(cn.name) + "/" + sc + "/" + st_name).c_str(),
+          [sc, st_name, c](benchmark::State& st) { RunCase(st, sc, st_name, c, std::nullopt); })
+          ->Unit(benchmark::kMillisecond);
+    }
+#ifdef PTLAB_HAVE_EMBREE
+    for (const bool occluded : {false, true}) {
+      benchmark::RegisterBenchmark(
+          ("BM_Pair_Embree/" + sc + "/" + st_name + (occluded ? "/Occluded8" : "/Intersect8"))
+              .c_str(),
+          [sc, st_name, occluded](benchmark::State& st) {
+            RunEmbreePaired(st, sc, st_name, occluded);
+          })
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(5.0);
+    }
+#endif
   }
   return 0;
 }

@@ -96,6 +96,10 @@ struct Bvh8 {
   uint32_t depth = 0;  // nodes on the longest root-to-leaf path
   float extent = 0.0f;  // largest side of the triangles' bounding box
   SphereTable spheres;  // the Bvh's spheres, tested beside the tree by every ray
+  /// Instancing: the Bvh's instance level (copied) and one BVH8 per shape group, collapsed
+  /// from the Bvh's group trees. Empty without instances.
+  InstanceLevel instances;
+  std::vector<Bvh8> groups;
 
   /// No triangle can be hit (spheres may still be).
   bool empty() const { return lines.empty(); }
@@ -120,7 +124,8 @@ struct Bvh8 {
 /// opening the inner child of largest surface area first (Wald et al. 2008, "Getting rid of
 /// packets"). Child boxes are the binary nodes' boxes bit for bit, and the binary leaves (or
 /// merged subtrees) keep their triangles, so traversal visits the same triangles the oracle
-/// would; its spheres are copied. O(nodes); keeps no reference to `bvh`.
+/// would; its spheres and instance level are copied and its group trees collapsed likewise.
+/// O(nodes); keeps no reference to `bvh`.
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options = {});
 
 /// Heap bytes the BVH8 holds: capacity × element size of its lines and spheres

@@ -262,6 +262,8 @@ class Collapser {
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options) {
   Bvh8 out;
   out.spheres = bvh.spheres;
+  out.instances = bvh.instances;
+  for (const Bvh& g : bvh.groups) out.groups.push_back(BuildBvh8(g, options));
   if (bvh.empty()) return out;
   PTLAB_CHECK(bvh.leaf_triangles.size() < kBvh8MaxTriangles);
   out.num_triangles = static_cast<uint32_t>(bvh.leaf_triangles.size());

@@ -1,6 +1,7 @@
 // RenderSetup: BVH -> BVH8 -> triangle rows -> kernel table, built once per scene.
 #include "simd/render_setup.h"
 
+#include "engine/bvh/scene_bvh.h"
 #include "engine/core/check.h"
 #include "engine/core/memory.h"
 #include "simd/traverse8.h"
@@ -13,7 +14,7 @@ KernelChoice ChooseKernels(bool scalar) {
 }
 
 RenderSetup::RenderSetup(const Scene& scene, KernelChoice choice) : choice_(choice) {
-  bvh_ = BuildBvh(scene.triangles, scene.spheres);
+  bvh_ = BuildSceneBvh(scene);
   peak_after_bvh_ = PeakResidentBytes();
   oracle_ = OracleWavefrontKernels(bvh_);
   if (packets()) {

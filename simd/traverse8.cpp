@@ -14,6 +14,7 @@
 // clang-format on
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -50,6 +51,10 @@ int64_t TargetImpl() { return HWY_TARGET; }
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <bit>
+
+#include "engine/bvh/box_intersect.h"
+#include "engine/bvh/instance_level.h"
 #include "engine/core/check.h"
 
 namespace ptlab::simd {
@@ -75,24 +80,214 @@ uint32_t Morton3(uint32_t x, uint32_t y, uint32_t z) {
   return spread(x) | (spread(y) << 1) | (spread(z) << 2);
 }
 
+// Instancing: the instance level's walk (engine/bvh/instance_level.h, the oracle's own code)
+// with the groups' BVH8s as the group queries, lane by lane after the top level's packet.
+bool IntersectGroup8(const void* groups, uint32_t g, const Ray& ray, Hit* hit) {
+  return Intersect1(static_cast<const Bvh8*>(groups)[g], ray, hit);
+}
+
+bool OccludedGroup8(const void* groups, uint32_t g, const Ray& ray) {
+  return Occluded1(static_cast<const Bvh8*>(groups)[g], ray);
+}
+
 }  // namespace
 
+// The instance level for a packet: the instance tree walked once for all lanes (a node is
+// entered when any lane's ray enters its box before that lane's best hit, the oracle's
+// conservative slab test lane by lane), and at each instance the lanes that enter its box moved
+// into the group (RayToInstance, the oracle's function) and traced as one packet through the
+// group's BVH8. Each lane keeps the least (t, id), which does not depend on the visiting order,
+// so every lane's hit is the oracle's (IntersectInstances) bit for bit. `hit`: the lanes that
+// hold a hit in *hits already; returns the lanes that hold one now.
+Mask8 IntersectInstancesPacket(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, Mask8 hit,
+                               HitPacket8* hits, const Traverse8Options& options) {
+  const InstanceLevel& level = bvh.instances;
+  Ray ray[8];
+  SlabRay slab[8];
+  float best_t[8];
+  for (Mask8 todo = active; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    ray[j] = GetLaneRay(rays, j);
+    if (!(ray[j].t_min < ray[j].t_max)) active &= ~LaneBit(j);
+    slab[j] = MakeSlabRay(ray[j]);
+    best_t[j] = LaneActive(hit, j) ? hits->t[j] : ray[j].t_max;
+  }
+  const auto lanes_in = [&](uint32_t node, Mask8 lanes, float* first_entry) {
+    Mask8 in = 0;
+    *first_entry = INFINITY;
+    for (Mask8 todo = lanes; todo != 0; todo &= todo - 1) {
+      const int j = std::countr_zero(todo);
+      float t_entry;
+      if (IntersectBox(level.nodes[node], slab[j], ray[j].t_min, best_t[j], &t_entry)) {
+        in |= LaneBit(j);
+        *first_entry = std::min(*first_entry, t_entry);
+      }
+    }
+    return in;
+  };
+  uint32_t stack[kBvhMaxDepth];
+  int stack_size = 0;
+  float entry;
+  if (lanes_in(0, active, &entry) == 0) return hit;
+  uint32_t current = 0;
+  for (;;) {
+    const BvhNode& node = level.nodes[current];
+    if (!node.IsLeaf()) {
+      const uint32_t left = current + 1, right = node.offset;
+      float e_left, e_right;
+      const bool l = lanes_in(left, active, &e_left) != 0;
+      const bool r = lanes_in(right, active, &e_right) != 0;
+      if (l && r) {
+        stack[stack_size++] = e_right < e_left ? left : right;
+        current = e_right < e_left ? right : left;
+        continue;
+      }
+      if (l || r) {
+        current = l ? left : right;
+        continue;
+      }
+    } else {
+      const uint32_t i = level.order[node.offset];
+      const Mask8 lanes = lanes_in(current, active, &entry);
+      RayPacket8 local;
+      for (Mask8 todo = lanes; todo != 0; todo &= todo - 1) {
+        const int j = std::countr_zero(todo);
+        SetLaneRay(&local, j, RayToInstance(level, i, ray[j]));
+      }
+      HitPacket8 h;
+      const Mask8 got = Intersect8(bvh.groups[level.group[i]], local, lanes, &h, options);
+      for (Mask8 todo = got; todo != 0; todo &= todo - 1) {
+        const int j = std::countr_zero(todo);
+        const uint32_t prim = level.first_prim[i] + h.prim[j];
+        if (!LaneActive(hit, j) || h.t[j] < hits->t[j] ||
+            (h.t[j] == hits->t[j] && prim < hits->prim[j])) {
+          SetLaneHit(hits, j, h.t[j], h.b1[j], h.b2[j], prim);
+          best_t[j] = h.t[j];
+          hit |= LaneBit(j);
+        }
+      }
+    }
+    if (stack_size == 0) return hit;
+    current = stack[--stack_size];
+  }
+}
+
+// Whether the active lanes' directions all point into one octant (sign bits of d equal).
+bool OneOctant(const RayPacket8& rays, Mask8 active) {
+  int octant = -1;
+  for (Mask8 todo = active; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    const int o = int(std::signbit(rays.dir_x[j])) | int(std::signbit(rays.dir_y[j])) << 1 |
+                  int(std::signbit(rays.dir_z[j])) << 2;
+    if (octant >= 0 && o != octant) return false;
+    octant = o;
+  }
+  return true;
+}
+
+// The instances: packets whose lanes share a direction octant as a packet
+// (IntersectInstancesPacket), others lane by lane (the oracle's walk with the groups' BVH8s).
+// Measured on terrain16 (paired with Embree, 2026-12-06): the packet walk took camera rays'
+// Intersect8 from 0.84 to 0.91 of Embree but bounce rays' from 0.76 to 0.62; shadow rays 0.75 /
+// 0.74. Both give the oracle's hits bit for bit.
 Mask8 Intersect8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active, HitPacket8* hits,
                  const Traverse8Options& options) {
-  return HWY_DYNAMIC_DISPATCH(Intersect8Impl)(bvh, rays, active, hits, options);
+  Mask8 hit = HWY_DYNAMIC_DISPATCH(Intersect8Impl)(bvh, rays, active, hits, options);
+  if (bvh.instances.empty()) return hit;
+  active &= kAllLanes;
+  if (OneOctant(rays, active))
+    return IntersectInstancesPacket(bvh, rays, active, hit, hits, options);
+  for (Mask8 todo = active; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    Hit h{hits->t[j], hits->b1[j], hits->b2[j], hits->prim[j]};
+    if (IntersectInstances(bvh.instances, GetLaneRay(rays, j), LaneActive(hit, j), &h,
+                           IntersectGroup8, bvh.groups.data())) {
+      SetLaneHit(hits, j, h.t, h.b1, h.b2, h.prim);
+      hit |= LaneBit(j);
+    }
+  }
+  return hit;
+}
+
+// Any hit on the instances for a packet: the instance tree walked once for the open lanes, each
+// instance's entering lanes moved into the group and traced with Occluded8; a lane closes at its
+// first hit. Returns the lanes of `open` that are occluded.
+Mask8 OccludedInstancesPacket(const Bvh8& bvh, const RayPacket8& rays, Mask8 open,
+                              const Traverse8Options& options) {
+  const InstanceLevel& level = bvh.instances;
+  Ray ray[8];
+  SlabRay slab[8];
+  for (Mask8 todo = open; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    ray[j] = GetLaneRay(rays, j);
+    if (!(ray[j].t_min < ray[j].t_max)) open &= ~LaneBit(j);
+    slab[j] = MakeSlabRay(ray[j]);
+  }
+  Mask8 done = 0;
+  const auto lanes_in = [&](uint32_t node) {
+    Mask8 in = 0;
+    for (Mask8 todo = open & ~done; todo != 0; todo &= todo - 1) {
+      const int j = std::countr_zero(todo);
+      float t_entry;
+      if (IntersectBox(level.nodes[node], slab[j], ray[j].t_min, ray[j].t_max, &t_entry))
+        in |= LaneBit(j);
+    }
+    return in;
+  };
+  uint32_t stack[kBvhMaxDepth];
+  int stack_size = 0;
+  if (open == 0 || lanes_in(0) == 0) return 0;
+  uint32_t current = 0;
+  for (;;) {
+    const BvhNode& node = level.nodes[current];
+    if (!node.IsLeaf()) {
+      const uint32_t left = current + 1, right = node.offset;
+      const bool l = lanes_in(left) != 0, r = lanes_in(right) != 0;
+      if (l && r) stack[stack_size++] = right;
+      if (l || r) {
+        current = l ? left : right;
+        continue;
+      }
+    } else {
+      const uint32_t i = level.order[node.offset];
+      const Mask8 lanes = lanes_in(current);
+      RayPacket8 local;
+      for (Mask8 todo = lanes; todo != 0; todo &= todo - 1) {
+        const int j = std::countr_zero(todo);
+        SetLaneRay(&local, j, RayToInstance(level, i, ray[j]));
+      }
+      done |= Occluded8(bvh.groups[level.group[i]], local, lanes, options);
+      if (done == open) return done;
+    }
+    if (stack_size == 0) return done;
+    current = stack[--stack_size];
+  }
 }
 
 Mask8 Occluded8(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
                 const Traverse8Options& options) {
-  return HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);
+  Mask8 hit = HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh, rays, active, options);
+  if (bvh.instances.empty()) return hit;
+  if (OneOctant(rays, active & kAllLanes & ~hit))
+    return hit | OccludedInstancesPacket(bvh, rays, active & kAllLanes & ~hit, options);
+  for (Mask8 todo = active & kAllLanes & ~hit; todo != 0; todo &= todo - 1) {
+    const int j = std::countr_zero(todo);
+    if (OccludedInstances(bvh.instances, GetLaneRay(rays, j), OccludedGroup8, bvh.groups.data()))
+      hit |= LaneBit(j);
+  }
+  return hit;
 }
 
 bool Intersect1(const Bvh8& bvh, const Ray& ray, Hit* hit) {
-  return HWY_DYNAMIC_DISPATCH(Intersect1Impl)(bvh, ray, hit);
+  const bool found = HWY_DYNAMIC_DISPATCH(Intersect1Impl)(bvh, ray, hit);
+  if (bvh.instances.empty()) return found;
+  return IntersectInstances(bvh.instances, ray, found, hit, IntersectGroup8, bvh.groups.data());
 }
 
 bool Occluded1(const Bvh8& bvh, const Ray& ray) {
-  return HWY_DYNAMIC_DISPATCH(Occluded1Impl)(bvh, ray);
+  if (HWY_DYNAMIC_DISPATCH(Occluded1Impl)(bvh, ray)) return true;
+  return !bvh.instances.empty() &&
+         OccludedInstances(bvh.instances, ray, OccludedGroup8, bvh.groups.data());
 }
 
 void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint8_t* hit_mask,

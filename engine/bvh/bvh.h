@@ -45,6 +45,21 @@ struct alignas(32) BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32, "BvhNode must stay 32 bytes");
 
+/// The top level of a two-level BVH (instancing, engine/scene/instance_table.h): a binary tree
+/// over the instances' world boxes (BvhNode; a leaf covers [offset, offset + count) of `order`),
+/// and per instance its world-to-group transform (3x4, row-major), its group and its first hit
+/// id (the scene's triangle count plus InstanceTable::first_prim). Empty without instances.
+/// Traversal: engine/bvh/instance_level.h.
+struct InstanceLevel {
+  std::vector<BvhNode> nodes;
+  std::vector<uint32_t> order;           // leaf order -> instance
+  std::vector<float> world_to_group;     // 12 per instance
+  std::vector<uint32_t> group;           // per instance
+  std::vector<uint32_t> first_prim;      // per instance
+
+  bool empty() const { return nodes.empty(); }
+};
+
 /// A BVH that owns a leaf-ordered copy of the triangle positions (so traversal reads leaves
 /// contiguously) and the map from leaf order back to scene triangle rows.
 /// An empty `nodes` means no triangle can be hit. Triangles with a non-finite coordinate or
@@ -55,6 +70,10 @@ struct Bvh {
   TriangleTable leaf_triangles;     // positions in leaf order
   AlignedVector<uint32_t> prim_id;  // leaf order -> scene TriangleTable row
   SphereTable spheres;              // copy of the scene's spheres (rows = sphere hit ids)
+  /// Instancing (BuildSceneBvh): the instance tree and one BVH per shape group, over the
+  /// group's triangles in group space (prim_id = the triangle's index within its group).
+  InstanceLevel instances;
+  std::vector<Bvh> groups;
 
   bool empty() const { return nodes.empty(); }
 };

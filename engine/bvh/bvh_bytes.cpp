@@ -6,12 +6,20 @@
 namespace ptlab {
 
 static_assert(sizeof(Bvh) == sizeof(std::vector<BvhNode>) + sizeof(TriangleTable) +
-                                 sizeof(AlignedVector<uint32_t>) + sizeof(SphereTable),
+                                 sizeof(AlignedVector<uint32_t>) + sizeof(SphereTable) +
+                                 sizeof(InstanceLevel) + sizeof(std::vector<Bvh>),
               "a member added to Bvh must be counted in BvhBytes");
 
 size_t BvhBytes(const Bvh& bvh) {
   return VectorsBytes(bvh.nodes, bvh.prim_id) + TableBytes(bvh.leaf_triangles) +
-         TableBytes(bvh.spheres);
+         TableBytes(bvh.spheres) +
+         VectorsBytes(bvh.instances.nodes, bvh.instances.order, bvh.instances.world_to_group,
+                      bvh.instances.group, bvh.instances.first_prim, bvh.groups) +
+         [&] {
+           size_t groups = 0;
+           for (const Bvh& g : bvh.groups) groups += BvhBytes(g);
+           return groups;
+         }();
 }
 
 }  // namespace ptlab

@@ -5,58 +5,14 @@
 #include <cstdint>
 #include <limits>
 
+#include "engine/bvh/box_intersect.h"
+#include "engine/bvh/instance_level.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/bvh/watertight_triangle.h"
 #include "engine/core/check.h"
 
 namespace ptlab {
 namespace {
-
-// pbrt-v3 section 3.9.2 (after Ize 2013, "Robust BVH ray traversal"): each slab distance
-// (b - o) * (1 / d) carries three roundings, so it is within gamma(3) of the exact value;
-// scaling the far end of the interval by 1 + 2 gamma(3) makes the overlap test conservative.
-constexpr float kMachineEpsilon = std::numeric_limits<float>::epsilon() * 0.5f;
-constexpr float Gamma(int n) { return (n * kMachineEpsilon) / (1.0f - n * kMachineEpsilon); }
-constexpr float kRobustFarScale = 1.0f + 2.0f * Gamma(3);
-
-struct SlabRay {
-  Vec3f o;
-  Vec3f inv_d;  // 1 / d; a zero component gives +-inf, as intended
-  bool neg_x, neg_y, neg_z;
-};
-
-SlabRay MakeSlabRay(const Ray& ray) {
-  SlabRay r;
-  r.o = ray.o;
-  r.inv_d = {1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
-  r.neg_x = std::signbit(r.inv_d.x);
-  r.neg_y = std::signbit(r.inv_d.y);
-  r.neg_z = std::signbit(r.inv_d.z);
-  return r;
-}
-
-// Overlap of the ray with the node's box inside [t_min, t_max]; on success *t_entry is where
-// the ray enters it. A slab distance that is NaN (0 * inf: the origin lies on the plane of a
-// slab the ray is parallel to) fails both comparisons and leaves the interval unchanged,
-// which is the conservative answer.
-inline bool IntersectBox(const BvhNode& n, const SlabRay& r, float t_min, float t_max,
-                         float* t_entry) {
-  float t0 = t_min, t1 = t_max;
-  const float near_x = ((r.neg_x ? n.bounds_max.x : n.bounds_min.x) - r.o.x) * r.inv_d.x;
-  const float far_x = ((r.neg_x ? n.bounds_min.x : n.bounds_max.x) - r.o.x) * r.inv_d.x;
-  t0 = near_x > t0 ? near_x : t0;
-  t1 = far_x < t1 ? far_x : t1;
-  const float near_y = ((r.neg_y ? n.bounds_max.y : n.bounds_min.y) - r.o.y) * r.inv_d.y;
-  const float far_y = ((r.neg_y ? n.bounds_min.y : n.bounds_max.y) - r.o.y) * r.inv_d.y;
-  t0 = near_y > t0 ? near_y : t0;
-  t1 = far_y < t1 ? far_y : t1;
-  const float near_z = ((r.neg_z ? n.bounds_max.z : n.bounds_min.z) - r.o.z) * r.inv_d.z;
-  const float far_z = ((r.neg_z ? n.bounds_min.z : n.bounds_max.z) - r.o.z) * r.inv_d.z;
-  t0 = near_z > t0 ? near_z : t0;
-  t1 = far_z < t1 ? far_z : t1;
-  *t_entry = t0;
-  return t0 <= t1 * kRobustFarScale;
-}
 
 // Leaf-ordered vertex columns permuted to the watertight ray's (kx, ky, kz) axes, chosen
 // once per ray so the leaf loop reads them without branching.
@@ -197,24 +153,38 @@ bool OccludedTriangles1(const Bvh& bvh, const Ray& ray) {
   }
 }
 
+bool IntersectGroup1(const void* groups, uint32_t g, const Ray& ray, Hit* hit) {
+  return Intersect1(static_cast<const Bvh*>(groups)[g], ray, hit);
+}
+
+bool OccludedGroup1(const void* groups, uint32_t g, const Ray& ray) {
+  return Occluded1(static_cast<const Bvh*>(groups)[g], ray);
+}
+
 }  // namespace
 
 bool Intersect1(const Bvh& bvh, const Ray& ray, Hit* hit) {
   if (!(ray.t_min < ray.t_max)) return false;
-  const bool triangle = IntersectTriangles1(bvh, ray, hit);
+  bool found = IntersectTriangles1(bvh, ray, hit);
   // Spheres after the triangles, strictly nearer only: a tie keeps the triangle (the lower id).
-  float t_max = triangle ? hit->t : ray.t_max;
+  float t_max = found ? hit->t : ray.t_max;
   uint32_t prim = kNoHit;
-  if (!IntersectSpheres1(bvh.spheres, ray, &t_max, &prim)) return triangle;
-  hit->t = t_max;
-  hit->b1 = hit->b2 = 0.0f;
-  hit->prim = prim;
-  return true;
+  if (IntersectSpheres1(bvh.spheres, ray, &t_max, &prim)) {
+    hit->t = t_max;
+    hit->b1 = hit->b2 = 0.0f;
+    hit->prim = prim;
+    found = true;
+  }
+  // Instances last (their ids lie between the triangle rows and the spheres').
+  if (bvh.instances.empty()) return found;
+  return IntersectInstances(bvh.instances, ray, found, hit, IntersectGroup1, bvh.groups.data());
 }
 
 bool Occluded1(const Bvh& bvh, const Ray& ray) {
   if (!(ray.t_min < ray.t_max)) return false;
-  return OccludedTriangles1(bvh, ray) || OccludedSpheres1(bvh.spheres, ray);
+  if (OccludedTriangles1(bvh, ray) || OccludedSpheres1(bvh.spheres, ray)) return true;
+  return !bvh.instances.empty() &&
+         OccludedInstances(bvh.instances, ray, OccludedGroup1, bvh.groups.data());
 }
 
 }  // namespace ptlab

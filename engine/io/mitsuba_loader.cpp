@@ -122,7 +122,7 @@ Status MitsubaSceneBuilder::Build() {
 
 Status MitsubaSceneBuilder::SceneChild(const MitsubaNode& node) {
   const std::string& tag = node.tag;
-  if (tag == "shape") return Shape(node);
+  if (tag == "shape") return SceneShape(node);  // mitsuba_instances.cpp
   if (tag == "emitter") return SceneEmitter(node);
   if (tag == "bsdf") {
     StatusOr<MaterialRef> m = Bsdf(node);  // declared for <ref>s; built once, checked now

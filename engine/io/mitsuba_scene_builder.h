@@ -60,6 +60,12 @@ class MitsubaSceneBuilder {
   Status BindMeshAttribute(const MitsubaNode& shape, MaterialRef material, const MeshData& mesh,
                            uint32_t first_triangle);
 
+  // Instancing (mitsuba_instances.cpp): a <shape> of the scene, dispatched to ShapeGroup,
+  // Instance or Shape; a shape group built once (its InstanceTable group); an instance.
+  Status SceneShape(const MitsubaNode& node);
+  StatusOr<uint32_t> ShapeGroup(const MitsubaNode& node);
+  Status Instance(const MitsubaNode& node);
+
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);
   Status Rotation(const MitsubaObject& obj, const Transform& to_world, Frame* frame) const;
@@ -80,6 +86,13 @@ class MitsubaSceneBuilder {
   std::map<const MitsubaNode*, uint32_t> textures_;   // one row per <texture> element
   // mesh_attribute rows: the attribute's name and the <texture> element.
   std::map<uint32_t, std::pair<std::string, const MitsubaNode*>> attribute_names_;
+  // Shape groups by element: their group row, group-space spheres and triangle bounds.
+  struct GroupShapes {
+    uint32_t group = 0;
+    SphereTable spheres;
+    Vec3f lo, hi;
+  };
+  std::map<const MitsubaNode*, GroupShapes> shape_groups_;
 };
 
 }  // namespace ptlab::internal

@@ -50,11 +50,38 @@ Vec2f SphereUv(const Vec3f& n) {
 
 namespace {
 
+SurfaceInteraction TriangleInteraction(const Scene& scene, uint32_t tri, const Hit& hit,
+                                       bool with_uv);
+
+// A hit on an instanced triangle: the interaction of its group row in group space, then its
+// point through the instance's to_world and both normals through its inverse transpose
+// (renormalized), as Mitsuba transforms them. Groups hold no emitters.
+SurfaceInteraction InstanceInteraction(const Scene& scene, const Hit& hit, bool with_uv) {
+  const InstancedRow at = FindInstancedRow(scene.instances, scene.triangles.size(), hit.prim);
+  SurfaceInteraction its = TriangleInteraction(scene, at.row, hit, with_uv);
+  const Transform& to_world = scene.instances.to_world[at.instance];
+  its.prim = hit.prim;
+  its.p = to_world.ApplyPoint(its.p);
+  const Vec3f ng = to_world.ApplyNormal(its.ng), n = to_world.ApplyNormal(its.frame.n);
+  const float ng_len = Length(ng), n_len = Length(n);
+  its.ng = ng_len > 0 ? ng / ng_len : Vec3f{0, 0, 1};
+  its.frame = Frame(n_len > 0 ? n / n_len : its.ng);
+  its.emitter = EmitterRef::None();
+  return its;
+}
+
 // MakeInteraction, the surface coordinates only `with_uv` (otherwise left (0, 0)).
 SurfaceInteraction MakeInteractionWith(const Scene& scene, const Ray& ray, const Hit& hit,
                                        bool with_uv) {
   if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv);
-  const uint32_t tri = hit.prim;
+  if (IsInstancedHit(hit.prim, scene.triangles.size()))
+    return InstanceInteraction(scene, hit, with_uv);
+  return TriangleInteraction(scene, hit.prim, hit, with_uv);
+}
+
+// A hit on scene triangle row `tri` (in the space its vertices are stored in).
+SurfaceInteraction TriangleInteraction(const Scene& scene, uint32_t tri, const Hit& hit,
+                                       bool with_uv) {
   const TriangleTable& t = scene.triangles;
   SurfaceInteraction its;
   its.prim = tri;

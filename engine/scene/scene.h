@@ -10,6 +10,7 @@
 #include "engine/sampling/sampler.h"
 #include "engine/scene/emitter_tables.h"
 #include "engine/scene/geometry_tables.h"
+#include "engine/scene/instance_table.h"
 #include "engine/scene/material_tables.h"
 #include "engine/scene/sphere_table.h"
 #include "engine/scene/texture_tables.h"
@@ -88,6 +89,7 @@ struct Scene {
   VertexTable vertices;
   MeshTable meshes;
   SphereTable spheres;  // analytic spheres, beside the triangles (BuildBvh takes both)
+  InstanceTable instances;  // shape groups (rows of triangles) placed by instances
   MaterialTables materials;
   TextureTable textures;  // empty unless a material parameter is textured (engine/texture/)
   AreaLightTable area_lights;

@@ -26,6 +26,7 @@ static_assert(sizeof(DirectionalLightTable) == 2 * kColumn);
 static_assert(sizeof(SpotLightTable) == 8 * kColumn);
 static_assert(sizeof(ProjectorTable) == 6 * kColumn);
 static_assert(sizeof(EmitterSelectionTable) == 11 * kColumn);
+static_assert(sizeof(InstanceTable) == 5 * kColumn);  // counted with the meshes
 
 size_t TableBytes(const TriangleShadingTable& t) {
   return VectorsBytes(t.mesh, t.material, t.vertex0, t.vertex1, t.vertex2);
@@ -98,6 +99,9 @@ SceneBytes SceneTableBytes(const Scene& scene) {
                              t.width, t.height, t.offset, t.data);
   b.emitters = EmitterTablesBytes(scene);
   b.meshes = TableBytes(scene.meshes);
+  const InstanceTable& in = scene.instances;
+  b.meshes += VectorsBytes(in.group_first_row, in.group_row_count, in.group, in.to_world,
+                           in.first_prim);
   return b;
 }
 

@@ -113,6 +113,7 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
   lists->hits = lists->area_hits = 0;
   for (uint32_t& count : lists->group_hits) count = 0;
   const bool with_uv = !scene.textures.empty();
+  const bool instanced = !scene.instances.empty();
   for (size_t k = 0; k < packets; ++k) {
     const Mask8 hit = hit_mask[k] & kAllLanes;
     if (hit == 0) continue;
@@ -123,8 +124,19 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
     for (size_t i = 0; i < kPacketWidth; i += lanes) {
       const auto hit_i = hn::TestBit(hn::Set(di, int32_t(hit)), hn::Load(di, kLaneBits + i));
       const auto prim = hn::Load(di, as_i(h.prim) + i);
-      const auto sphere_i = hn::And(hit_i, hn::Ne(hn::And(prim, sphere_bit), zero_i));
-      const auto tri_i = hn::AndNot(sphere_i, hit_i);
+      auto sphere_i = hn::And(hit_i, hn::Ne(hn::And(prim, sphere_bit), zero_i));
+      // Instanced triangles (ids from the scene's row count on; sphere ids are negative as
+      // int32) go the spheres' scalar way, their material looked up lane by lane.
+      auto instanced_i = hn::Lt(zero_i, zero_i);  // no lane
+      if (instanced) {
+        instanced_i = hn::AndNot(hn::Lt(prim, hn::Set(di, int32_t(scene.triangles.size()))), hit_i);
+        if (!hn::AllFalse(di, instanced_i)) {
+          uint8_t bits[8] = {};
+          hn::StoreMaskBits(di, instanced_i, bits);
+          spheres |= Mask8(bits[0]) << i;
+        }
+      }
+      const auto tri_i = hn::AndNot(hn::Or(sphere_i, instanced_i), hit_i);
       const auto tri = hn::RebindMask(d, tri_i);
       const auto ti = hn::IfThenElseZero(tri_i, prim);
       const bool any_tri = !hn::AllFalse(di, tri_i);
@@ -144,6 +156,20 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
         const auto si = hn::IfThenElseZero(sphere_i, hn::AndNot(sphere_bit, prim));
         material = hn::IfThenElse(
             sphere_i, hn::GatherIndex(di, as_i(scene.spheres.material.data()), si), material);
+      }
+      if (!hn::AllFalse(di, instanced_i)) {
+        alignas(32) int32_t prims[8], materials[8];
+        hn::Store(prim, di, prims);
+        hn::Store(material, di, materials);
+        uint8_t bits[8] = {};
+        hn::StoreMaskBits(di, instanced_i, bits);
+        for (Mask8 todo = bits[0]; todo != 0; todo &= todo - 1) {
+          const int j = std::countr_zero(todo);
+          const InstancedRow at =
+              FindInstancedRow(scene.instances, scene.triangles.size(), uint32_t(prims[j]));
+          materials[j] = int32_t(scene.shading.material[at.row].bits);
+        }
+        material = hn::Load(di, materials);
       }
       ListHits(di, hit_i, tri_i, material, emitter, k * kPacketWidth + i, lists);
       if (!any_tri) continue;
@@ -210,7 +236,8 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
       hn::StoreInterleaved3(wo_x, wo_y, wo_z, d,
                             reinterpret_cast<float*>(out.wo + k * kPacketWidth + i));
     }
-    // Sphere lanes: the scalar code (an analytic surface, rare in triangle scenes).
+    // Sphere and instanced lanes: the scalar code (an analytic surface, rare in triangle
+    // scenes; an instance's transform).
     for (Mask8 todo = spheres; todo != 0; todo &= todo - 1) {
       const int j = std::countr_zero(todo);
       const size_t q = k * kPacketWidth + size_t(j);
