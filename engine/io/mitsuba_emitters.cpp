@@ -122,6 +122,9 @@ Status MitsubaSceneBuilder::SceneEmitter(const MitsubaNode& node) {
     std::string filename;
     PTLAB_RETURN_IF_ERROR(obj.String("filename", &filename));
     EnvironmentMapDesc desc;
+    // Mitsuba 3's envmap puts its first and last pixel rows on the poles; Mitsuba 0.6's (the
+    // scenes of version < 2 were rendered with it) centres them in their bands, as ptlab does.
+    desc.rows = legacy_ ? EnvironmentRows::kCentred : EnvironmentRows::kAtPoles;
     PTLAB_RETURN_IF_ERROR(obj.Float("scale", &desc.scale));
     if (!(desc.scale >= 0)) return obj.Error("scale", "scale must be >= 0");
     bool compensation = false;

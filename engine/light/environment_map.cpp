@@ -69,6 +69,7 @@ Status CheckPixels(const Image& image, float scale, const std::string& name) {
 struct PixelView {
   const float* texels;
   int w, h;
+  float v_scale, v_offset;  // EnvironmentRowCoordinate
   Color3f At(int x, int y) const {
     const float* t = texels + (size_t(y) * size_t(w) + size_t(x)) * kEnvironmentTexel;
     return {t[0], t[1], t[2]};
@@ -76,13 +77,15 @@ struct PixelView {
 };
 
 PixelView Pixels(const EnvironmentMapTable& t, uint32_t row) {
-  return {t.texels.data() + size_t(t.pixel_offset[row]) * kEnvironmentTexel, t.width[row],
-          t.height[row]};
+  PixelView p{t.texels.data() + size_t(t.pixel_offset[row]) * kEnvironmentTexel, t.width[row],
+              t.height[row], 0.0f, 0.0f};
+  EnvironmentRowCoordinate(t, row, &p.v_scale, &p.v_offset);
+  return p;
 }
 
-// Bilinear interpolation of the pixel centres at (u, v): wraps in u, clamps in v.
+// Bilinear interpolation of the pixel points at (u, v): wraps in u, clamps in v.
 Color3f Lookup(const PixelView& p, const Vec2f& uv) {
-  const float x = uv.x * float(p.w) - 0.5f, y = uv.y * float(p.h) - 0.5f;
+  const float x = uv.x * float(p.w) - 0.5f, y = uv.y * p.v_scale + p.v_offset;
   if (!(std::isfinite(x) && std::isfinite(y))) return {};
   const float fx = std::floor(x), fy = std::floor(y);
   const float tx = x - fx, ty = y - fy;
@@ -104,6 +107,17 @@ void SinCosTheta(float v, float* sin_theta, float* cos_theta) {
 }
 
 }  // namespace
+
+int EnvironmentCellRows(const EnvironmentMapTable& t, uint32_t row) {
+  return t.rows[row] == EnvironmentRows::kAtPoles ? std::max(t.height[row] - 1, 1) : t.height[row];
+}
+
+void EnvironmentRowCoordinate(const EnvironmentMapTable& t, uint32_t row, float* scale,
+                              float* offset) {
+  const bool at_poles = t.rows[row] == EnvironmentRows::kAtPoles;
+  *scale = float(at_poles ? t.height[row] - 1 : t.height[row]);
+  *offset = at_poles ? 0.0f : -0.5f;
+}
 
 Vec2f EnvironmentDirectionToUv(const Vec3f& d) {
   float phi = std::atan2(d.x, -d.z);
@@ -137,6 +151,7 @@ StatusOr<uint32_t> AddEnvironmentMap(const Image& image, const EnvironmentMapDes
   t.height.push_back(h);
   t.pixel_offset.push_back(uint32_t(offset));
   t.sampling.push_back(desc.sampling);
+  t.rows.push_back(desc.rows);
   t.to_world.push_back(desc.to_world);
   t.texels.resize((offset + count) * kEnvironmentTexel, 0.0f);
   std::vector<double> luminance(count);
@@ -148,14 +163,19 @@ StatusOr<uint32_t> AddEnvironmentMap(const Image& image, const EnvironmentMapDes
     luminance[k] = Luminance(c);
   }
 
-  // Cell weight: the mean of the bilinear luminance over the cell, × sinθ at the row centre.
+  // Cell weight: the mean of the bilinear luminance over the cell, × sinθ at the cell centre.
   // In 1-D the mean of the interpolant over [i, i+1] (centres at i + 1/2) is
-  // f[i-1]/8 + 3 f[i]/4 + f[i+1]/8, with the same wrap (u) and clamp (v) as Lookup.
+  // f[i-1]/8 + 3 f[i]/4 + f[i+1]/8, with the same wrap (u) and clamp (v) as Lookup; over the
+  // band between two pixel rows j and j + 1 (kAtPoles) it is (f[j] + f[j+1])/2.
   static constexpr double kStencil[3] = {0.125, 0.75, 0.125};
-  std::vector<double> weights(count);
+  static constexpr double kBand[3] = {0.0, 0.5, 0.5};
+  const bool at_poles = desc.rows == EnvironmentRows::kAtPoles;
+  const double* v_stencil = at_poles ? kBand : kStencil;
+  const int nv = EnvironmentCellRows(t, row);
+  std::vector<double> weights(size_t(nv) * size_t(w));
   double integral = 0;
-  for (int j = 0; j < h; ++j) {
-    const double sin_theta = std::sin(3.14159265358979323846 * (j + 0.5) / h);
+  for (int j = 0; j < nv; ++j) {
+    const double sin_theta = std::sin(3.14159265358979323846 * (j + 0.5) / nv);
     for (int i = 0; i < w; ++i) {
       double mean = 0;
       for (int dj = -1; dj <= 1; ++dj) {
@@ -163,23 +183,23 @@ StatusOr<uint32_t> AddEnvironmentMap(const Image& image, const EnvironmentMapDes
         for (int di = -1; di <= 1; ++di) {
           const int x = (i + di + w) % w;
           mean +=
-              kStencil[dj + 1] * kStencil[di + 1] * luminance[size_t(y) * size_t(w) + size_t(x)];
+              v_stencil[dj + 1] * kStencil[di + 1] * luminance[size_t(y) * size_t(w) + size_t(x)];
         }
       }
       weights[size_t(j) * size_t(w) + size_t(i)] = mean * sin_theta;
       integral += mean * sin_theta;
     }
   }
-  // Σ weight × (2π/W)(π/H) ≈ ∫ luminance dω.
-  t.luminance_integral.push_back(float(integral * 2 * 9.8696044010893586 / (double(w) * h)));
+  // Σ weight × (2π/W)(π/nv) ≈ ∫ luminance dω.
+  t.luminance_integral.push_back(float(integral * 2 * 9.8696044010893586 / (double(w) * nv)));
 
   t.marginal_offset.push_back(uint32_t(t.marginal_cdf.size()));
   t.conditional_offset.push_back(uint32_t(t.conditional_cdf.size()));
   if (desc.sampling == EnvironmentSampling::kImportance) {
     const size_t m = t.marginal_cdf.size(), c = t.conditional_cdf.size();
-    t.marginal_cdf.resize(m + size_t(h) + 1);
-    t.conditional_cdf.resize(c + size_t(h) * (size_t(w) + 1));
-    BuildDistribution2D(weights.data(), w, h, t.marginal_cdf.data() + m,
+    t.marginal_cdf.resize(m + size_t(nv) + 1);
+    t.conditional_cdf.resize(c + size_t(nv) * (size_t(w) + 1));
+    BuildDistribution2D(weights.data(), w, nv, t.marginal_cdf.data() + m,
                         t.conditional_cdf.data() + c);
     t.marginal_guide.resize(t.marginal_cdf.size());
     t.conditional_guide.resize(t.conditional_cdf.size());
@@ -192,7 +212,7 @@ StatusOr<uint32_t> AddEnvironmentMap(const Image& image, const EnvironmentMapDes
 Distribution2DView EnvironmentDistribution(const EnvironmentMapTable& t, uint32_t row) {
   Distribution2DView view{t.marginal_cdf.data() + t.marginal_offset[row],
                           t.conditional_cdf.data() + t.conditional_offset[row], t.width[row],
-                          t.height[row]};
+                          EnvironmentCellRows(t, row)};
   if (t.marginal_guide.size() == t.marginal_cdf.size() &&
       t.conditional_guide.size() == t.conditional_cdf.size() && !t.marginal_guide.empty()) {
     view.marginal_guide = t.marginal_guide.data() + t.marginal_offset[row];

@@ -19,14 +19,19 @@ namespace ptlab {
 //   θ = angle(d, +y) ∈ [0, π],  φ = atan2(x, -z) ∈ [0, 2π)  (φ = 0 towards -z, π/2 towards +x),
 //   u = φ / 2π (along the columns, left to right),  v = θ / π (along the rows, top to bottom),
 // so d = (sinθ sinφ, cosθ, -sinθ cosφ). toWorld (a rotation) maps local to world directions.
-// Pixel (i, j) covers u ∈ [i/W, (i+1)/W), v ∈ [j/H, (j+1)/H); its value sits at the centre.
-// Radiance is the bilinear interpolation of the pixel values (wrapping in u, clamped in v),
-// times `scale`. The importance distribution is piecewise constant over the same cells, with
-// weight = (mean over the cell of the bilinear luminance) × sinθ(row centre): the mean equals
-// the 3×3 stencil (1/8, 3/4, 1/8)² of pixel luminances, so every cell where the bilinear
+// Pixel column i sits at u = (i + ½)/W. Pixel row j sits, by the row's EnvironmentRows, at
+// v = (j + ½)/H (kCentred: pixel (i, j) covers u ∈ [i/W, (i+1)/W), v ∈ [j/H, (j+1)/H) with its
+// value at the centre) or at v = j/(H − 1) (kAtPoles, Mitsuba 3: rows 0 and H − 1 on the poles).
+// Radiance is the bilinear interpolation of the pixel values at those points (wrapping in u,
+// clamped in v), times `scale`. The importance distribution is piecewise constant over cells:
+// W columns u ∈ [i/W, (i+1)/W) by nv = EnvironmentCellRows rows v ∈ [j/nv, (j+1)/nv) (kCentred:
+// the pixels; kAtPoles: the bands between two pixel rows), with weight = (mean over the cell of
+// the bilinear luminance) × sinθ(cell centre). The mean is a stencil of pixel luminances with
+// all weights > 0 over the pixels the cell's interpolant reads ((1/8, 3/4, 1/8) in u; in v the
+// same for kCentred, (½, ½) of rows j, j + 1 for kAtPoles), so every cell where the bilinear
 // radiance is non-zero has non-zero probability, and light sampling alone stays unbiased.
 // The solid-angle pdf is exactly that of the sampled (u, v):
-//   pdf(ω) = p(u, v) / (2π² sinθ),  p(u, v) = W·H · P(cell)  (density on the unit square).
+//   pdf(ω) = p(u, v) / (2π² sinθ),  p(u, v) = W·nv · P(cell)  (density on the unit square).
 
 /// 2π²: the Jacobian of (u, v) -> ω divided by sinθ.
 inline constexpr float kEnvironmentTwoPiSquared = 19.739208802178716f;
@@ -36,6 +41,7 @@ struct EnvironmentMapDesc {
   float scale = 1.0f;  // finite, >= 0; multiplies every pixel
   Frame to_world;      // a rotation (orthonormal axes); translation has no meaning here
   EnvironmentSampling sampling = EnvironmentSampling::kImportance;
+  EnvironmentRows rows = EnvironmentRows::kCentred;  // kAtPoles for Mitsuba scenes
 };
 
 /// Appends `image` as a new environment-map row of `table` and returns the row.
@@ -52,6 +58,15 @@ StatusOr<uint32_t> AddEnvironmentMap(const Image& image, const EnvironmentMapDes
 Vec2f EnvironmentDirectionToUv(const Vec3f& d_local);
 /// The unit local direction at (u, v) ∈ [0,1]².
 Vec3f EnvironmentUvToDirection(const Vec2f& uv);
+
+/// Rows of the importance distribution's cells: height for kCentred rows, max(height − 1, 1)
+/// for kAtPoles rows.
+int EnvironmentCellRows(const EnvironmentMapTable& table, uint32_t row);
+
+/// The pixel-row coordinate of v for row `row` is v · *scale + *offset (kCentred: H, −½;
+/// kAtPoles: H − 1, 0); the lookup (and its SIMD twin) interpolates rows ⌊y⌋ and ⌊y⌋ + 1.
+void EnvironmentRowCoordinate(const EnvironmentMapTable& table, uint32_t row, float* scale,
+                              float* offset);
 
 /// The importance distribution of row `row` (meaningful only for kImportance rows).
 Distribution2DView EnvironmentDistribution(const EnvironmentMapTable& table, uint32_t row);

@@ -35,12 +35,20 @@ enum class EnvironmentSampling : uint8_t {
   kImportance,  // piecewise constant over the pixels, ∝ luminance × sinθ (the default)
 };
 
+/// Where an environment map's pixel rows sit in θ (its columns always sit at u = (i + ½)/W).
+enum class EnvironmentRows : uint8_t {
+  kCentred,  // row j at v = (j + ½)/H, the centre of its band (ptlab's own, CS184's, Nori's)
+  kAtPoles,  // row j at v = j/(H − 1): row 0 on the north pole, row H − 1 on the south pole
+             // (Mitsuba 3's envmap: its θ texture coordinate aligns the corners)
+};
+
 /// Environment maps (Mitsuba `envmap`), one row per emitter; built by AddEnvironmentMap
 /// (engine/light/environment_map.h), which documents the lat-long convention. Per-row columns
 /// index into pooled columns: pixels (premultiplied by `scale`, row-major, row 0 = up) at
 /// pixel_offset, as texels of four floats (r, g, b, 0: a bilinear lookup's 2 × 2 pixels then
 /// share two cache lines instead of six); the importance distribution (engine/sampling/distribution2d.h layout) at
-/// marginal_offset (height + 1 floats) and conditional_offset (height × (width + 1) floats),
+/// marginal_offset (nv + 1 floats) and conditional_offset (nv × (width + 1) floats, nv =
+/// EnvironmentCellRows: height for kCentred rows, max(height − 1, 1) for kAtPoles rows),
 /// each CDF with its guide table beside it at the same offsets (engine/sampling/guide_table.h:
 /// n + 1 entries for a CDF of n bins). Uniform rows store no distribution. A scene without
 /// environment maps holds empty vectors.
@@ -51,6 +59,7 @@ struct EnvironmentMapTable {
   std::vector<int32_t> width, height;
   std::vector<uint32_t> pixel_offset, marginal_offset, conditional_offset;
   std::vector<EnvironmentSampling> sampling;
+  std::vector<EnvironmentRows> rows;
   std::vector<Frame> to_world;             // rotation: local (s, t, n) axes in world space
   std::vector<float> luminance_integral;   // ≈ ∫ luminance dω (sr); 0 = black: never sampled
   AlignedVector<float> texels;             // pooled pixels, kEnvironmentTexel floats each

@@ -19,7 +19,7 @@ static_assert(sizeof(MeshTable) == 7 * kColumn);
 static_assert(sizeof(MaterialTables) == (4 + 3 + 9 + 7 + 6) * kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
-static_assert(sizeof(EnvironmentMapTable) == 13 * kColumn);
+static_assert(sizeof(EnvironmentMapTable) == 14 * kColumn);
 static_assert(sizeof(DistantDiskTable) == 4 * kColumn);
 static_assert(sizeof(PointLightTable) == 2 * kColumn);
 static_assert(sizeof(DirectionalLightTable) == 2 * kColumn);
@@ -60,7 +60,7 @@ size_t EmitterTablesBytes(const Scene& s) {
   return VectorsBytes(a.radiance, a.mesh, a.area, a.cdf_offset, a.triangle_cdf, a.guide_offset,
                       a.triangle_guide) +
          VectorsBytes(e.width, e.height, e.pixel_offset, e.marginal_offset, e.conditional_offset,
-                      e.sampling, e.to_world, e.luminance_integral, e.texels, e.marginal_cdf,
+                      e.sampling, e.rows, e.to_world, e.luminance_integral, e.texels, e.marginal_cdf,
                       e.conditional_cdf, e.marginal_guide, e.conditional_guide) +
          VectorsBytes(s.distant_disks.radiance, s.distant_disks.max_chord2,
                       s.distant_disks.solid_angle, s.distant_disks.to_world) +

@@ -25,16 +25,17 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 /// Lookup (environment_map.cpp) at (u, v) ∈ [0, 1]² of the w × h map whose texels (r, g, b,
 /// pad: kEnvironmentTexel floats) start at `texels`: the bilinear interpolation of the pixel
-/// centres, wrapping in u and clamping in v, the scalar code's float operations in its order.
+/// points (row coordinate v · v_scale + v_offset: EnvironmentRowCoordinate), wrapping in u and
+/// clamping in v, the scalar code's float operations in its order.
 /// For u in [0, 1] the column ⌊u w − ½⌋ lies in [−1, w − 1], so the wrap is one conditional
 /// add. A lane's three channels of a pixel share a cache line: the first gather brings it in.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE void EnvironmentLookup8(D d, const float* texels, int w, int h, V u, V v, V* out_r,
-                                   V* out_g, V* out_b) {
+HWY_INLINE void EnvironmentLookup8(D d, const float* texels, int w, int h, float v_scale,
+                                   float v_offset, V u, V v, V* out_r, V* out_g, V* out_b) {
   const hn::RebindToSigned<D> di;
   const V one = hn::Set(d, 1.0f), half = hn::Set(d, 0.5f);
   const V x = hn::Sub(hn::Mul(u, hn::Set(d, float(w))), half);
-  const V y = hn::Sub(hn::Mul(v, hn::Set(d, float(h))), half);
+  const V y = hn::Add(hn::Mul(v, hn::Set(d, v_scale)), hn::Set(d, v_offset));
   const V fx = hn::Floor(x), fy = hn::Floor(y);
   const V tx = hn::Sub(x, fx), ty = hn::Sub(y, fy);
   const auto zero_i = hn::Zero(di), one_i = hn::Set(di, 1), w_i = hn::Set(di, w);
@@ -82,6 +83,8 @@ HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, u
                       TexelsFitInt32(table, map);
   if (vector) {
     const float* texels = table.texels.data() + size_t(table.pixel_offset[map]) * kEnvironmentTexel;
+    float v_scale, v_offset;
+    EnvironmentRowCoordinate(table, map, &v_scale, &v_offset);
     const Frame& f = table.to_world[map];
     const auto zero = hn::Zero(d), half = hn::Set(d, 0.5f), one = hn::Set(d, 1.0f);
     const auto pi = hn::Set(d, kPi), two_pi = hn::Set(d, 2 * kPi);
@@ -116,7 +119,8 @@ HWY_INLINE void SampleEnvironmentBatchKernel(const EnvironmentMapTable& table, u
                        hn::Mul(hn::Set(d, nn), dz));
       };
       hn::Vec<decltype(d)> r, g, b;
-      EnvironmentLookup8(d, texels, dist.nu, dist.nv, x, v, &r, &g, &b);
+      EnvironmentLookup8(d, texels, table.width[map], table.height[map], v_scale, v_offset, x, v,
+                         &r, &g, &b);
       const auto pdf = hn::Div(pdf_uv, hn::Mul(hn::Set(d, kEnvironmentTwoPiSquared), sin_theta));
       hn::StoreU(hn::IfThenElseZero(valid, world(f.s.x, f.t.x, f.n.x)), d, out.wi_x + i);
       hn::StoreU(hn::IfThenElseZero(valid, world(f.s.y, f.t.y, f.n.y)), d, out.wi_y + i);
@@ -152,12 +156,14 @@ HWY_INLINE void EvalEnvironmentBatchKernel(const EnvironmentMapTable& table, uin
                                            const EnvironmentEvalOutputs& out) {
   const hn::CappedTag<float, 8> d;
   const size_t lanes = hn::Lanes(d);
-  const int w = table.width[map], h = table.height[map];
+  const int w = table.width[map], h = table.height[map], nv = EnvironmentCellRows(table, map);
+  float v_scale, v_offset;
+  EnvironmentRowCoordinate(table, map, &v_scale, &v_offset);
   const bool importance = table.sampling[map] == EnvironmentSampling::kImportance;
   const Distribution2DView dist = EnvironmentDistribution(table, map);
   size_t i = 0;
   // The conditional CDFs and the texels are indexed by int32 gathers.
-  if ((!importance || int64_t(h) * (int64_t(w) + 1) < (int64_t(1) << 31)) &&
+  if ((!importance || int64_t(nv) * (int64_t(w) + 1) < (int64_t(1) << 31)) &&
       TexelsFitInt32(table, map)) {
     const hn::RebindToSigned<decltype(d)> di;
     const float* texels = table.texels.data() + size_t(table.pixel_offset[map]) * kEnvironmentTexel;
@@ -181,7 +187,7 @@ HWY_INLINE void EvalEnvironmentBatchKernel(const EnvironmentMapTable& table, uin
       const auto u = hn::Min(hn::Max(hn::Mul(phi, hn::Set(d, kInv2Pi)), zero), one);
       const auto v = hn::Min(hn::Max(hn::Mul(theta, hn::Set(d, kInvPi)), zero), one);
       hn::Vec<decltype(d)> cr, cg, cb;
-      EnvironmentLookup8(d, texels, w, h, u, v, &cr, &cg, &cb);
+      EnvironmentLookup8(d, texels, w, h, v_scale, v_offset, u, v, &cr, &cg, &cb);
       // A direction that is not finite sees black (Lookup's test of x and y).
       const auto finite = hn::And(hn::IsFinite(u), hn::IsFinite(v));
       hn::StoreU(hn::IfThenElseZero(finite, cr), d, out.r + i);
@@ -195,13 +201,13 @@ HWY_INLINE void EvalEnvironmentBatchKernel(const EnvironmentMapTable& table, uin
       // EnvironmentPdf: the cell's density (Distribution2DPdf at (u, v)) over 2π² sinθ, with
       // sinθ = r / |d|; 0 on the axis (r = 0).
       const auto column = PiecewiseConstantBin8(d, u, float(w));
-      const auto row = PiecewiseConstantBin8(d, v, float(h));
+      const auto row = PiecewiseConstantBin8(d, v, float(nv));
       const auto m0 = hn::GatherIndex(d, dist.marginal_cdf, row);
       const auto m1 = hn::GatherIndex(d, dist.marginal_cdf, hn::Add(row, hn::Set(di, 1)));
       const auto at = hn::Add(hn::Mul(row, hn::Set(di, w + 1)), column);
       const auto c0 = hn::GatherIndex(d, dist.conditional_cdf, at);
       const auto c1 = hn::GatherIndex(d, dist.conditional_cdf, hn::Add(at, hn::Set(di, 1)));
-      const auto pdf_uv = hn::Mul(hn::Mul(hn::Set(d, float(h)), hn::Sub(m1, m0)),
+      const auto pdf_uv = hn::Mul(hn::Mul(hn::Set(d, float(nv)), hn::Sub(m1, m0)),
                                   hn::Mul(hn::Set(d, float(w)), hn::Sub(c1, c0)));
       const auto sin_theta = hn::Div(r, hn::Sqrt(hn::Add(hn::Mul(r, r), hn::Mul(ly, ly))));
       const auto pdf = hn::Div(pdf_uv, hn::Mul(hn::Set(d, kEnvironmentTwoPiSquared), sin_theta));

@@ -79,11 +79,13 @@ Frame FrameOf(const Transform& t) {
   return f;
 }
 
-EnvTable MakeEnv(const Image& image, EnvironmentSampling sampling, const Frame& to_world) {
+EnvTable MakeEnv(const Image& image, EnvironmentSampling sampling, const Frame& to_world,
+                 EnvironmentRows rows = EnvironmentRows::kCentred) {
   auto table = std::make_shared<EnvironmentMapTable>();
   EnvironmentMapDesc desc;
   desc.sampling = sampling;
   desc.to_world = to_world;
+  desc.rows = rows;
   const StatusOr<uint32_t> row = AddEnvironmentMap(image, desc, "chi2 subject", table.get());
   PTLAB_CHECK(row.ok() && *row == 0);
   return table;
@@ -233,6 +235,17 @@ void RegisterLightSubjects(Chi2Registry* r, const std::string& data_dir) {
   add_importance("importance_1x1", MakeEnv(one, kImportance, y_to_z), "1x1, up -> +z");
   add_importance("importance_rotated_gradient", MakeEnv(GradientMap(), kImportance, y_to_minus_z),
                  "16x8 gradient, up -> -z, local x -> +y");
+  // Mitsuba 3's rows (kAtPoles: pixel rows 0 and H − 1 on the poles, H − 1 cell rows).
+  constexpr EnvironmentRows kAtPoles = EnvironmentRows::kAtPoles;
+  add_importance("importance_at_poles_gradient",
+                 MakeEnv(GradientMap(), kImportance, y_to_z, kAtPoles),
+                 "16x8 gradient, rows at the poles (Mitsuba 3), up -> +z");
+  add_importance("importance_at_poles_hot_pixel",
+                 MakeEnv(HotPixelMap(), kImportance, y_to_z, kAtPoles),
+                 "32x16, one hot pixel at (21, 5), rows at the poles (Mitsuba 3), up -> +z");
+  add_importance("importance_at_poles_pole_rows",
+                 MakeEnv(PoleRowsMap(), kImportance, y_to_z, kAtPoles),
+                 "16x8, bright rows 0 and 7 on the poles (Mitsuba 3), up -> +z");
   // Uniform sampling has no singularity: the map keeps its default orientation.
   r->Add(EnvSubject("envmap/uniform_gradient",
                     MakeEnv(GradientMap(), EnvironmentSampling::kUniform, identity),

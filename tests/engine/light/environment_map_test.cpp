@@ -135,7 +135,7 @@ TEST(EnvironmentMapRadiance, OneByOneMapIsConstant) {
 // pdf · sinθ is constant on each pixel cell, so the midpoint rule on a refinement of the pixel
 // grid integrates the pdf exactly.
 double IntegratePdf(const EnvironmentMapTable& t, int refine) {
-  const int nu = t.width[0] * refine, nv = t.height[0] * refine;
+  const int nu = t.width[0] * refine, nv = EnvironmentCellRows(t, 0) * refine;
   double sum = 0;
   for (int j = 0; j < nv; ++j) {
     const double theta = kPiD * (j + 0.5) / nv;

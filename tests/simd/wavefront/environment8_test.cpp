@@ -102,11 +102,13 @@ void ExpectBatchMatchesOracle(const EnvironmentMapTable& guided, uint32_t map, s
 
 EnvironmentMapTable OneMap(const Image& image,
                            EnvironmentSampling sampling = EnvironmentSampling::kImportance,
-                           const Frame& to_world = Frame{}) {
+                           const Frame& to_world = Frame{},
+                           EnvironmentRows rows = EnvironmentRows::kCentred) {
   EnvironmentMapTable table;
   EnvironmentMapDesc desc;
   desc.sampling = sampling;
   desc.to_world = to_world;
+  desc.rows = rows;
   const StatusOr<uint32_t> row = AddEnvironmentMap(image, desc, "test", &table);
   EXPECT_TRUE(row.ok() && *row == 0);
   return table;
@@ -200,11 +202,17 @@ std::vector<Vec3f> EvalDirections(const EnvironmentMapTable& table, uint32_t map
     }
   for (float e : {1e-30f, 1e-12f, 1e-6f, 1e-3f})
     for (float y : {1.0f, -1.0f}) local.push_back(Normalize(Vec3f{e, y, -e}));
-  const int w = table.width[map], h = table.height[map];
+  // Pixel points and cell edges in v: of the pixel bands (kCentred), and of the bands
+  // between pixel rows (kAtPoles: pixel rows at j/(H − 1), cells between them).
+  const int w = table.width[map], h = table.height[map], nv = EnvironmentCellRows(table, map);
   const int step = std::max(1, std::max(w, h) / 200);
-  for (int j = 0; j <= 2 * h; j += step)
-    for (int i = 0; i <= 2 * w; i += step)
-      local.push_back(EnvironmentUvToDirection({float(i) / float(2 * w), float(j) / float(2 * h)}));
+  for (const int rows : {h, nv}) {
+    if (rows == h && rows == nv && &rows != &h) continue;  // kCentred: the grid once
+    for (int j = 0; j <= 2 * rows; j += step)
+      for (int i = 0; i <= 2 * w; i += step)
+        local.push_back(
+            EnvironmentUvToDirection({float(i) / float(2 * w), float(j) / float(2 * rows)}));
+  }
   const Frame& f = table.to_world[map];
   std::vector<Vec3f> world;
   for (const Vec3f& d : local) world.push_back(f.ToWorld(d));
@@ -274,7 +282,8 @@ void ExpectEvalMatchesOracle(const EnvironmentMapTable& table, uint32_t map, siz
       const float g = got[3 * n + i], o = want[3 * n + i];
       ASSERT_TRUE(std::isfinite(g) && g >= 0) << "row " << i << " pdf " << g;
       if (g == o) continue;  // the same cell: the oracle's operations on the same numbers
-      ASSERT_TRUE(NearCellEdge(uv.x, table.width[map]) || NearCellEdge(uv.y, table.height[map]))
+      ASSERT_TRUE(NearCellEdge(uv.x, table.width[map]) ||
+                  NearCellEdge(uv.y, EnvironmentCellRows(table, map)))
           << "row " << i << " uv " << uv.x << ", " << uv.y << ": pdf " << g << " want " << o;
       ++edge_pdfs;
     }
@@ -305,6 +314,38 @@ TEST(Environment8, EvalMatchesOracleOnBlackRowsRotatedTinyAndUniformMaps) {
   ExpectEvalMatchesOracle(OneMap(RandomMap(8, 4, false, rng), EnvironmentSampling::kUniform), 0,
                           10003);
   ExpectEvalMatchesOracle(OneMap(Image(8, 4)), 0, 10003);  // black
+}
+
+// Mitsuba 3's rows (kAtPoles): pixel rows on the poles, H − 1 cell rows; the same contracts.
+TEST(Environment8, BatchMatchesOracleOnAtPolesMaps) {
+  Pcg32 rng(21, 8);
+  const Frame f = RotatedFrame();
+  ExpectBatchMatchesOracle(OneMap(RandomMap(37, 23, true, rng), EnvironmentSampling::kImportance,
+                                  f, EnvironmentRows::kAtPoles),
+                           0, 300007);
+  for (const auto& [w, h] : {std::pair{1, 1}, {2, 1}, {1, 2}, {3, 2}, {2, 3}, {1, 7}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    ExpectBatchMatchesOracle(OneMap(RandomMap(w, h, false, rng), EnvironmentSampling::kImportance,
+                                    Frame{}, EnvironmentRows::kAtPoles),
+                             0, 100003);
+  }
+}
+
+TEST(Environment8, EvalMatchesOracleOnAtPolesMaps) {
+  Pcg32 rng(22, 9);
+  const Frame f = RotatedFrame();
+  ExpectEvalMatchesOracle(OneMap(RandomMap(37, 23, true, rng), EnvironmentSampling::kImportance,
+                                 f, EnvironmentRows::kAtPoles),
+                          0, 100003);
+  for (const auto& [w, h] : {std::pair{1, 1}, {2, 1}, {1, 2}, {3, 2}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    ExpectEvalMatchesOracle(OneMap(RandomMap(w, h, false, rng), EnvironmentSampling::kImportance,
+                                   Frame{}, EnvironmentRows::kAtPoles),
+                            0, 10003);
+  }
+  ExpectEvalMatchesOracle(OneMap(RandomMap(8, 4, false, rng), EnvironmentSampling::kUniform,
+                                 Frame{}, EnvironmentRows::kAtPoles),
+                          0, 10003);
 }
 
 }  // namespace

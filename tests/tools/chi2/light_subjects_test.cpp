@@ -37,6 +37,8 @@ TEST(StatLightChi2Registry, HoldsTheSyntheticAndRealMaps) {
   for (const char* name :
        {"envmap/importance_gradient", "envmap/importance_hot_pixel", "envmap/importance_1x1",
         "envmap/importance_pole_rows", "envmap/uniform_gradient", "distantdisk/full_sphere",
+        "envmap/importance_at_poles_gradient", "envmap/importance_at_poles_hot_pixel",
+        "envmap/importance_at_poles_pole_rows",
         "distantdisk/cone_10deg_rotated", "distribution/1d", "distribution/2d"})
     EXPECT_NE(Registry().Find(name), nullptr) << name;
   EXPECT_EQ(Registry().Find("envmap/importance_venice_32x16") != nullptr,
@@ -44,7 +46,9 @@ TEST(StatLightChi2Registry, HoldsTheSyntheticAndRealMaps) {
   // Every importance map also drawn by the SIMD batch, and its broken variant.
   for (const char* name :
        {"simd/env_importance_gradient", "simd/env_importance_hot_pixel", "simd/env_importance_1x1",
-        "simd/env_importance_pole_rows", "simd/env_importance_rotated_gradient"}) {
+        "simd/env_importance_pole_rows", "simd/env_importance_rotated_gradient",
+        "simd/env_importance_at_poles_gradient", "simd/env_importance_at_poles_hot_pixel",
+        "simd/env_importance_at_poles_pole_rows"}) {
     const Chi2Subject* s = Registry().Find(name);
     ASSERT_NE(s, nullptr) << name;
     EXPECT_TRUE(bool(s->sample_batch)) << name;
