@@ -6,6 +6,12 @@
 #include "engine/bsdf/diffuse.h"
 #include "engine/bsdf/mirror.h"
 #include "engine/bsdf/rough_plastic.h"
+// matB
+#include "engine/bsdf/blend.h"
+#include "engine/bsdf/plastic.h"
+#include "engine/bsdf/plastic_rough.h"
+#include "engine/bsdf/thin_dielectric.h"
+#include "engine/bsdf/two_sided.h"
 
 namespace ptlab {
 namespace {
@@ -22,6 +28,7 @@ RoughPlasticParams RoughPlasticRow(const RoughPlasticTable& t, uint32_t i) {
 }  // namespace
 
 Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
+  if (TwoSidedFlips(m, ref, wo)) return BsdfEval(m, ref, FlipZ(wo), FlipZ(wi));
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffuseEval(m.diffuse.Albedo(ref.index()), wo, wi);
@@ -29,6 +36,14 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEval(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
+    // matB
+    case MaterialTag::kPlastic: {
+      float pdf;
+      return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, &pdf);
+    }
+    case MaterialTag::kBlend:
+      return BlendEval(m, ref.index(), wo, wi);
+    case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
       return {};  // delta models
@@ -37,6 +52,7 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
 }
 
 float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi) {
+  if (TwoSidedFlips(m, ref, wo)) return BsdfPdf(m, ref, FlipZ(wo), FlipZ(wi));
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffusePdf(wo, wi);
@@ -44,6 +60,15 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
       return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
+    // matB
+    case MaterialTag::kPlastic: {
+      float pdf;
+      PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, &pdf);
+      return pdf;
+    }
+    case MaterialTag::kBlend:
+      return BlendPdf(m, ref.index(), wo, wi);
+    case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
       return 0.0f;  // delta models
@@ -53,6 +78,7 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
 
 Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
                     float* pdf) {
+  if (TwoSidedFlips(m, ref, wo)) return BsdfEvalPdf(m, ref, FlipZ(wo), FlipZ(wi), pdf);
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       *pdf = DiffusePdf(wo, wi);
@@ -64,6 +90,12 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
     }
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEvalPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi, pdf);
+    // matB
+    case MaterialTag::kPlastic:
+      return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, pdf);
+    case MaterialTag::kBlend:
+      return BlendEvalPdf(m, ref.index(), wo, wi, pdf);
+    case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
       break;  // delta models
@@ -74,6 +106,11 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
 
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
                          const Vec2f& u2, BsdfSample* sample) {
+  if (TwoSidedFlips(m, ref, wo)) {
+    if (!BsdfSampleDirection(m, ref, FlipZ(wo), u1, u2, sample)) return false;
+    sample->wi = FlipZ(sample->wi);
+    return true;
+  }
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffuseSample(m.diffuse.Albedo(ref.index()), wo, u2, sample);
@@ -93,6 +130,16 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
       return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticSample(RoughPlasticRow(m.rough_plastic, ref.index()), wo, u1, u2, sample);
+    // matB
+    case MaterialTag::kPlastic:
+      return PlasticRowSample(m.plastic, ref.index(), wo, u1, u2, sample);
+    case MaterialTag::kThinDielectric: {
+      const ThinDielectricTable& t = m.thin_dielectric;
+      const uint32_t i = ref.index();
+      return ThinDielectricSample(t.eta[i], t.Reflectance(i), t.Transmittance(i), wo, u1, sample);
+    }
+    case MaterialTag::kBlend:
+      return BlendSample(m, ref.index(), wo, u1, u2, sample);
   }
   return false;
 }

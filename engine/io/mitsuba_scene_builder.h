@@ -44,6 +44,8 @@ class MitsubaSceneBuilder {
   Status MeshFile(const MitsubaObject& obj, MeshData* mesh, std::string* name);
 
   StatusOr<MaterialRef> Bsdf(const MitsubaNode& node);
+  // matB: twosided and blendbsdf (engine/io/mitsuba_bsdfs.cpp).
+  StatusOr<MaterialRef> WrapperBsdf(const MitsubaNode& node, const MitsubaObject& obj);
 
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);

@@ -81,6 +81,13 @@ inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
       return uint32_t(m.conductor.size());
     case MaterialTag::kRoughPlastic:
       return uint32_t(m.rough_plastic.size());
+    // matB
+    case MaterialTag::kPlastic:
+      return uint32_t(m.plastic.size());
+    case MaterialTag::kThinDielectric:
+      return uint32_t(m.thin_dielectric.size());
+    case MaterialTag::kBlend:
+      return uint32_t(m.blend.size());
   }
   return 0;
 }
