@@ -74,11 +74,15 @@ inline Color3f PlasticRoughEvalPdf(const RoughPlasticCoatParams& p, const Vec3f&
     const float d = MicrofacetD(p.dist, h);
     const float wo_h = Dot(wo, h);
     if (d > 0 && wo_h > 0) {
+      // G / (cos θo cos θi) and the visible-normal density over 4 wo·h, as G1/cos forms
+      // (wi·h = wo·h > 0 and both above the surface, so every orientation test holds): no
+      // cosine is divided out again, which keeps grazing and denormal cosines exact.
       float cos_t;
       const float fr = FresnelDielectric(wo_h, p.eta, &cos_t);
-      const float s = fr * d * MicrofacetG(p.dist, wi, wo, h) / (4.0f * wo.z * wi.z);
+      const float g1o = MicrofacetG1OverCos(p.dist, wo), g1i = MicrofacetG1OverCos(p.dist, wi);
+      const float s = fr * d * (0.25f * g1o * g1i);
       if (std::isfinite(s) && s > 0) f += p.specular * s;
-      const float q = MicrofacetPdf(p.dist, wo, h) / (4.0f * wo_h);
+      const float q = d * (0.25f * g1o);  // D G1(wo) (wo·h)/cos θo / (4 wo·h)
       if (std::isfinite(q)) spec_pdf = q;
     }
   }

@@ -96,6 +96,13 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
   } else if (type == "plastic" || type == "roughplastic") {  // matB
     StatusOr<PlasticDesc> desc = ReadPlastic(obj, type == "roughplastic");
     if (!desc.ok()) return desc.status();
+    // The rough coating is implemented (engine/bsdf/plastic_rough.h) but does not yet match
+    // Mitsuba's references: the suite's roughplastic scenes pass the Z test on 98.9 % of the
+    // pixel channels (99.75 % needed). Until that is understood it is refused here, with the
+    // scene still read and validated up to this point.
+    if (desc->distribution != CoatingDistribution::kSmooth)
+      return Unsupported(node, "the rough coating does not match Mitsuba's reference yet "
+                               "(docs/materials.md)");
     StatusOr<PlasticRow> row = MakePlasticRow(*desc);
     if (!row.ok()) return Unsupported(node, row.status().message());
     ref = scene_.materials.AddPlastic(*row);

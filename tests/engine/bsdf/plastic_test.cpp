@@ -117,3 +117,67 @@ TEST(Plastic, OneSided) {
 
 }  // namespace
 }  // namespace ptlab
+
+namespace ptlab {
+namespace {
+
+MaterialRef AddRough(MaterialTables* m, CoatingDistribution dist, float alpha, float rho,
+                     bool nonlinear) {
+  PlasticDesc d;
+  d.distribution = dist, d.alpha = alpha, d.int_ior = 1.5f, d.ext_ior = 1.0f;
+  d.diffuse = {rho, rho, rho}, d.nonlinear = nonlinear;
+  StatusOr<PlasticRow> row = MakePlasticRow(d);
+  EXPECT_TRUE(row.ok());
+  return m->AddPlastic(*row);
+}
+
+// The rough coating's transmittance table tends to the smooth 1 − F as α → 0 (a different
+// route: the Fresnel term of the smooth interface, no microfacets), and stays in [0, 1].
+TEST(RoughPlasticCoating, TransmittanceTendsToTheSmoothLimit) {
+  MaterialTables m;
+  for (CoatingDistribution dist : {CoatingDistribution::kGgx, CoatingDistribution::kBeckmann}) {
+    const MaterialRef ref = AddRough(&m, dist, 1e-3f, 0.5f, false);
+    const float* t = m.plastic.transmittance.data() + ref.index() * kCoatingTransmittanceRes;
+    for (int j = 0; j < kCoatingTransmittanceRes; ++j) {
+      const float mu = float(j) / float(kCoatingTransmittanceRes - 1);
+      EXPECT_GE(t[j], 0.0f); EXPECT_LE(t[j], 1.0f);
+      if (mu < 0.1f) continue;  // near grazing even α = 1e-3 shadows measurably
+      EXPECT_NEAR(t[j], 1.0f - CoatingFresnel(mu, 1.5f), 5e-3f) << int(dist) << " " << mu;
+    }
+    const MaterialRef rough = AddRough(&m, dist, 1.0f, 0.5f, false);
+    const float* r = m.plastic.transmittance.data() + rough.index() * kCoatingTransmittanceRes;
+    for (int j = 0; j < kCoatingTransmittanceRes; ++j) { EXPECT_GE(r[j], 0.0f); EXPECT_LE(r[j], 1.0f); }
+  }
+}
+
+// Energy: the albedo E[weight] of a rough plastic with ρ = 1 (the most reflective base) is at
+// most 1 at every angle and roughness (single-scattering microfacets lose a little), and not
+// far below the smooth plastic's exact 1 for a moderately rough coating.
+TEST(RoughPlasticCoating, WhiteFurnaceIsAtMostOne) {
+  MaterialTables m;
+  Pcg32 rng(17, 4);
+  const int n = 100000;
+  for (CoatingDistribution dist : {CoatingDistribution::kGgx, CoatingDistribution::kBeckmann})
+    for (float alpha : {1e-3f, 0.1f, 0.5f, 1.0f})
+      for (bool nonlinear : {false, true}) {
+        const MaterialRef ref = AddRough(&m, dist, alpha, 1.0f, nonlinear);
+        for (float c : {0.9f, 0.5f, 0.1f}) {
+          const Vec3f wo = bsdf_test::DirectionWithCos(c, 1.1f);
+          double sum = 0, sum2 = 0;
+          for (int i = 0; i < n; ++i) {
+            BsdfSample s;
+            double w = 0;
+            if (BsdfSampleDirection(m, ref, wo, rng.NextFloat(),
+                                    {rng.NextFloat(), rng.NextFloat()}, &s))
+              w = s.weight.r;
+            sum += w, sum2 += w * w;
+          }
+          const double mean = sum / n, sd = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+          EXPECT_LE(mean, 1.0 + 5 * sd) << int(dist) << " " << alpha << " " << c;
+          if (alpha <= 0.1f && c >= 0.5f) EXPECT_GT(mean, 0.9) << int(dist) << " " << alpha;
+        }
+      }
+}
+
+}  // namespace
+}  // namespace ptlab

@@ -315,6 +315,12 @@ void AddMaterialRows(MaterialTables* m, Pcg32& rng) {
     m->AddPlastic(*MakePlasticRow(d));
     m->AddThinDielectric(eta);
   }
+  for (float alpha : {1e-4f, 0.05f, 0.5f, 1.0f}) {  // rough rows (the oracle in both paths)
+    PlasticDesc d;
+    d.distribution = alpha < 0.1f ? CoatingDistribution::kGgx : CoatingDistribution::kBeckmann;
+    d.alpha = alpha, d.int_ior = 1.5f, d.ext_ior = 1.0f, d.diffuse = {0.2f, 0.5f, 0.9f};
+    m->AddPlastic(*MakePlasticRow(d));
+  }
   const uint32_t plastics = uint32_t(m->plastic.size());
   for (int i = 0; i < 24; ++i) {
     const float w = i < 3 ? float(i) * 0.5f : rng.NextFloat();
