@@ -96,14 +96,18 @@ StatusOr<PlasticRow> MakePlasticRow(const PlasticDesc& desc) {
                                                : MicrofacetType::kBeckmann,
                                            desc.alpha, desc.alpha);
     for (int j = 0; j < kCoatingTransmittanceRes; ++j) {
-      const float mu = float(j) / float(kCoatingTransmittanceRes - 1);
+      const float mu = std::max(1e-6f, float(j) / float(kCoatingTransmittanceRes - 1));
       row.transmittance[j] = float(std::clamp(RoughTransmittance(dist, row.eta, mu), 0.0, 1.0));
     }
-    // R_int = 2 ∫ R(μ; 1/η) μ dμ: the light inside meets the coating with relative IOR 1/η.
-    using Rule = boost::math::quadrature::gauss<double, 48>;
-    f_int = Rule::integrate(
-        [&](double mu) { return 2.0 * RoughReflectance(dist, 1.0f / row.eta, float(mu)) * mu; },
-        0.0, 1.0);
+    // R_int: Mitsuba defines it as 2 × the mean of R(μ; 1/η) μ over the same 64 cosines as the
+    // table (μ = max(1e-6, j/63); the light inside meets the coating with relative IOR 1/η),
+    // a Riemann sum ~1.5 % below the integral 2 ∫ R μ dμ. Its references are rendered with
+    // that sum, so it is used here too; each R(μ) is integrated as above.
+    for (int j = 0; j < kCoatingTransmittanceRes; ++j) {
+      const float mu = std::max(1e-6f, float(j) / float(kCoatingTransmittanceRes - 1));
+      f_int += RoughReflectance(dist, 1.0f / row.eta, mu) * mu;
+    }
+    f_int *= 2.0 / kCoatingTransmittanceRes;
     f_int = std::clamp(f_int, 0.0, 0.999999);
   }
   const double inv_eta2 = 1.0 / (double(row.eta) * double(row.eta));
