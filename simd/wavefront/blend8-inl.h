@@ -13,6 +13,7 @@
 #endif
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "engine/bsdf/blend.h"
@@ -50,15 +51,34 @@ inline void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, 
                        const ShadeInputs& in, const ShadeOutputs& out) {
   const BlendTable& t = m.blend;
   const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
-  ShadeScratch scratch;
-  std::vector<MaterialRef> first(n), second(n);
-  std::vector<float> weight(n);
+  // Working storage reused across calls, one set per nesting level (a blend child of a blend
+  // runs while its parent's arrays are in use).
+  struct Storage {
+    ShadeScratch scratch;
+    std::vector<MaterialRef> first, second, picked;
+    std::vector<float> weight, c, u_child, is_second, delta, mixed;
+  };
+  thread_local std::vector<std::unique_ptr<Storage>> pool;
+  thread_local size_t depth = 0;
+  if (pool.size() <= depth) pool.push_back(std::make_unique<Storage>());
+  Storage& st = *pool[depth];
+  struct DepthGuard {
+    size_t& d;
+    explicit DepthGuard(size_t& v) : d(v) { ++d; }
+    ~DepthGuard() { --d; }
+  } guard(depth);
+  ShadeScratch& scratch = st.scratch;
+  std::vector<MaterialRef>& first = st.first;
+  std::vector<MaterialRef>& second = st.second;
+  std::vector<float>& weight = st.weight;
+  first.resize(n), second.resize(n), weight.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const uint32_t row = material_index[i];
     first[i] = t.First(row), second[i] = t.Second(row), weight[i] = t.weight[row];
   }
   // Columns: f rgb and pdf of the first child, then of the second.
-  std::vector<float> c(8 * n);
+  std::vector<float>& c = st.c;
+  c.resize(8 * n);
   float* const f0[4] = {c.data(), c.data() + n, c.data() + 2 * n, c.data() + 3 * n};
   float* const f1[4] = {c.data() + 4 * n, c.data() + 5 * n, c.data() + 6 * n, c.data() + 7 * n};
   const auto mix = [&](DirectionArrays w, float* fr, float* fg, float* fb, float* pdf) {
@@ -75,8 +95,11 @@ inline void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, 
   if (eval) mix(in.wl, out.f.r, out.f.g, out.f.b, out.pdf_l);
   if (!sample) return;
   // The pick, then each row's child sampled with its own lobe number.
-  std::vector<MaterialRef> picked(n);
-  std::vector<float> u_child(n), is_second(n), delta(n);
+  std::vector<MaterialRef>& picked = st.picked;
+  std::vector<float>& u_child = st.u_child;
+  std::vector<float>& is_second = st.is_second;
+  std::vector<float>& delta = st.delta;
+  picked.resize(n), u_child.resize(n), is_second.resize(n), delta.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const bool s = BlendPicksSecond(weight[i], in.u_lobe[i], &u_child[i]);
     picked[i] = s ? second[i] : first[i];
@@ -95,7 +118,8 @@ inline void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, 
       },
       m, picked.data(), n, child_in, child_out, &scratch);
   // Non-delta samples: the mixture's f and pdf at the sampled direction.
-  std::vector<float> mixed(4 * n);
+  std::vector<float>& mixed = st.mixed;
+  mixed.resize(4 * n);
   mix({out.wi.x, out.wi.y, out.wi.z}, mixed.data(), mixed.data() + n, mixed.data() + 2 * n,
       mixed.data() + 3 * n);
   for (size_t i = 0; i < n; ++i) {
