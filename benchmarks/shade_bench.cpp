@@ -8,6 +8,7 @@
 
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/conductor_presets.h"
+#include "engine/bsdf/plastic_precompute.h"
 #include "engine/wavefront/bsdf.h"
 #include "engine/core/rng.h"
 #include "engine/sampling/warp.h"
@@ -53,6 +54,18 @@ struct Inputs {
       tables.AddRoughPlastic(std::pow(10.0f, -3.0f * rng.NextFloat()), 1.5f, 1.0f,
                              {0.5f * a, 0.3f, 0.2f});
     }
+    // matB: 64 rows each of the smooth plastic, the thin dielectric and a blend (of a diffuse
+    // and a plastic), from their own stream so the rows above stay as they were.
+    Pcg32 rng_b(43, 55);
+    for (int i = 0; i < 64; ++i) {
+      PlasticDesc d;
+      d.int_ior = 1.3f + 0.4f * rng_b.NextFloat(), d.ext_ior = 1.0f, d.nonlinear = i % 2 == 0;
+      d.diffuse = {rng_b.NextFloat(), 0.3f, 0.2f};
+      const MaterialRef p = tables.AddPlastic(*MakePlasticRow(d));
+      tables.AddThinDielectric(1.3f + 0.4f * rng_b.NextFloat());
+      tables.AddBlend(rng_b.NextFloat(), MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(i)), p);
+    }
+    Pcg32 rng_index(44, 56);
     for (size_t i = 0; i < kBatch; ++i) {
       const float al = std::pow(10.0f, -3.0f * rng.NextFloat());
       const float c = 0.05f + 0.95f * rng.NextFloat();
@@ -70,10 +83,12 @@ struct Inputs {
       eta.push_back(0.05f + 3.0f * rng.NextFloat());
       k.push_back(0.5f + 7.0f * rng.NextFloat());
       eta_d.push_back(1.2f + 0.6f * rng.NextFloat());
-      const int tag = int(rng.NextFloat() * kMaterialTagCount) % kMaterialTagCount;
+      // The five original models (the mixed benchmark is kept as it was before matB's tags).
+      const int tag = int(rng.NextFloat() * 5) % 5;
       mixed.push_back(MaterialRef::Make(static_cast<MaterialTag>(tag), i % 64));
+      // Tags from 5 on draw from their own stream (the inputs of tags 0-4 stay as they were).
       for (int t = 0; t < kMaterialTagCount; ++t)
-        index[t].push_back(uint32_t(rng.NextFloat() * 64) % 64);
+        index[t].push_back(uint32_t((t < 5 ? rng : rng_index).NextFloat() * 64) % 64);
     }
   }
   DirectionArrays Wo() const { return {wo_x.data(), wo_y.data(), wo_z.data()}; }
@@ -187,7 +202,8 @@ template <bool kSimd>
 void BM_Shade8_ShadeBatch(benchmark::State& state) {
   const Inputs& in = GetInputs();
   const MaterialTag tag = static_cast<MaterialTag>(state.range(0));
-  const char* names[] = {"diffuse", "mirror", "dielectric", "conductor", "rough_plastic"};
+  const char* names[] = {"diffuse", "mirror", "dielectric", "conductor", "rough_plastic",
+                         "tag5",    "tag6",   "plastic",    "thin_dielectric", "blend"};
   state.SetLabel(names[state.range(0)]);
   Outputs out;
   const ShadeOutputs o = out.Shade();
@@ -235,6 +251,9 @@ BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, false)
     ->Name("BM_Shade8_ShadeBatch/scalar")
     ->DenseRange(0, 4);
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd")->DenseRange(0, 4);
+// matB: plastic (7), thin dielectric (8), blend (9).
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, false)->Name("BM_Shade8_ShadeBatch/scalar")->DenseRange(7, 9);
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd")->DenseRange(7, 9);
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, false)->Name("BM_Shade8_ShadeHitsMixed/scalar");
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, true)->Name("BM_Shade8_ShadeHitsMixed/simd");
 

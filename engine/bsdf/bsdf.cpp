@@ -6,6 +6,12 @@
 #include "engine/bsdf/diffuse.h"
 #include "engine/bsdf/mirror.h"
 #include "engine/bsdf/rough_plastic.h"
+// matB
+#include "engine/bsdf/blend.h"
+#include "engine/bsdf/plastic.h"
+#include "engine/bsdf/plastic_rough.h"
+#include "engine/bsdf/thin_dielectric.h"
+#include "engine/bsdf/two_sided.h"
 
 namespace ptlab {
 namespace {
@@ -23,6 +29,7 @@ RoughPlasticParams RoughPlasticRow(const RoughPlasticTable& t, uint32_t i) {
 
 Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
                  const TextureSite& site) {
+  if (TwoSidedFlips(m, ref, wo)) return BsdfEval(m, ref, FlipZ(wo), FlipZ(wi), site);
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffuseEval(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, wi);
@@ -30,6 +37,14 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEval(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
+    // matB
+    case MaterialTag::kPlastic: {
+      float pdf;
+      return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, &pdf);
+    }
+    case MaterialTag::kBlend:
+      return BlendEval(m, ref.index(), wo, wi);
+    case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
       return {};  // delta models
@@ -39,6 +54,7 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
 
 float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
               const TextureSite& site) {
+  if (TwoSidedFlips(m, ref, wo)) return BsdfPdf(m, ref, FlipZ(wo), FlipZ(wi), site);
   (void)site;  // no textured parameter changes a pdf yet
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
@@ -47,6 +63,15 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
       return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
+    // matB
+    case MaterialTag::kPlastic: {
+      float pdf;
+      PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, &pdf);
+      return pdf;
+    }
+    case MaterialTag::kBlend:
+      return BlendPdf(m, ref.index(), wo, wi);
+    case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
       return 0.0f;  // delta models
@@ -56,6 +81,7 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
 
 Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
                     float* pdf, const TextureSite& site) {
+  if (TwoSidedFlips(m, ref, wo)) return BsdfEvalPdf(m, ref, FlipZ(wo), FlipZ(wi), pdf, site);
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       *pdf = DiffusePdf(wo, wi);
@@ -67,6 +93,12 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
     }
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEvalPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi, pdf);
+    // matB
+    case MaterialTag::kPlastic:
+      return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, pdf);
+    case MaterialTag::kBlend:
+      return BlendEvalPdf(m, ref.index(), wo, wi, pdf);
+    case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
       break;  // delta models
@@ -77,6 +109,11 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
 
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
                          const Vec2f& u2, BsdfSample* sample, const TextureSite& site) {
+  if (TwoSidedFlips(m, ref, wo)) {
+    if (!BsdfSampleDirection(m, ref, FlipZ(wo), u1, u2, sample, site)) return false;
+    sample->wi = FlipZ(sample->wi);
+    return true;
+  }
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffuseSample(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, u2, sample);
@@ -96,6 +133,16 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
       return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticSample(RoughPlasticRow(m.rough_plastic, ref.index()), wo, u1, u2, sample);
+    // matB
+    case MaterialTag::kPlastic:
+      return PlasticRowSample(m.plastic, ref.index(), wo, u1, u2, sample);
+    case MaterialTag::kThinDielectric: {
+      const ThinDielectricTable& t = m.thin_dielectric;
+      const uint32_t i = ref.index();
+      return ThinDielectricSample(t.eta[i], t.Reflectance(i), t.Transmittance(i), wo, u1, sample);
+    }
+    case MaterialTag::kBlend:
+      return BlendSample(m, ref.index(), wo, u1, u2, sample);
   }
   return false;
 }

@@ -8,6 +8,11 @@
 #include "engine/core/vec.h"
 #include "engine/scene/refs.h"
 #include "engine/scene/texture_tables.h"
+// matB: coated plastics, thin dielectric, blend, two-sided flags.
+#include "engine/scene/blend_table.h"
+#include "engine/scene/plastic_table.h"
+#include "engine/scene/thin_dielectric_table.h"
+#include "engine/scene/two_sided.h"
 
 namespace ptlab {
 
@@ -79,6 +84,11 @@ struct MaterialTables {
   DielectricTable dielectric;
   ConductorTable conductor;
   RoughPlasticTable rough_plastic;
+  // matB
+  PlasticTable plastic;
+  ThinDielectricTable thin_dielectric;
+  BlendTable blend;
+  TwoSidedFlags two_sided;
 
   MaterialRef AddDiffuse(const Color3f& albedo) {
     diffuse.albedo_r.push_back(albedo.r), diffuse.albedo_g.push_back(albedo.g),
@@ -140,6 +150,18 @@ struct MaterialTables {
     t.alpha.push_back(alpha), t.int_ior.push_back(int_ior), t.ext_ior.push_back(ext_ior);
     t.kd_r.push_back(kd.r), t.kd_g.push_back(kd.g), t.kd_b.push_back(kd.b);
     return MaterialRef::Make(MaterialTag::kRoughPlastic, uint32_t(t.size() - 1));
+  }
+  // matB: rows of the coated plastics, the thin dielectric and the blend (see their tables).
+  MaterialRef AddPlastic(const PlasticRow& row) {
+    return MaterialRef::Make(MaterialTag::kPlastic, plastic.Add(row));
+  }
+  MaterialRef AddThinDielectric(float eta, const Color3f& reflectance = {1, 1, 1},
+                                const Color3f& transmittance = {1, 1, 1}) {
+    return MaterialRef::Make(MaterialTag::kThinDielectric,
+                             thin_dielectric.Add(eta, reflectance, transmittance));
+  }
+  MaterialRef AddBlend(float weight, MaterialRef first, MaterialRef second) {
+    return MaterialRef::Make(MaterialTag::kBlend, blend.Add(weight, first, second));
   }
 };
 

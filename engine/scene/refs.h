@@ -12,8 +12,12 @@ enum class MaterialTag : uint8_t {
   kDielectric = 2,
   kConductor = 3,
   kRoughPlastic = 4,
+  // matB: Mitsuba's coated plastics (plastic, roughplastic), thindielectric, blendbsdf.
+  kPlastic = 7,
+  kThinDielectric = 8,
+  kBlend = 9,
 };
-inline constexpr int kMaterialTagCount = 5;
+inline constexpr int kMaterialTagCount = 10;
 
 /// The closed set of emitter kinds.
 enum class EmitterTag : uint8_t {

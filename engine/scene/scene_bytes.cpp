@@ -16,7 +16,8 @@ static_assert(sizeof(SphereTable) == 5 * kColumn);
 static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
 static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
-static_assert(sizeof(MaterialTables) == (4 + 3 + 9 + 7 + 6) * kColumn);
+static_assert(sizeof(MaterialTables) ==
+              (4 + 3 + 9 + 7 + 6 + /* matB */ 11 + 7 + 3 + kMaterialTagCount) * kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
 static_assert(sizeof(EnvironmentMapTable) == 13 * kColumn);
@@ -40,6 +41,20 @@ size_t TableBytes(const MeshTable& t) {
          StringsBytes(t.name);
 }
 
+// matB: the coated plastics, the thin dielectric, the blend and the two-sided flags.
+size_t MatBTablesBytes(const MaterialTables& m) {
+  const PlasticTable& p = m.plastic;
+  const ThinDielectricTable& t = m.thin_dielectric;
+  size_t bytes = VectorsBytes(p.distribution, p.alpha, p.eta, p.base_r, p.base_g, p.base_b,
+                              p.specular_r, p.specular_g, p.specular_b,
+                              p.specular_sampling_weight, p.transmittance) +
+                 VectorsBytes(t.eta, t.reflectance_r, t.reflectance_g, t.reflectance_b,
+                              t.transmittance_r, t.transmittance_g, t.transmittance_b) +
+                 VectorsBytes(m.blend.weight, m.blend.first, m.blend.second);
+  for (const auto& c : m.two_sided.by_tag) bytes += VectorBytes(c);
+  return bytes;
+}
+
 size_t TableBytes(const MaterialTables& m) {
   const DielectricTable& d = m.dielectric;
   return VectorsBytes(m.diffuse.albedo_r, m.diffuse.albedo_g, m.diffuse.albedo_b,
@@ -50,7 +65,8 @@ size_t TableBytes(const MaterialTables& m) {
          VectorsBytes(m.conductor.alpha, m.conductor.eta_r, m.conductor.eta_g, m.conductor.eta_b,
                       m.conductor.k_r, m.conductor.k_g, m.conductor.k_b) +
          VectorsBytes(m.rough_plastic.alpha, m.rough_plastic.int_ior, m.rough_plastic.ext_ior,
-                      m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b);
+                      m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b) +
+         MatBTablesBytes(m);
 }
 
 size_t EmitterTablesBytes(const Scene& s) {

@@ -36,7 +36,8 @@
   X(AlignedVector, float, weight_g)        \
   X(AlignedVector, float, weight_b)        \
   X(AlignedVector, float, pdf)             \
-  X(AlignedVector, float, eta)
+  X(AlignedVector, float, eta)             \
+  X(AlignedVector, float, delta)
 
 #define PTLAB_WAVE_SPAWN_COLUMNS(X) \
   X(std::vector, uint32_t, entry)   \

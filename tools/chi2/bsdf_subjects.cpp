@@ -299,6 +299,7 @@ void RegisterBsdfSubjects(Chi2Registry* r) {
   add("simd/shade_conductor", Chi2BsdfModel::kConductor, kSimd, 0.5f, kIncidences[3]);
   add("simd/shade_rough_plastic", Chi2BsdfModel::kRoughPlastic, kSimd, 0.05f, kIncidences[2]);
   add("simd/shade_rough_plastic", Chi2BsdfModel::kRoughPlastic, kSimd, 0.5f, kIncidences[1]);
+  RegisterCoatedBsdfSubjects(r);  // matB
 
   // Deliberately wrong pdfs for the right samplers. Both keep the true albedo, so the lab
   // compares their integral (and the absorbed count) with the sampler's actual mass.

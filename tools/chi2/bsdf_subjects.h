@@ -63,4 +63,11 @@ Chi2Subject BsdfChi2Subject(std::string name, Chi2BsdfModel model, Chi2BsdfPath 
 ///   θ = 30°).
 void RegisterBsdfSubjects(Chi2Registry* registry);
 
+/// matB (tools/chi2/coated_subjects.cpp; called by RegisterBsdfSubjects): the non-delta
+/// samples of the smooth plastic ("bsdf/plastic_eta*_t*", η ∈ {1.1, 1.5, 3}, θ ∈ {0°, 30°,
+/// 60°, 85°}, both models; "simd/shade_plastic_eta1p5_t*") and of a blend of a diffuse and a
+/// plastic ("bsdf/blend_w{0p25,0p7}", "simd/shade_blend_w*"); a delta sample counts as
+/// absorbed, so the mass is the non-delta lobes' probability.
+void RegisterCoatedBsdfSubjects(Chi2Registry* registry);
+
 }  // namespace ptlab

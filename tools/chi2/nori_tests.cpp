@@ -47,6 +47,13 @@ const char* MaterialName(MaterialTag tag) {
       return "roughconductor";
     case MaterialTag::kRoughPlastic:
       return "microfacet";
+    // matB
+    case MaterialTag::kPlastic:
+      return "plastic";
+    case MaterialTag::kThinDielectric:
+      return "thindielectric";
+    case MaterialTag::kBlend:
+      return "blendbsdf";
   }
   return "?";
 }
