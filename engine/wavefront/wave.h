@@ -13,6 +13,7 @@
 #include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
 #include "engine/wavefront/soa.h"
+#include "engine/wavefront/vertices.h"
 #include "engine/wavefront/wavefront.h"
 
 // The column lists of the wave's SoA batches, X(container, element type, name), one column a
@@ -77,6 +78,14 @@
   X(AlignedVector, float, r)          \
   X(AlignedVector, float, g)          \
   X(AlignedVector, float, b)
+
+#define PTLAB_WAVE_OTHER_PICK_COLUMNS(X) \
+  X(std::vector, uint32_t, request)      \
+  X(std::vector, uint32_t, entry)        \
+  X(std::vector, uint32_t, emitter)      \
+  X(std::vector, float, pick_pmf)        \
+  X(std::vector, float, u_x)             \
+  X(std::vector, float, u_y)
 
 #define PTLAB_WAVE_INFINITE_LIGHT_COLUMNS(X) \
   X(std::vector, uint32_t, request)          \
@@ -152,7 +161,7 @@ class alignas(kColumnAlignment) Wavefront {
   /// What each integrator does at a path vertex. Every integrator of integrator.cpp is one set of
   /// rules over the same vertex stages; the rules reproduce its operations in its order.
   struct VertexRules {
-    enum class Roulette { kNone, kNori, kWhitted };
+    using Roulette = VertexBatchRules::Roulette;  // the vertices slot's (vertices.h)
     bool normals = false;        // first hit's |n|, nothing else
     bool nee = false;            // emitter sampling (next-event estimation) at vertices
     bool mis = false;            // MIS between emitter and BSDF sampling
@@ -240,8 +249,8 @@ class alignas(kColumnAlignment) Wavefront {
   // wave_sample.cpp
   void Sample(int depth);
   void GroupEntries();
-  void SampleGroupBatch(int depth, bool delta, int g, size_t k, size_t end);
   void SampleGroup(int depth, bool delta, int g, size_t k, size_t end);
+  void RouteOtherPicks(size_t n);
   void DrawVertexNumbers(int depth);
   void FillSobolRows(const std::vector<uint32_t>& paths, uint32_t sub, uint32_t sub_count);
   void DrawSobol1D(uint32_t dim, float* out);
@@ -356,6 +365,15 @@ class alignas(kColumnAlignment) Wavefront {
     }
   };
 
+  /// The vertices slot's picks of emitters other than area lights (environment maps, distant
+  /// disks, delta lights), one group's, in request order: its request, queue entry, emitter
+  /// (EmitterRef's bits), pick probability and numbers. RouteOtherPicks hands each to its stage.
+  struct OtherPickColumns {
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_OTHER_PICK_COLUMNS)
+    /// Room for `capacity` rows, written in place; only grows.
+    void Clear(size_t capacity) { Grow(capacity); }
+  };
+
   /// The emitter stage's SoA columns of one infinite light (an environment map or a distant
   /// disk), one row per emitter sample that picked it (in request order): its request, queue
   /// entry, pick probability and numbers (inputs); the sample (outputs, written by the
@@ -418,7 +436,6 @@ class alignas(kColumnAlignment) Wavefront {
   // Path state (SoA, by path id).
   std::vector<PathSampler> sampler_;
   bool sobol_ = false;
-  bool vertex_batch_ = false;  // Sample's groups take the vertices slot (SampleGroupBatch)
   // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
   std::vector<int> gen_px_, gen_py_;
   std::vector<float> gen_sx_, gen_sy_;
@@ -471,6 +488,7 @@ class alignas(kColumnAlignment) Wavefront {
   BsdfColumns bsdf_;
   SpawnColumns spawn_;
   EmitterColumns area_;
+  OtherPickColumns other_picks_;
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
   std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
   SplatColumns splat_;
