@@ -313,14 +313,6 @@ class alignas(kColumnAlignment) Wavefront {
       uint32_t at = 0;
       for (int g = 0; g < kMaterialGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
-    /// Writes slot c of the group being filled (the caller advances next and rows).
-    void Put(uint32_t c, uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
-             float lobe, const Vec2f& dir, float scale) {
-      path[c] = path_id, entry[c] = queue_entry, roulette_scale[c] = scale;
-      material_index[c] = ref.index();
-      wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
-      u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
-    }
   };
 
   /// The spawn stage's SoA columns, one row per path that goes on, in next-queue order: the
@@ -355,13 +347,6 @@ class alignas(kColumnAlignment) Wavefront {
       Grow(capacity);
       uint32_t at = 0;
       for (int t = 0; t < kMaterialGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
-    }
-    /// Writes slot c of the group being filled (the caller advances next and rows).
-    void Put(uint32_t c, uint32_t req, uint32_t queue_entry, uint32_t light_row, float pmf,
-             const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
-      request[c] = req, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
-      ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
-      wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
     }
   };
 
