@@ -103,7 +103,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     }
     // Light subpaths start on every emitter kind but the projector (its emission sampling is
     // not written yet): a scene with one would render without its light.
-    if (!scene.projectors.empty()) {
+    if (scene.projectors.size() > 0) {
       result.error = std::string(IntegratorTypeName(scene.integrator.type)) +
                      " does not sample projector emitters yet; render with path or direct";
       return result;
