@@ -12,8 +12,10 @@ enum class MaterialTag : uint8_t {
   kDielectric = 2,
   kConductor = 3,
   kRoughPlastic = 4,
+  // matA: Mitsuba's roughdielectric (6 is reserved for matA, unused: `conductor` is a mirror row).
+  kRoughDielectric = 5,
 };
-inline constexpr int kMaterialTagCount = 5;
+inline constexpr int kMaterialTagCount = 6;
 
 /// The closed set of emitter kinds.
 enum class EmitterTag : uint8_t {

@@ -81,6 +81,8 @@ inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
       return uint32_t(m.conductor.size());
     case MaterialTag::kRoughPlastic:
       return uint32_t(m.rough_plastic.size());
+    case MaterialTag::kRoughDielectric:  // matA
+      return uint32_t(m.rough_dielectric.size());
   }
   return 0;
 }

@@ -45,6 +45,8 @@ const char* MaterialName(MaterialTag tag) {
       return "roughconductor";
     case MaterialTag::kRoughPlastic:
       return "microfacet";
+    case MaterialTag::kRoughDielectric:  // matA
+      return "roughdielectric";
   }
   return "?";
 }
