@@ -1,4 +1,6 @@
-// Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse and dielectric.
+// Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse, dielectric, and (matA) conductor,
+// roughconductor, roughdielectric.
+#include "engine/io/mitsuba_microfacet_bsdfs.h"  // matA
 #include "engine/io/mitsuba_scene_builder.h"
 #include "engine/io/mitsuba_spectrum.h"
 #include "engine/io/xml_properties.h"  // FormatColor
@@ -57,8 +59,12 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     return Unsupported(node,
                        "ptlab's diffuse is one-sided like Mitsuba's, and has no two-sided "
                        "form");
-  } else if (type == "conductor" || type == "roughconductor" || type == "plastic" ||
-             type == "roughplastic" || type == "roughdielectric" || type == "thindielectric" ||
+  } else if (type == "conductor" || type == "roughconductor" || type == "roughdielectric") {
+    // matA: the microfacet family (engine/io/mitsuba_microfacet_bsdfs.cpp).
+    StatusOr<MaterialRef> added = AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials);
+    if (!added.ok()) return added.status();
+    ref = *added;
+  } else if (type == "plastic" || type == "roughplastic" || type == "thindielectric" ||
              type == "principled" || type == "principledthin" || type == "mask" ||
              type == "normalmap" || type == "bumpmap" || type == "blendbsdf" || type == "null" ||
              type == "polarizer" || type == "retarder" || type == "circular" ||
