@@ -110,7 +110,7 @@ TEST(BsdfWeight, SampleWeightIsEvalCosOverPdfForEveryModel) {
         }
       }
     }
-    EXPECT_GT(checked, 2000) << model.name;
+    EXPECT_GT(checked, 1000) << model.name;  // of 6000 draws (wo below: none for reflectors)
     std::printf("%-48s checked %5d  max rel %.2g\n", model.name.c_str(), checked, worst);
   }
 }
