@@ -67,6 +67,9 @@ inline void AddRequestMaterials(Scene* scene) {
   m.AddConductor(1e-3f, {1, 1, 1}, {0, 0, 0});
   m.AddRoughPlastic(0.1f, 1.5f, 1.0f, {0.5f, 0.5f, 0.5f});
   m.AddRoughPlastic(0.01f, 1.5f, 1.0f, {0, 0, 0});
+  // matA: rough glass, Beckmann isotropic and GGX anisotropic.
+  m.AddRoughDielectric(0.1f, 0.1f, kMicrofacetSampleVisible, 1.5f, 1.0f);
+  m.AddRoughDielectric(0.05f, 0.5f, uint8_t(kMicrofacetSampleVisible | kMicrofacetGgx), 1.33f, 1.0f);
 }
 
 inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
