@@ -12,6 +12,9 @@
 #include "engine/bsdf/plastic_rough.h"
 #include "engine/bsdf/thin_dielectric.h"
 #include "engine/bsdf/two_sided.h"
+#include "engine/bsdf/rough_conductor.h"    // matA
+#include "engine/bsdf/rough_dielectric.h"   // matA
+#include "engine/bsdf/smooth_conductor.h"   // matA
 
 namespace ptlab {
 namespace {
@@ -25,6 +28,29 @@ RoughPlasticParams RoughPlasticRow(const RoughPlasticTable& t, uint32_t i) {
                                 {t.kd_r[i], t.kd_g[i], t.kd_b[i]});
 }
 
+// matA: the conductor table's Mitsuba form and the rough dielectric.
+RoughConductorParams RoughConductorRow(const ConductorTable& t, uint32_t i) {
+  RoughConductorParams p;
+  const uint8_t f = t.flags[i];
+  p.dist = MakeMicrofacet((f & kMicrofacetGgx) ? MicrofacetType::kGgx : MicrofacetType::kBeckmann,
+                          t.alpha[i], t.alpha_v[i], (f & kMicrofacetSampleVisible) != 0);
+  p.eta = {t.eta_r[i], t.eta_g[i], t.eta_b[i]};
+  p.k = {t.k_r[i], t.k_g[i], t.k_b[i]};
+  p.specular = {t.specular_r[i], t.specular_g[i], t.specular_b[i]};
+  return p;
+}
+
+RoughDielectricParams RoughDielectricRow(const RoughDielectricTable& t, uint32_t i) {
+  RoughDielectricParams p;
+  const uint8_t f = t.flags[i];
+  p.dist = MakeMicrofacet((f & kMicrofacetGgx) ? MicrofacetType::kGgx : MicrofacetType::kBeckmann,
+                          t.alpha_u[i], t.alpha_v[i], (f & kMicrofacetSampleVisible) != 0);
+  p.eta = t.int_ior[i] / t.ext_ior[i];
+  p.reflectance = {t.reflectance_r[i], t.reflectance_g[i], t.reflectance_b[i]};
+  p.transmittance = {t.transmittance_r[i], t.transmittance_g[i], t.transmittance_b[i]};
+  return p;
+}
+
 }  // namespace
 
 Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
@@ -34,7 +60,11 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
     case MaterialTag::kDiffuse:
       return DiffuseEval(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, wi);
     case MaterialTag::kConductor:
+      if (m.conductor.microfacet())
+        return RoughConductorEval(RoughConductorRow(m.conductor, ref.index()), wo, wi);
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
+    case MaterialTag::kRoughDielectric:  // matA
+      return RoughDielectricEval(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEval(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
     // matB
@@ -60,7 +90,11 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
     case MaterialTag::kDiffuse:
       return DiffusePdf(wo, wi);
     case MaterialTag::kConductor:
+      if (m.conductor.microfacet())
+        return RoughConductorPdf(RoughConductorRow(m.conductor, ref.index()), wo, wi);
       return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
+    case MaterialTag::kRoughDielectric:  // matA
+      return RoughDielectricPdf(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
     // matB
@@ -87,12 +121,22 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
       *pdf = DiffusePdf(wo, wi);
       return DiffuseEval(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, wi);
     case MaterialTag::kConductor: {
+      if (m.conductor.microfacet()) {
+        const RoughConductorParams p = RoughConductorRow(m.conductor, ref.index());
+        *pdf = RoughConductorPdf(p, wo, wi);
+        return RoughConductorEval(p, wo, wi);
+      }
       const ConductorParams p = ConductorRow(m.conductor, ref.index());
       *pdf = ConductorPdf(p, wo, wi);
       return ConductorEval(p, wo, wi);
     }
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEvalPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi, pdf);
+    case MaterialTag::kRoughDielectric: {  // matA
+      const RoughDielectricParams p = RoughDielectricRow(m.rough_dielectric, ref.index());
+      *pdf = RoughDielectricPdf(p, wo, wi);
+      return RoughDielectricEval(p, wo, wi);
+    }
     // matB
     case MaterialTag::kPlastic:
       return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, pdf);
@@ -118,6 +162,9 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
     case MaterialTag::kDiffuse:
       return DiffuseSample(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, u2, sample);
     case MaterialTag::kMirror:
+      if (m.mirror.fresnel())  // matA: Mitsuba's smooth conductor
+        return SmoothConductorSample(m.mirror.Reflectance(ref.index()), m.mirror.Eta(ref.index()),
+                                     m.mirror.K(ref.index()), wo, sample);
       return MirrorSample(m.mirror.Reflectance(ref.index()), wo, sample);
     case MaterialTag::kDielectric: {
       const uint32_t i = ref.index();
@@ -130,7 +177,12 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
       return true;
     }
     case MaterialTag::kConductor:
+      if (m.conductor.microfacet())
+        return RoughConductorSample(RoughConductorRow(m.conductor, ref.index()), wo, u2, sample);
       return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);
+    case MaterialTag::kRoughDielectric:  // matA
+      return RoughDielectricSample(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, u1, u2,
+                                   sample);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticSample(RoughPlasticRow(m.rough_plastic, ref.index()), wo, u1, u2, sample);
     // matB

@@ -1,5 +1,7 @@
-// Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse and dielectric.
-#include "engine/bsdf/plastic_precompute.h"  // matB
+// Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse, dielectric, (matA) conductor,
+// roughconductor, roughdielectric, (matB) plastic, roughplastic, thindielectric, twosided, blendbsdf.
+#include "engine/bsdf/plastic_precompute.h"      // matB
+#include "engine/io/mitsuba_microfacet_bsdfs.h"  // matA
 #include "engine/io/mitsuba_scene_builder.h"
 #include "engine/io/mitsuba_spectrum.h"
 #include "engine/io/xml_properties.h"  // FormatColor
@@ -129,9 +131,12 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     ref = scene_.materials.AddThinDielectric(int_ior / ext_ior, refl, trans);
   } else if (type == "twosided" || type == "blendbsdf") {  // matB: wrappers of nested bsdfs
     return WrapperBsdf(node, obj);
-  } else if (type == "conductor" || type == "roughconductor" ||
-             type == "roughdielectric" ||
-             type == "principled" || type == "principledthin" || type == "mask" ||
+  } else if (type == "conductor" || type == "roughconductor" || type == "roughdielectric") {
+    // matA: the microfacet family (engine/io/mitsuba_microfacet_bsdfs.cpp).
+    StatusOr<MaterialRef> added = AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials);
+    if (!added.ok()) return added.status();
+    ref = *added;
+  } else if (type == "principled" || type == "principledthin" || type == "mask" ||
              type == "normalmap" || type == "bumpmap" || type == "null" ||
              type == "polarizer" || type == "retarder" || type == "circular" ||
              type == "measured" || type == "pplastic" || type == "hair") {

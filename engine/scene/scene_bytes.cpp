@@ -17,7 +17,8 @@ static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
 static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
 static_assert(sizeof(MaterialTables) ==
-              (4 + 3 + 9 + 7 + 6 + /* matB */ 11 + 7 + 3 + kMaterialTagCount) * kColumn);
+              (4 + 3 + 9 + 7 + 6 + /* matA */ 6 + 5 + 11 + /* matB */ 11 + 7 + 3 +
+               kMaterialTagCount) * kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
 static_assert(sizeof(EnvironmentMapTable) == 13 * kColumn);
@@ -55,6 +56,18 @@ size_t MatBTablesBytes(const MaterialTables& m) {
   return bytes;
 }
 
+// matA: the smooth conductor's and rough conductor's optional columns, the rough dielectric.
+size_t MatABytes(const MaterialTables& m) {
+  const MirrorTable& mi = m.mirror;
+  const ConductorTable& c = m.conductor;
+  const RoughDielectricTable& rd = m.rough_dielectric;
+  return VectorsBytes(mi.eta_r, mi.eta_g, mi.eta_b, mi.k_r, mi.k_g, mi.k_b) +
+         VectorsBytes(c.alpha_v, c.specular_r, c.specular_g, c.specular_b, c.flags) +
+         VectorsBytes(rd.alpha_u, rd.alpha_v, rd.int_ior, rd.ext_ior, rd.flags, rd.reflectance_r,
+                      rd.reflectance_g, rd.reflectance_b, rd.transmittance_r, rd.transmittance_g,
+                      rd.transmittance_b);
+}
+
 size_t TableBytes(const MaterialTables& m) {
   const DielectricTable& d = m.dielectric;
   return VectorsBytes(m.diffuse.albedo_r, m.diffuse.albedo_g, m.diffuse.albedo_b,
@@ -66,7 +79,7 @@ size_t TableBytes(const MaterialTables& m) {
                       m.conductor.k_r, m.conductor.k_g, m.conductor.k_b) +
          VectorsBytes(m.rough_plastic.alpha, m.rough_plastic.int_ior, m.rough_plastic.ext_ior,
                       m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b) +
-         MatBTablesBytes(m);
+         MatBTablesBytes(m) + MatABytes(m);
 }
 
 size_t EmitterTablesBytes(const Scene& s) {

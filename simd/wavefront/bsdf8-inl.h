@@ -462,9 +462,16 @@ inline void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool 
     if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
     if (!sample) return;
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
-    const V8 rr = Gather(d, t.reflectance_r, b.index, i),
-             rg = Gather(d, t.reflectance_g, b.index, i),
-             rb = Gather(d, t.reflectance_b, b.index, i);
+    V8 rr = Gather(d, t.reflectance_r, b.index, i), rg = Gather(d, t.reflectance_g, b.index, i),
+       rb = Gather(d, t.reflectance_b, b.index, i);
+    if (t.fresnel()) {  // matA: Mitsuba's smooth conductor (SmoothConductorSample)
+      rr = hn::Mul(rr, FresnelConductor(d, oz, Gather(d, t.eta_r, b.index, i),
+                                        Gather(d, t.k_r, b.index, i)));
+      rg = hn::Mul(rg, FresnelConductor(d, oz, Gather(d, t.eta_g, b.index, i),
+                                        Gather(d, t.k_g, b.index, i)));
+      rb = hn::Mul(rb, FresnelConductor(d, oz, Gather(d, t.eta_b, b.index, i),
+                                        Gather(d, t.k_b, b.index, i)));
+    }
     StoreSample(d, b, i, hn::Gt(oz, zero), hn::Neg(ox), hn::Neg(oy), oz, rr, rg, rb, one, one);
   });
 }
@@ -697,6 +704,9 @@ HWY_AFTER_NAMESPACE();
 #include "simd/wavefront/plastic8-inl.h"
 #include "simd/wavefront/thin_dielectric8-inl.h"
 #include "simd/wavefront/two_sided8-inl.h"
+// matA: the Mitsuba microfacet models, each in its own -inl file.
+#include "simd/wavefront/rough_conductor8-inl.h"
+#include "simd/wavefront/rough_dielectric8-inl.h"
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
 namespace HWY_NAMESPACE {
@@ -732,7 +742,10 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
     case MaterialTag::kDielectric:
       return ShadeDielectric(m.dielectric, io, n, eval, sample);
     case MaterialTag::kConductor:
+      if (m.conductor.microfacet()) return ShadeRoughConductor(m.conductor, io, n, eval, sample);
       return ShadeConductor(m.conductor, io, n, eval, sample);
+    case MaterialTag::kRoughDielectric:  // matA
+      return ShadeRoughDielectric(m.rough_dielectric, io, n, eval, sample);
     case MaterialTag::kRoughPlastic:
       return ShadeRoughPlastic(m.rough_plastic, io, n, eval, sample);
     // matB

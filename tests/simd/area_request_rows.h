@@ -77,6 +77,9 @@ inline void AddRequestMaterials(Scene* scene) {
   m.AddBlend(0.3f, MaterialRef::Make(MaterialTag::kDiffuse, 0), plastic);
   m.AddBlend(0.6f, MaterialRef::Make(MaterialTag::kMirror, 0),
              MaterialRef::Make(MaterialTag::kConductor, 0));
+  // matA: rough glass, Beckmann isotropic and GGX anisotropic.
+  m.AddRoughDielectric(0.1f, 0.1f, kMicrofacetSampleVisible, 1.5f, 1.0f);
+  m.AddRoughDielectric(0.05f, 0.5f, uint8_t(kMicrofacetSampleVisible | kMicrofacetGgx), 1.33f, 1.0f);
 }
 
 inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
@@ -98,6 +101,8 @@ inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
       return uint32_t(m.thin_dielectric.size());
     case MaterialTag::kBlend:
       return uint32_t(m.blend.size());
+    case MaterialTag::kRoughDielectric:  // matA
+      return uint32_t(m.rough_dielectric.size());
   }
   return 0;
 }

@@ -1,9 +1,11 @@
 // Chi-square subjects of the BSDFs: each model's Sample against its Pdf, scalar and SIMD.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "engine/core/vec.h"
+#include "engine/scene/material_tables.h"
 #include "tools/chi2/subjects.h"
 
 namespace ptlab {
@@ -48,6 +50,11 @@ Vec3f Chi2Direction(float theta_deg, float phi_deg);
 /// through FlushLobeTail with their value at the mirror direction as the peak.
 Chi2Subject BsdfChi2Subject(std::string name, Chi2BsdfModel model, Chi2BsdfPath path, float alpha,
                             const Vec3f& wo, bool zoom = true);
+
+/// A batch sampler for the χ² lab running simd::ShadeBatch on one row `ref` of `m` with wo
+/// broadcast (no light evaluation); a sample is valid where its pdf is > 0.
+Chi2BatchSampleFn ShadeBatchSampler(std::shared_ptr<const MaterialTables> m, MaterialRef ref,
+                                    const Vec3f& wo);
 
 /// Registers, all expected to pass unless named "broken/...", incidences θ ∈ {0°, 30°, 60°, 85°}
 /// with azimuths φ ∈ {0°, 35°, 110°, 250°}:
