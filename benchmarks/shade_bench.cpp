@@ -8,6 +8,7 @@
 
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/conductor_presets.h"
+#include "engine/bsdf/plastic_precompute.h"
 #include "engine/wavefront/bsdf.h"
 #include "engine/core/rng.h"
 #include "engine/sampling/warp.h"
@@ -52,7 +53,22 @@ struct Inputs {
       tables.AddConductor(std::pow(10.0f, -3.0f * rng.NextFloat()), e, kk);
       tables.AddRoughPlastic(std::pow(10.0f, -3.0f * rng.NextFloat()), 1.5f, 1.0f,
                              {0.5f * a, 0.3f, 0.2f});
+      // matA: GGX and Beckmann rough glass, visible normals.
+      const float ad = std::pow(10.0f, -2.0f * rng.NextFloat());
+      tables.AddRoughDielectric(ad, ad, uint8_t(kMicrofacetSampleVisible | (i % 2)), 1.5f, 1.0f);
     }
+    // matB: 64 rows each of the smooth plastic, the thin dielectric and a blend (of a diffuse
+    // and a plastic), from their own stream so the rows above stay as they were.
+    Pcg32 rng_b(43, 55);
+    for (int i = 0; i < 64; ++i) {
+      PlasticDesc d;
+      d.int_ior = 1.3f + 0.4f * rng_b.NextFloat(), d.ext_ior = 1.0f, d.nonlinear = i % 2 == 0;
+      d.diffuse = {rng_b.NextFloat(), 0.3f, 0.2f};
+      const MaterialRef p = tables.AddPlastic(*MakePlasticRow(d));
+      tables.AddThinDielectric(1.3f + 0.4f * rng_b.NextFloat());
+      tables.AddBlend(rng_b.NextFloat(), MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(i)), p);
+    }
+    Pcg32 rng_index(44, 56);
     for (size_t i = 0; i < kBatch; ++i) {
       const float al = std::pow(10.0f, -3.0f * rng.NextFloat());
       const float c = 0.05f + 0.95f * rng.NextFloat();
@@ -70,10 +86,12 @@ struct Inputs {
       eta.push_back(0.05f + 3.0f * rng.NextFloat());
       k.push_back(0.5f + 7.0f * rng.NextFloat());
       eta_d.push_back(1.2f + 0.6f * rng.NextFloat());
-      const int tag = int(rng.NextFloat() * kMaterialTagCount) % kMaterialTagCount;
+      // The five original models (the mixed benchmark is kept as it was before matB's tags).
+      const int tag = int(rng.NextFloat() * 5) % 5;
       mixed.push_back(MaterialRef::Make(static_cast<MaterialTag>(tag), i % 64));
+      // Tags from 5 on draw from their own stream (the inputs of tags 0-4 stay as they were).
       for (int t = 0; t < kMaterialTagCount; ++t)
-        index[t].push_back(uint32_t(rng.NextFloat() * 64) % 64);
+        index[t].push_back(uint32_t((t < 5 ? rng : rng_index).NextFloat() * 64) % 64);
     }
   }
   DirectionArrays Wo() const { return {wo_x.data(), wo_y.data(), wo_z.data()}; }
@@ -187,7 +205,8 @@ template <bool kSimd>
 void BM_Shade8_ShadeBatch(benchmark::State& state) {
   const Inputs& in = GetInputs();
   const MaterialTag tag = static_cast<MaterialTag>(state.range(0));
-  const char* names[] = {"diffuse", "mirror", "dielectric", "conductor", "rough_plastic"};
+  const char* names[] = {"diffuse", "mirror", "dielectric", "conductor", "rough_plastic",
+                         "rough_dielectric",    "tag6",   "plastic",    "thin_dielectric", "blend"};
   state.SetLabel(names[state.range(0)]);
   Outputs out;
   const ShadeOutputs o = out.Shade();
@@ -233,10 +252,75 @@ BENCHMARK_TEMPLATE(BM_Shade8_DielectricFresnel, false)->Name("BM_Shade8_Dielectr
 BENCHMARK_TEMPLATE(BM_Shade8_DielectricFresnel, true)->Name("BM_Shade8_DielectricFresnel/simd");
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, false)
     ->Name("BM_Shade8_ShadeBatch/scalar")
-    ->DenseRange(0, 4);
-BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd")->DenseRange(0, 4);
+    ->DenseRange(0, 5);
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd")->DenseRange(0, 5);
+// matB: plastic (7), thin dielectric (8), blend (9).
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, false)->Name("BM_Shade8_ShadeBatch/scalar")->DenseRange(7, 9);
+BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd")->DenseRange(7, 9);
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, false)->Name("BM_Shade8_ShadeHitsMixed/scalar");
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, true)->Name("BM_Shade8_ShadeHitsMixed/simd");
+
+// matA: the Mitsuba microfacet kernels per sample (eval + pdf at a light direction and a
+// sample), one table per case: range 0 rough conductor Beckmann, 1 rough conductor GGX (both
+// visible normals, 1 in 3 rows 10:1 anisotropic), 2 rough dielectric Beckmann, 3 rough
+// dielectric GGX, 4 smooth conductor; the directions and numbers of the inputs above.
+struct MicrofacetInputs {
+  MaterialTables tables[5];
+  std::vector<uint32_t> index;
+  MicrofacetInputs() {
+    Pcg32 rng(7, 77);
+    const char* names[] = {"Au", "Ag", "Al", "Cu", "Fe", "Na", "Si", "none"};
+    for (int i = 0; i < 64; ++i) {
+      Color3f e, kk;
+      LookupConductorPreset(names[i % 8], &e, &kk);
+      const float a = std::pow(10.0f, -2.0f * rng.NextFloat());
+      const float av = i % 3 == 0 ? 0.1f * a : a;
+      tables[0].AddRoughConductor(a, av, kMicrofacetSampleVisible, e, kk, {1, 1, 1});
+      tables[1].AddRoughConductor(a, av, uint8_t(kMicrofacetSampleVisible | kMicrofacetGgx), e, kk,
+                                  {1, 1, 1});
+      tables[2].AddRoughDielectric(a, av, kMicrofacetSampleVisible, 1.5f, 1.0f);
+      tables[3].AddRoughDielectric(a, av, uint8_t(kMicrofacetSampleVisible | kMicrofacetGgx), 1.5f,
+                                   1.0f);
+      tables[4].AddSmoothConductor(e, kk);
+    }
+    for (size_t i = 0; i < kBatch; ++i) index.push_back(uint32_t(rng.NextFloat() * 64) % 64);
+  }
+};
+
+const MicrofacetInputs& GetMicrofacetInputs() {
+  static const MicrofacetInputs in;
+  return in;
+}
+
+template <bool kSimd>
+void BM_Shade8_Microfacet(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  const MicrofacetInputs& mf = GetMicrofacetInputs();
+  const int c = int(state.range(0));
+  const char* labels[] = {"rough_conductor_beckmann", "rough_conductor_ggx",
+                          "rough_dielectric_beckmann", "rough_dielectric_ggx", "smooth_conductor"};
+  state.SetLabel(labels[c]);
+  const MaterialTag tag = c < 2   ? MaterialTag::kConductor
+                          : c < 4 ? MaterialTag::kRoughDielectric
+                                  : MaterialTag::kMirror;
+  Outputs out;
+  const ShadeOutputs o = out.Shade();
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::ShadeBatch(mf.tables[c], tag, mf.index.data(), kBatch, in.Shade(), o);
+    } else {
+      ptlab::ShadeBatch(mf.tables[c], tag, mf.index.data(), kBatch, in.Shade(), o);
+    }
+    benchmark::DoNotOptimize(out.v[10].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+BENCHMARK_TEMPLATE(BM_Shade8_Microfacet, false)
+    ->Name("BM_Shade8_Microfacet/scalar")
+    ->DenseRange(0, 4);
+BENCHMARK_TEMPLATE(BM_Shade8_Microfacet, true)->Name("BM_Shade8_Microfacet/simd")->DenseRange(0, 4);
 
 }  // namespace
 }  // namespace ptlab

@@ -9,7 +9,15 @@ namespace ptlab {
 
 /// True for models whose every lobe is a Dirac delta (mirror, smooth dielectric).
 constexpr bool IsDeltaMaterial(MaterialTag tag) {
-  return tag == MaterialTag::kMirror || tag == MaterialTag::kDielectric;
+  return tag == MaterialTag::kMirror || tag == MaterialTag::kDielectric ||
+         tag == MaterialTag::kThinDielectric;
+}
+/// True for models that are not delta materials but whose samples may come from a delta lobe
+/// (a plastic's coating, a blend's delta child): BsdfSample::delta says which lobe a sample
+/// took, and a path that continues from such a sample is specular (its emission is not seen
+/// by emitter sampling), while Eval / Pdf cover the non-delta lobes only.
+constexpr bool MixesDeltaLobes(MaterialTag tag) {
+  return tag == MaterialTag::kPlastic || tag == MaterialTag::kBlend;
 }
 
 // The functions below are the scalar oracle of every model, addressed by MaterialRef (the

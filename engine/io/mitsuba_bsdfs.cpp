@@ -1,4 +1,7 @@
-// Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse and dielectric.
+// Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse, dielectric, (matA) conductor,
+// roughconductor, roughdielectric, (matB) plastic, roughplastic, thindielectric, twosided, blendbsdf.
+#include "engine/bsdf/plastic_precompute.h"      // matB
+#include "engine/io/mitsuba_microfacet_bsdfs.h"  // matA
 #include "engine/io/mitsuba_scene_builder.h"
 #include "engine/io/mitsuba_spectrum.h"
 #include "engine/io/xml_properties.h"  // FormatColor
@@ -18,6 +21,45 @@ Status Ior(const MitsubaObject& obj, const char* name, float* ior) {
   PTLAB_RETURN_IF_ERROR(obj.Float(name, ior));
   if (!(*ior > 0)) return obj.Error(name, std::string(name) + " must be > 0");
   return Status::Ok();
+}
+
+// matB: a colour property that must be ≥ 0 (and ≤ 1 when `at_most_one`).
+Status CheckedColor(const MitsubaObject& obj, const char* name, bool at_most_one, Color3f* c) {
+  PTLAB_RETURN_IF_ERROR(obj.Color(name, SpectrumUse::kReflectance, c));
+  const bool ok = c->r >= 0 && c->g >= 0 && c->b >= 0 &&
+                  (!at_most_one || (c->r <= 1 && c->g <= 1 && c->b <= 1));
+  if (!ok)
+    return obj.Error(name, std::string(name) + " (" + FormatColor(*c) +
+                               ") is out of range; expected components in " +
+                               (at_most_one ? "[0, 1]" : "[0, inf)"));
+  return Status::Ok();
+}
+
+// matB: Mitsuba's `plastic` and `roughplastic`.
+StatusOr<PlasticDesc> ReadPlastic(const MitsubaObject& obj, bool rough) {
+  std::vector<const char*> names = {"int_ior", "ext_ior", "diffuse_reflectance",
+                                    "specular_reflectance", "nonlinear"};
+  if (rough) names.insert(names.end(), {"distribution", "alpha", "sample_visible"});
+  PTLAB_RETURN_IF_ERROR(obj.Expect(names));
+  PlasticDesc p;
+  PTLAB_RETURN_IF_ERROR(Ior(obj, "int_ior", &p.int_ior));
+  PTLAB_RETURN_IF_ERROR(Ior(obj, "ext_ior", &p.ext_ior));
+  PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "diffuse_reflectance", true, &p.diffuse));
+  PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "specular_reflectance", false, &p.specular));
+  PTLAB_RETURN_IF_ERROR(obj.Boolean("nonlinear", &p.nonlinear));
+  if (!rough) return p;
+  std::string distribution = "beckmann";
+  PTLAB_RETURN_IF_ERROR(obj.String("distribution", &distribution));
+  if (distribution == "beckmann") p.distribution = CoatingDistribution::kBeckmann;
+  else if (distribution == "ggx") p.distribution = CoatingDistribution::kGgx;
+  else
+    return obj.Error("distribution", "unknown distribution '" + distribution +
+                                         "'; expected beckmann or ggx");
+  PTLAB_RETURN_IF_ERROR(obj.Float("alpha", &p.alpha));
+  if (!(p.alpha >= 1e-4f && p.alpha <= 1.0f))
+    return obj.Error("alpha", "alpha must be in [1e-4, 1]");
+  PTLAB_RETURN_IF_ERROR(obj.OnlyDefault("sample_visible", true));
+  return p;
 }
 
 }  // namespace
@@ -62,14 +104,40 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     }
     // Mitsuba scales radiance by (η_o/η_i)² on refraction.
     ref = scene_.materials.AddDielectric(int_ior, ext_ior, kDielectricScaleRadiance);
-  } else if (type == "twosided") {
-    return Unsupported(node,
-                       "ptlab's diffuse is one-sided like Mitsuba's, and has no two-sided "
-                       "form");
-  } else if (type == "conductor" || type == "roughconductor" || type == "plastic" ||
-             type == "roughplastic" || type == "roughdielectric" || type == "thindielectric" ||
-             type == "principled" || type == "principledthin" || type == "mask" ||
-             type == "normalmap" || type == "bumpmap" || type == "blendbsdf" || type == "null" ||
+  } else if (type == "plastic" || type == "roughplastic") {  // matB
+    StatusOr<PlasticDesc> desc = ReadPlastic(obj, type == "roughplastic");
+    if (!desc.ok()) return desc.status();
+    // The rough coating is implemented (engine/bsdf/plastic_rough.h), and the suite's two
+    // roughplastic scenes render with every sphere pixel passing Mitsuba's Z test; they still
+    // fail it (98.9 % of channels, 99.75 % needed) on pixels of the environment map seen
+    // directly at the image border, which no other suite scene exercises yet. Refused until
+    // that is resolved, so the suite's table stays true (docs/materials.md). Delete this test
+    // to enable it.
+    if (desc->distribution != CoatingDistribution::kSmooth)
+      return Unsupported(node, "refused until the suite's envmap background matches "
+                               "(docs/materials.md)");
+    StatusOr<PlasticRow> row = MakePlasticRow(*desc);
+    if (!row.ok()) return Unsupported(node, row.status().message());
+    ref = scene_.materials.AddPlastic(*row);
+  } else if (type == "thindielectric") {  // matB
+    PTLAB_RETURN_IF_ERROR(
+        obj.Expect({"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"}));
+    float int_ior = 1.5046f, ext_ior = 1.000277f;  // Mitsuba's defaults: bk7 in air
+    PTLAB_RETURN_IF_ERROR(Ior(obj, "int_ior", &int_ior));
+    PTLAB_RETURN_IF_ERROR(Ior(obj, "ext_ior", &ext_ior));
+    Color3f refl{1, 1, 1}, trans{1, 1, 1};
+    PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "specular_reflectance", false, &refl));
+    PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "specular_transmittance", false, &trans));
+    ref = scene_.materials.AddThinDielectric(int_ior / ext_ior, refl, trans);
+  } else if (type == "twosided" || type == "blendbsdf") {  // matB: wrappers of nested bsdfs
+    return WrapperBsdf(node, obj);
+  } else if (type == "conductor" || type == "roughconductor" || type == "roughdielectric") {
+    // matA: the microfacet family (engine/io/mitsuba_microfacet_bsdfs.cpp).
+    StatusOr<MaterialRef> added = AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials);
+    if (!added.ok()) return added.status();
+    ref = *added;
+  } else if (type == "principled" || type == "principledthin" || type == "mask" ||
+             type == "normalmap" || type == "bumpmap" || type == "null" ||
              type == "polarizer" || type == "retarder" || type == "circular" ||
              type == "measured" || type == "pplastic" || type == "hair") {
     return Unsupported(node);
@@ -79,6 +147,48 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
   if (!obj.children().empty())
     return obj.children()[0]->Error("<" + obj.children()[0]->tag + "> is not allowed inside " +
                                     DescribeMitsuba(node));
+  bsdfs_[&node] = ref;
+  return ref;
+}
+
+// matB: `twosided` (one nested bsdf, flagged two-sided: engine/scene/two_sided.h) and
+// `blendbsdf` (two nested bsdfs, a scalar weight).
+StatusOr<MaterialRef> MitsubaSceneBuilder::WrapperBsdf(const MitsubaNode& node,
+                                                       const MitsubaObject& obj) {
+  const std::vector<const MitsubaNode*>& kids = obj.children();
+  for (const MitsubaNode* k : kids)
+    if (k->tag != "bsdf")
+      return k->Error("<" + k->tag + "> is not allowed inside " + DescribeMitsuba(node));
+  MaterialRef ref;
+  if (obj.type() == "twosided") {
+    PTLAB_RETURN_IF_ERROR(obj.Expect({}));
+    if (kids.size() == 2)
+      return Unsupported(node, "a different bsdf on the back side (two nested bsdfs)");
+    if (kids.size() != 1) return node.Error("twosided expects one nested <bsdf>");
+    // The flag belongs to the child's row: a child that other shapes may use one-sided (a
+    // bsdf with an id, or one already built) would become two-sided for them too.
+    if (kids[0]->Attribute("id") != nullptr || bsdfs_.count(kids[0]) != 0)
+      return Unsupported(node, "a nested bsdf that is referenced elsewhere (give twosided its "
+                               "own nested bsdf)");
+    StatusOr<MaterialRef> child = Bsdf(*kids[0]);
+    if (!child.ok()) return child.status();
+    ref = *child;
+    scene_.materials.two_sided.Set(ref);
+  } else {
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"weight"}));
+    const MitsubaProperty* p = obj.Get("weight");
+    float weight = 0.5f;
+    if (p != nullptr && p->type == MitsubaProperty::Type::kObject)
+      return Unsupported(node, "a textured weight (only a scalar <float name=\"weight\">)");
+    PTLAB_RETURN_IF_ERROR(obj.Float("weight", &weight));
+    if (!(weight >= 0 && weight <= 1)) return obj.Error("weight", "weight must be in [0, 1]");
+    if (kids.size() != 2) return node.Error("blendbsdf expects two nested <bsdf>s");
+    StatusOr<MaterialRef> a = Bsdf(*kids[0]);
+    if (!a.ok()) return a.status();
+    StatusOr<MaterialRef> b = Bsdf(*kids[1]);
+    if (!b.ok()) return b.status();
+    ref = scene_.materials.AddBlend(weight, *a, *b);
+  }
   bsdfs_[&node] = ref;
   return ref;
 }

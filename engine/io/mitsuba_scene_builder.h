@@ -65,6 +65,8 @@ class MitsubaSceneBuilder {
   Status SceneShape(const MitsubaNode& node);
   StatusOr<uint32_t> ShapeGroup(const MitsubaNode& node);
   Status Instance(const MitsubaNode& node);
+  // matB: twosided and blendbsdf (engine/io/mitsuba_bsdfs.cpp).
+  StatusOr<MaterialRef> WrapperBsdf(const MitsubaNode& node, const MitsubaObject& obj);
 
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);

@@ -131,6 +131,8 @@ bool SampleEmission(const Scene& scene, const SceneSphere& sphere, EmitterRef e,
       out->infinite = true;
       return !IsBlack(out->radiance);
     }
+    case EmitterTag::kProjector:  // not sampled yet: bdpt and ptracer refuse such scenes
+      return false;
   }
   return false;
 }
@@ -165,6 +167,8 @@ void EmissionPdf(const Scene& scene, const SceneSphere& sphere, EmitterRef e, co
     case EmitterTag::kDistantDisk:
       *pdf_pos = DiskPdf(sphere);
       *pdf_dir = InfiniteLightPdf(scene, e, -w);
+      return;
+    case EmitterTag::kProjector:
       return;
   }
 }

@@ -25,8 +25,8 @@ namespace ptlab::integrator {
 inline constexpr float kWhittedContinuation = 0.95f;
 /// Nori's path_* Russian roulette (from depth 3): the probability that a path with this
 /// throughput and accumulated relative index of refraction η goes on, min(max component ·
-/// η², 0.99). One formula for the scalar integrators, the wavefront's per-row loop and the
-/// vertices slot's oracle (simd/wavefront/vertices8 repeats its operations in this order).
+/// η², 0.99). One formula for the scalar integrators and the wavefront's vertices slot's
+/// oracle (simd/wavefront/vertices8 repeats its operations in this order).
 inline float NoriContinuation(const Color3f& throughput, float eta) {
   return std::min(MaxComponent(throughput) * eta * eta, 0.99f);
 }

@@ -8,6 +8,11 @@
 #include "engine/core/vec.h"
 #include "engine/scene/refs.h"
 #include "engine/scene/texture_tables.h"
+// matB: coated plastics, thin dielectric, blend, two-sided flags.
+#include "engine/scene/blend_table.h"
+#include "engine/scene/plastic_table.h"
+#include "engine/scene/thin_dielectric_table.h"
+#include "engine/scene/two_sided.h"
 
 namespace ptlab {
 
@@ -23,13 +28,19 @@ struct DiffuseTable {
 };
 
 /// Specular mirror: the reflected sample's weight per RGB channel (1 1 1 for Nori's mirror; a
-/// CS184 CGL <mirror> tints it with its reflectance).
+/// CS184 CGL <mirror> tints it with its reflectance). Mitsuba's smooth `conductor` is a mirror
+/// whose weight is also multiplied by the conductor Fresnel term of its complex IOR η + iκ:
+/// `eta_*` and `k_*` stay empty until a row has one (η = κ = 0 gives F = 1 exactly).
 struct MirrorTable {
   AlignedVector<float> reflectance_r, reflectance_g, reflectance_b;
+  AlignedVector<float> eta_r, eta_g, eta_b, k_r, k_g, k_b;
   size_t size() const { return reflectance_r.size(); }
   Color3f Reflectance(size_t i) const {
     return {reflectance_r[i], reflectance_g[i], reflectance_b[i]};
   }
+  bool fresnel() const { return !eta_r.empty(); }
+  Color3f Eta(size_t i) const { return fresnel() ? Color3f{eta_r[i], eta_g[i], eta_b[i]} : Color3f{}; }
+  Color3f K(size_t i) const { return fresnel() ? Color3f{k_r[i], k_g[i], k_b[i]} : Color3f{}; }
 };
 
 /// Options of a dielectric row (bit flags; see engine/bsdf/dielectric.h).
@@ -61,10 +72,35 @@ struct DielectricTable {
   }
 };
 
-/// Rough conductor, Beckmann (Mitsuba `roughconductor`): per-RGB eta and k.
+/// Options of a conductor or rough dielectric row in its Mitsuba form (bit flags).
+enum MicrofacetFlags : uint8_t {
+  kMicrofacetGgx = 1u << 0,            // GGX; else Beckmann
+  kMicrofacetSampleVisible = 1u << 1,  // visible-normal sampling
+};
+
+/// Rough conductor (Mitsuba `roughconductor`): per-RGB eta and k. Rows added by AddConductor
+/// are Nori's form: isotropic Beckmann with Walter's rational G1 and D cos θ sampling
+/// (engine/bsdf/conductor.h). The Mitsuba form (engine/bsdf/rough_conductor.h: Beckmann or GGX,
+/// alpha = αu and alpha_v, visible normals, specular reflectance) needs the columns
+/// `alpha_v`, `flags` (MicrofacetFlags) and `specular_*`, which stay empty until
+/// AddRoughConductor adds a row; from then on every row is evaluated in the Mitsuba form
+/// (earlier rows get αv = α, Beckmann, D cos θ sampling, specular 1).
 struct ConductorTable {
   AlignedVector<float> alpha, eta_r, eta_g, eta_b, k_r, k_g, k_b;
+  AlignedVector<float> alpha_v, specular_r, specular_g, specular_b;
+  AlignedVector<uint8_t> flags;
   size_t size() const { return alpha.size(); }
+  bool microfacet() const { return !alpha_v.empty(); }
+};
+
+/// Mitsuba `roughdielectric` (engine/bsdf/rough_dielectric.h): αu, αv, flags
+/// (MicrofacetFlags), IORs, specular reflectance and transmittance.
+struct RoughDielectricTable {
+  AlignedVector<float> alpha_u, alpha_v, int_ior, ext_ior;
+  AlignedVector<uint8_t> flags;
+  AlignedVector<float> reflectance_r, reflectance_g, reflectance_b;
+  AlignedVector<float> transmittance_r, transmittance_g, transmittance_b;
+  size_t size() const { return alpha_u.size(); }
 };
 
 /// Nori `microfacet`: Beckmann rough plastic, kd + ks specular lobe, ks = 1 - max(kd).
@@ -79,6 +115,12 @@ struct MaterialTables {
   DielectricTable dielectric;
   ConductorTable conductor;
   RoughPlasticTable rough_plastic;
+  // matB
+  PlasticTable plastic;
+  ThinDielectricTable thin_dielectric;
+  BlendTable blend;
+  TwoSidedFlags two_sided;
+  RoughDielectricTable rough_dielectric;  // matA
 
   MaterialRef AddDiffuse(const Color3f& albedo) {
     diffuse.albedo_r.push_back(albedo.r), diffuse.albedo_g.push_back(albedo.g),
@@ -96,7 +138,25 @@ struct MaterialTables {
   MaterialRef AddMirror(const Color3f& reflectance = {1, 1, 1}) {
     mirror.reflectance_r.push_back(reflectance.r), mirror.reflectance_g.push_back(reflectance.g),
         mirror.reflectance_b.push_back(reflectance.b);
+    if (mirror.fresnel()) {
+      for (auto* c : {&mirror.eta_r, &mirror.eta_g, &mirror.eta_b, &mirror.k_r, &mirror.k_g,
+                      &mirror.k_b})
+        c->push_back(0.0f);
+    }
     return MaterialRef::Make(MaterialTag::kMirror, uint32_t(mirror.size() - 1));
+  }
+  /// Mitsuba's smooth `conductor`: a mirror row weighted by specular_reflectance × F(η, κ).
+  MaterialRef AddSmoothConductor(const Color3f& eta, const Color3f& k,
+                                 const Color3f& specular = {1, 1, 1}) {
+    auto& t = mirror;
+    const MaterialRef ref = AddMirror(specular);
+    // The first such row gives every row the columns (η = κ = 0: F = 1 for the earlier ones).
+    for (auto* c : {&t.eta_r, &t.eta_g, &t.eta_b, &t.k_r, &t.k_g, &t.k_b})
+      c->resize(t.size(), 0.0f);
+    const size_t i = ref.index();
+    t.eta_r[i] = eta.r, t.eta_g[i] = eta.g, t.eta_b[i] = eta.b;
+    t.k_r[i] = k.r, t.k_g[i] = k.g, t.k_b[i] = k.b;
+    return ref;
   }
   MaterialRef AddDielectric(float int_ior, float ext_ior, uint8_t flags = 0) {
     auto& t = dielectric;
@@ -133,13 +193,58 @@ struct MaterialTables {
     t.alpha.push_back(alpha);
     t.eta_r.push_back(eta.r), t.eta_g.push_back(eta.g), t.eta_b.push_back(eta.b);
     t.k_r.push_back(k.r), t.k_g.push_back(k.g), t.k_b.push_back(k.b);
+    if (t.microfacet()) {
+      t.alpha_v.push_back(alpha), t.flags.push_back(uint8_t{0});
+      t.specular_r.push_back(1.0f), t.specular_g.push_back(1.0f), t.specular_b.push_back(1.0f);
+    }
     return MaterialRef::Make(MaterialTag::kConductor, uint32_t(t.size() - 1));
+  }
+  /// Mitsuba's roughconductor (switches the table to its Mitsuba form, see ConductorTable).
+  MaterialRef AddRoughConductor(float alpha_u, float alpha_v, uint8_t microfacet_flags,
+                                const Color3f& eta, const Color3f& k, const Color3f& specular) {
+    auto& t = conductor;
+    const bool first = !t.microfacet();
+    const MaterialRef ref = AddConductor(alpha_u, eta, k);
+    if (first) {  // earlier rows: αv = α, Beckmann, D cos θ sampling, specular 1
+      t.alpha_v.assign(t.alpha.begin(), t.alpha.end());
+      t.flags.assign(t.size(), uint8_t{0});
+      for (auto* c : {&t.specular_r, &t.specular_g, &t.specular_b}) c->assign(t.size(), 1.0f);
+    }
+    const size_t i = ref.index();
+    t.alpha_v[i] = alpha_v, t.flags[i] = microfacet_flags;
+    t.specular_r[i] = specular.r, t.specular_g[i] = specular.g, t.specular_b[i] = specular.b;
+    return ref;
+  }
+  /// Mitsuba's roughdielectric.
+  MaterialRef AddRoughDielectric(float alpha_u, float alpha_v, uint8_t microfacet_flags,
+                                 float int_ior, float ext_ior, const Color3f& reflectance = {1, 1, 1},
+                                 const Color3f& transmittance = {1, 1, 1}) {
+    auto& t = rough_dielectric;
+    t.alpha_u.push_back(alpha_u), t.alpha_v.push_back(alpha_v), t.flags.push_back(microfacet_flags);
+    t.int_ior.push_back(int_ior), t.ext_ior.push_back(ext_ior);
+    t.reflectance_r.push_back(reflectance.r), t.reflectance_g.push_back(reflectance.g),
+        t.reflectance_b.push_back(reflectance.b);
+    t.transmittance_r.push_back(transmittance.r), t.transmittance_g.push_back(transmittance.g),
+        t.transmittance_b.push_back(transmittance.b);
+    return MaterialRef::Make(MaterialTag::kRoughDielectric, uint32_t(t.size() - 1));
   }
   MaterialRef AddRoughPlastic(float alpha, float int_ior, float ext_ior, const Color3f& kd) {
     auto& t = rough_plastic;
     t.alpha.push_back(alpha), t.int_ior.push_back(int_ior), t.ext_ior.push_back(ext_ior);
     t.kd_r.push_back(kd.r), t.kd_g.push_back(kd.g), t.kd_b.push_back(kd.b);
     return MaterialRef::Make(MaterialTag::kRoughPlastic, uint32_t(t.size() - 1));
+  }
+  // matB: rows of the coated plastics, the thin dielectric and the blend (see their tables).
+  MaterialRef AddPlastic(const PlasticRow& row) {
+    return MaterialRef::Make(MaterialTag::kPlastic, plastic.Add(row));
+  }
+  MaterialRef AddThinDielectric(float eta, const Color3f& reflectance = {1, 1, 1},
+                                const Color3f& transmittance = {1, 1, 1}) {
+    return MaterialRef::Make(MaterialTag::kThinDielectric,
+                             thin_dielectric.Add(eta, reflectance, transmittance));
+  }
+  MaterialRef AddBlend(float weight, MaterialRef first, MaterialRef second) {
+    return MaterialRef::Make(MaterialTag::kBlend, blend.Add(weight, first, second));
   }
 };
 

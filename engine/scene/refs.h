@@ -12,8 +12,14 @@ enum class MaterialTag : uint8_t {
   kDielectric = 2,
   kConductor = 3,
   kRoughPlastic = 4,
+  // matA: Mitsuba's roughdielectric (6 is unused: `conductor` is a mirror row).
+  kRoughDielectric = 5,
+  // matB: Mitsuba's coated plastics (plastic, roughplastic), thindielectric, blendbsdf.
+  kPlastic = 7,
+  kThinDielectric = 8,
+  kBlend = 9,
 };
-inline constexpr int kMaterialTagCount = 5;
+inline constexpr int kMaterialTagCount = 10;
 
 /// The closed set of emitter kinds.
 enum class EmitterTag : uint8_t {

@@ -16,7 +16,9 @@ static_assert(sizeof(SphereTable) == 5 * kColumn);
 static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
 static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
-static_assert(sizeof(MaterialTables) == (4 + 3 + 9 + 7 + 6) * kColumn);
+static_assert(sizeof(MaterialTables) ==
+              (4 + 3 + 9 + 7 + 6 + /* matA */ 6 + 5 + 11 + /* matB */ 11 + 7 + 3 +
+               kMaterialTagCount) * kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
 static_assert(sizeof(EnvironmentMapTable) == 14 * kColumn);
@@ -40,6 +42,32 @@ size_t TableBytes(const MeshTable& t) {
          StringsBytes(t.name);
 }
 
+// matB: the coated plastics, the thin dielectric, the blend and the two-sided flags.
+size_t MatBTablesBytes(const MaterialTables& m) {
+  const PlasticTable& p = m.plastic;
+  const ThinDielectricTable& t = m.thin_dielectric;
+  size_t bytes = VectorsBytes(p.distribution, p.alpha, p.eta, p.base_r, p.base_g, p.base_b,
+                              p.specular_r, p.specular_g, p.specular_b,
+                              p.specular_sampling_weight, p.transmittance) +
+                 VectorsBytes(t.eta, t.reflectance_r, t.reflectance_g, t.reflectance_b,
+                              t.transmittance_r, t.transmittance_g, t.transmittance_b) +
+                 VectorsBytes(m.blend.weight, m.blend.first, m.blend.second);
+  for (const auto& c : m.two_sided.by_tag) bytes += VectorBytes(c);
+  return bytes;
+}
+
+// matA: the smooth conductor's and rough conductor's optional columns, the rough dielectric.
+size_t MatABytes(const MaterialTables& m) {
+  const MirrorTable& mi = m.mirror;
+  const ConductorTable& c = m.conductor;
+  const RoughDielectricTable& rd = m.rough_dielectric;
+  return VectorsBytes(mi.eta_r, mi.eta_g, mi.eta_b, mi.k_r, mi.k_g, mi.k_b) +
+         VectorsBytes(c.alpha_v, c.specular_r, c.specular_g, c.specular_b, c.flags) +
+         VectorsBytes(rd.alpha_u, rd.alpha_v, rd.int_ior, rd.ext_ior, rd.flags, rd.reflectance_r,
+                      rd.reflectance_g, rd.reflectance_b, rd.transmittance_r, rd.transmittance_g,
+                      rd.transmittance_b);
+}
+
 size_t TableBytes(const MaterialTables& m) {
   const DielectricTable& d = m.dielectric;
   return VectorsBytes(m.diffuse.albedo_r, m.diffuse.albedo_g, m.diffuse.albedo_b,
@@ -50,7 +78,8 @@ size_t TableBytes(const MaterialTables& m) {
          VectorsBytes(m.conductor.alpha, m.conductor.eta_r, m.conductor.eta_g, m.conductor.eta_b,
                       m.conductor.k_r, m.conductor.k_g, m.conductor.k_b) +
          VectorsBytes(m.rough_plastic.alpha, m.rough_plastic.int_ior, m.rough_plastic.ext_ior,
-                      m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b);
+                      m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b) +
+         MatBTablesBytes(m) + MatABytes(m);
 }
 
 size_t EmitterTablesBytes(const Scene& s) {

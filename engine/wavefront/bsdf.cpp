@@ -27,11 +27,13 @@ void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* materi
       out.weight.r[i] = s.weight.r, out.weight.g[i] = s.weight.g, out.weight.b[i] = s.weight.b;
       out.pdf[i] = s.pdf;
       out.eta[i] = s.eta;
+      if (out.delta != nullptr) out.delta[i] = s.delta ? 1.0f : 0.0f;
     } else {
       out.wi.x[i] = out.wi.y[i] = out.wi.z[i] = 0.0f;
       out.weight.r[i] = out.weight.g[i] = out.weight.b[i] = 0.0f;
       out.pdf[i] = 0.0f;
       out.eta[i] = 1.0f;
+      if (out.delta != nullptr) out.delta[i] = 0.0f;
     }
   }
 }

@@ -68,12 +68,15 @@ struct ShadeOutputs {
   ColorOutArrays weight;   // sample weight f |cos θi| / pdf (0 when there is no sample)
   float* pdf = nullptr;    // sample pdf; 0 means "no sample" (BsdfSampleDirection false)
   float* eta = nullptr;    // relative IOR crossed by the sample (1 unless refracted)
+  // matB: 1 where the sample took a Dirac-delta lobe (BsdfSample::delta), else 0; written with
+  // the sample when non-null (the wavefront reads it for tags that MixesDeltaLobes).
+  float* delta = nullptr;
 };
 
 /// One shading step for n hits that all have material tag `tag`; row i uses table row
 /// material_index[i]. The scalar oracle of simd::ShadeBatch: per row, BsdfEval, BsdfPdf and
 /// BsdfSampleDirection (engine/bsdf/bsdf.h). Whether a sample is a delta lobe follows from
-/// the tag (IsDeltaMaterial).
+/// the tag (IsDeltaMaterial), except for tags that MixesDeltaLobes: out.delta says it per row.
 void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index, size_t n,
                 const ShadeInputs& in, const ShadeOutputs& out);
 
@@ -97,6 +100,7 @@ struct ShadeScratch {
   AlignedVector<float> in[9];    // wo xyz, wl xyz, u_lobe, u_x, u_y
   AlignedVector<float> out[12];  // f rgb, pdf_l, wi xyz, weight rgb, pdf, eta
   AlignedVector<uint32_t> texture_entry;  // in.texture.entry per group row (textures only)
+  AlignedVector<float> delta;    // matB: ShadeOutputs::delta
 };
 
 /// Heap bytes of the scratch: capacity × element size of every array.
@@ -104,6 +108,7 @@ inline size_t ShadeScratchBytes(const ShadeScratch& s) {
   size_t bytes = VectorsBytes(s.partition.slot, s.partition.index, s.texture_entry);
   for (const auto& v : s.in) bytes += VectorBytes(v);
   for (const auto& v : s.out) bytes += VectorBytes(v);
+  bytes += VectorBytes(s.delta);
   return bytes;
 }
 
@@ -153,6 +158,7 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
       out.wi.x[i] = out.wi.y[i] = out.wi.z[i] = 0.0f;
       out.weight.r[i] = out.weight.g[i] = out.weight.b[i] = out.pdf[i] = 0.0f;
       out.eta[i] = 1.0f;
+      if (out.delta != nullptr) out.delta[i] = 0.0f;
     }
   }
   // One tag for every row: the rows are already that tag's contiguous batch, in input order.
@@ -199,9 +205,15 @@ void ShadeHitsWith(BatchFn&& batch, const MaterialTables& m, const MaterialRef* 
     bout.weight = {tout[7], tout[8], tout[9]};
     bout.pdf = tout[10];
     bout.eta = tout[11];
+    if (sample && out.delta != nullptr) {
+      if (scratch->delta.size() < count) scratch->delta.resize(count);
+      bout.delta = scratch->delta.data();
+    }
     batch(m, static_cast<MaterialTag>(t), part.index.data() + begin, count, bin, bout);
     for (int c = eval ? 0 : 4; c < (sample ? 12 : 4); ++c)
       for (size_t j = 0; j < count; ++j) dst_out[c][slot[j]] = tout[c][j];
+    if (bout.delta != nullptr)
+      for (size_t j = 0; j < count; ++j) out.delta[slot[j]] = bout.delta[j];
   }
 }
 

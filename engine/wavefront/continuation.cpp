@@ -24,7 +24,7 @@ void ContinuePaths(const ContinueBatchRules& rules, size_t n, const ContinueBatc
     }
     paths.eta[i] *= in.eta[k];
     if (rules.cut_black && IsBlack(paths.throughput[i])) continue;
-    paths.specular[i] = specular;
+    paths.specular[i] = in.delta != nullptr ? (in.delta[k] != 0 ? 1u : 0u) : specular;
     paths.prev_pdf[i] = in.pdf[k];
     const uint32_t q = in.entry[k];
     paths.prev_p[i] = in.its[q].p;

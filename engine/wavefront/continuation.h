@@ -23,6 +23,9 @@ struct ContinueBatchInputs {
   const float* eta = nullptr;             // the sample's relative index of refraction
   const float *wi_x = nullptr, *wi_y = nullptr, *wi_z = nullptr;  // local, unit
   const SurfaceInteraction* its = nullptr;                        // by queue entry: p is read
+  // matB: per row, non-zero where the sample took a delta lobe (ShadeOutputs::delta); null:
+  // every row is as rules.specular says.
+  const float* delta = nullptr;
 };
 
 /// The path state the batch reads and writes, by path id.
@@ -52,7 +55,7 @@ struct ContinueBatchRules {
 /// Per row k, as the wavefront's loop did: nothing unless pdf > 0; then, for path i,
 /// throughput[i] *= weight (· roulette_scale first, when given), eta[i] *= eta; the path ends
 /// if rules.cut_black and its throughput is black (IsBlack); else specular[i], prev_pdf[i] and
-/// prev_p[i] (its[entry].p) are set and the row's spawn row (entry, wi) and owner (i) appended.
+/// prev_p[i] (its[entry].p) are set (specular[i] from in.delta when given) and the row's spawn row (entry, wi) and owner (i) appended.
 void ContinuePaths(const ContinueBatchRules& rules, size_t n, const ContinueBatchInputs& in,
                    const ContinueBatchPaths& paths, ContinueBatchOutputs* out);
 

@@ -162,12 +162,14 @@ struct WavefrontKernels {
                 RayPacket8* out) = nullptr;
 
   // Sampling stage, the decisions at a material group's vertices (engine/wavefront/
-  // vertices.h): with the independent sampler, one emitter sample per vertex and only
-  // area lights (VertexBatchFits), each vertex's emitter pick, Nori's roulette and BSDF numbers
-  // as the rows of the emitter and BSDF stages' columns, one call per group; other scenes and
-  // integrators take the wavefront's per-row loop. Oracle: ptlab::DecideVertices (that loop's
-  // operations per row, so the oracle table keeps the scalar path's bits); SIMD:
-  // simd::DecideVertices, bit-identical (simd/wavefront/vertices8.h).
+  // vertices.h), for every integrator and both samplers: each vertex's emitter samples (area
+  // lights to the emitter stage's columns, the other emitters' picks to the wavefront, which
+  // routes them), the roulette (Nori's, Whitted's) and BSDF numbers as the rows of the emitter
+  // and BSDF stages' columns, one call per group. Oracle: ptlab::DecideVertices (the scalar
+  // integrators' operations per row, so the oracle table keeps the scalar path's bits); SIMD:
+  // simd::DecideVertices, bit-identical (simd/wavefront/vertices8.h; it hands the rows it
+  // does not vectorize, a batch's last partial vector and guide-table emitter selection, to
+  // the oracle function).
   void (*vertices)(const Scene& scene, const VertexBatchRules& rules, size_t n,
                    const VertexBatchInputs& in, const VertexBatchPaths& paths,
                    VertexBatchOutputs* out) = nullptr;

@@ -58,9 +58,6 @@ void Wavefront::RenderTile(const RenderContext& ctx, const WavefrontKernels& ker
   scene_ = &ctx.scene, kernels_ = &kernels, stats_ = stats;
   rules_ = RulesFor(ctx.scene.integrator);
   sobol_ = ctx.scene.sampler.type == SamplerType::kSobol;
-  vertex_batch_ = !sobol_ && rules_.light_samples == 1 && rules_.bsdf_sampling &&
-                  !rules_.nee_ends_path && rules_.roulette != VertexRules::Roulette::kWhitted &&
-                  VertexBatchFits(ctx.scene);
   environment_.resize(ctx.scene.environment_maps.size());
   distant_disk_.resize(ctx.scene.distant_disks.size());
   for (int y = y0; y < y1; y += kWaveRows) {
@@ -81,6 +78,7 @@ size_t Wavefront::Bytes() const {
   bytes += VectorsBytes(hits_, hit_mask_, its_, wo_, goes_on_, area_hits_, request_traced_,
                         request_contribution_, occluded_, nee_paths_, nonfinite_nee_);
   bytes += bsdf_.Bytes() + spawn_.Bytes() + area_.Bytes() + splat_.Bytes() + shadow_rows_.Bytes();
+  bytes += other_picks_.Bytes();
   bytes += VectorsBytes(environment_, distant_disk_);
   bytes += escaped_.Bytes();
   for (const InfiniteLightColumns& e : environment_) bytes += e.Bytes();

@@ -13,6 +13,7 @@
 #include "engine/render/integrator_common.h"
 #include "engine/render/interaction.h"
 #include "engine/wavefront/soa.h"
+#include "engine/wavefront/vertices.h"
 #include "engine/wavefront/wavefront.h"
 
 // The column lists of the wave's SoA batches, X(container, element type, name), one column a
@@ -36,7 +37,8 @@
   X(AlignedVector, float, weight_g)        \
   X(AlignedVector, float, weight_b)        \
   X(AlignedVector, float, pdf)             \
-  X(AlignedVector, float, eta)
+  X(AlignedVector, float, eta)             \
+  X(AlignedVector, float, delta)
 
 #define PTLAB_WAVE_SPAWN_COLUMNS(X) \
   X(std::vector, uint32_t, entry)   \
@@ -77,6 +79,14 @@
   X(AlignedVector, float, r)          \
   X(AlignedVector, float, g)          \
   X(AlignedVector, float, b)
+
+#define PTLAB_WAVE_OTHER_PICK_COLUMNS(X) \
+  X(std::vector, uint32_t, request)      \
+  X(std::vector, uint32_t, entry)        \
+  X(std::vector, uint32_t, emitter)      \
+  X(std::vector, float, pick_pmf)        \
+  X(std::vector, float, u_x)             \
+  X(std::vector, float, u_y)
 
 #define PTLAB_WAVE_INFINITE_LIGHT_COLUMNS(X) \
   X(std::vector, uint32_t, request)          \
@@ -152,7 +162,7 @@ class alignas(kColumnAlignment) Wavefront {
   /// What each integrator does at a path vertex. Every integrator of integrator.cpp is one set of
   /// rules over the same vertex stages; the rules reproduce its operations in its order.
   struct VertexRules {
-    enum class Roulette { kNone, kNori, kWhitted };
+    using Roulette = VertexBatchRules::Roulette;  // the vertices slot's (vertices.h)
     bool normals = false;        // first hit's |n|, nothing else
     bool nee = false;            // emitter sampling (next-event estimation) at vertices
     bool mis = false;            // MIS between emitter and BSDF sampling
@@ -240,8 +250,8 @@ class alignas(kColumnAlignment) Wavefront {
   // wave_sample.cpp
   void Sample(int depth);
   void GroupEntries();
-  void SampleGroupBatch(int depth, bool delta, int g, size_t k, size_t end);
   void SampleGroup(int depth, bool delta, int g, size_t k, size_t end);
+  void RouteOtherPicks(size_t n);
   void DrawVertexNumbers(int depth);
   void FillSobolRows(const std::vector<uint32_t>& paths, uint32_t sub, uint32_t sub_count);
   void DrawSobol1D(uint32_t dim, float* out);
@@ -304,14 +314,6 @@ class alignas(kColumnAlignment) Wavefront {
       uint32_t at = 0;
       for (int g = 0; g < kMaterialGroups; ++g) begin[g] = next[g] = at, at += group_rows[g];
     }
-    /// Writes slot c of the group being filled (the caller advances next and rows).
-    void Put(uint32_t c, uint32_t path_id, uint32_t queue_entry, MaterialRef ref, const Vec3f& wo,
-             float lobe, const Vec2f& dir, float scale) {
-      path[c] = path_id, entry[c] = queue_entry, roulette_scale[c] = scale;
-      material_index[c] = ref.index();
-      wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
-      u_lobe[c] = lobe, u_x[c] = dir.x, u_y[c] = dir.y;
-    }
   };
 
   /// The spawn stage's SoA columns, one row per path that goes on, in next-queue order: the
@@ -347,13 +349,15 @@ class alignas(kColumnAlignment) Wavefront {
       uint32_t at = 0;
       for (int t = 0; t < kMaterialGroups; ++t) begin[t] = next[t] = at, at += group_rows[t];
     }
-    /// Writes slot c of the group being filled (the caller advances next and rows).
-    void Put(uint32_t c, uint32_t req, uint32_t queue_entry, uint32_t light_row, float pmf,
-             const Vec3f& ref, const Vec3f& wo, const Vec2f& u) {
-      request[c] = req, entry[c] = queue_entry, light[c] = light_row, pick_pmf[c] = pmf;
-      ref_x[c] = ref.x, ref_y[c] = ref.y, ref_z[c] = ref.z, u_x[c] = u.x, u_y[c] = u.y;
-      wo_x[c] = wo.x, wo_y[c] = wo.y, wo_z[c] = wo.z;
-    }
+  };
+
+  /// The vertices slot's picks of emitters other than area lights (environment maps, distant
+  /// disks, delta lights), one group's, in request order: its request, queue entry, emitter
+  /// (EmitterRef's bits), pick probability and numbers. RouteOtherPicks hands each to its stage.
+  struct OtherPickColumns {
+    PTLAB_SOA_COLUMNS(PTLAB_WAVE_OTHER_PICK_COLUMNS)
+    /// Room for `capacity` rows, written in place; only grows.
+    void Clear(size_t capacity) { Grow(capacity); }
   };
 
   /// The emitter stage's SoA columns of one infinite light (an environment map or a distant
@@ -418,7 +422,6 @@ class alignas(kColumnAlignment) Wavefront {
   // Path state (SoA, by path id).
   std::vector<PathSampler> sampler_;
   bool sobol_ = false;
-  bool vertex_batch_ = false;  // Sample's groups take the vertices slot (SampleGroupBatch)
   // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
   std::vector<int> gen_px_, gen_py_;
   std::vector<float> gen_sx_, gen_sy_;
@@ -471,6 +474,7 @@ class alignas(kColumnAlignment) Wavefront {
   BsdfColumns bsdf_;
   SpawnColumns spawn_;
   EmitterColumns area_;
+  OtherPickColumns other_picks_;
   std::vector<InfiniteLightColumns> environment_;   // one per environment map of the scene
   std::vector<InfiniteLightColumns> distant_disk_;  // one per distant disk of the scene
   SplatColumns splat_;

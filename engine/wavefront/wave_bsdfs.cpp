@@ -26,6 +26,7 @@ void Wavefront::SampleBsdfs() {
     out.wi = {c.wi_x, c.wi_y, c.wi_z};
     out.weight = {c.weight_r, c.weight_g, c.weight_b};
     out.pdf = c.pdf, out.eta = c.eta;
+    if (MixesDeltaLobes(static_cast<MaterialTag>(t))) out.delta = c.delta;
     kernels_->bsdf(scene_->materials, static_cast<MaterialTag>(t), c.material_index, count, in,
                    out);
   }
@@ -49,9 +50,10 @@ void Wavefront::SampleBsdfs() {
     if (count == 0) continue;
     const BsdfColumns::Pointers c = b.At(begin);
     const ContinueBatchRules rules{IsDeltaMaterial(static_cast<MaterialTag>(t)), rules_.cut_black};
-    const ContinueBatchInputs in{
+    ContinueBatchInputs in{
         c.path, c.entry, c.weight_r, c.weight_g, c.weight_b, whitted ? c.roulette_scale : nullptr,
         c.pdf,  c.eta,   c.wi_x,     c.wi_y,     c.wi_z,     its_.data()};
+    in.delta = MixesDeltaLobes(static_cast<MaterialTag>(t)) ? c.delta : nullptr;
     kernels_->continuation(rules, count, in, paths, &out);
   }
   const size_t m = out.rows;

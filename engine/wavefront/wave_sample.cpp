@@ -8,17 +8,13 @@
 
 namespace ptlab {
 
-using integrator::DrawBsdfNumbers;
-using integrator::kWhittedContinuation;
-using integrator::kWhittedMaxDepth;
-using integrator::NoriContinuation;
 using integrator::PrepareEmitterSampleFrom;
 
 // Emitter samples (shadow rays queued), Russian roulette and BSDF sampling, in the scalar
 // integrators' order of random numbers; continuing paths form the next, compact ray queue.
-// The BSDF numbers are drawn here, per path in that order, into the BSDF stage's columns
-// (group by group: through the vertices slot where it serves, else row by row);
-// SampleBsdfs then runs the kernel table's bsdf slot over them and continues the paths.
+// The decisions are the kernel table's vertices slot, group by group, into the emitter and BSDF
+// stages' columns (SampleGroup); SampleBsdfs then runs the bsdf slot over them and continues
+// the paths.
 void Wavefront::Sample(int depth) {
   const int n_light = rules_.light_samples;
   next_rays_.Clear(), shadows_.Clear();
@@ -33,6 +29,7 @@ void Wavefront::Sample(int depth) {
   if (rules_.nee)
     for (int t = 0; t < kMaterialGroups; ++t) area_rows[t] = goes_on_tags_[t] * uint32_t(n_light);
   area_.Clear(emitter_rows, area_rows);
+  other_picks_.Clear(emitter_rows);
   for (InfiniteLightColumns& e : environment_) e.Clear(emitter_rows);
   for (InfiniteLightColumns& e : distant_disk_) e.Clear(emitter_rows);
   GroupEntries();
@@ -71,27 +68,38 @@ void Wavefront::GroupEntries() {
   std::swap(goes_on_, grouped_);
 }
 
-// SampleGroup through the kernel table's vertices slot (vertex_batch_: the independent
-// sampler, one emitter sample per vertex, only area lights, no Whitted rules).
-void Wavefront::SampleGroupBatch(int depth, bool delta, int g, size_t k, size_t end) {
+// Sample's rows [k, end) of goes_on_, all of material group g (delta: its tag's lobes are all
+// Dirac deltas), through the kernel table's vertices slot: the integrator's rules for this
+// group, the Sobol' numbers of the rows (drawn by DrawVertexNumbers) or none (the independent
+// sampler's are drawn by the slot), and the area-light and BSDF rows appended to their
+// columns' group g; the other emitters' picks are routed to their stages (RouteOtherPicks).
+void Wavefront::SampleGroup(int depth, bool delta, int g, size_t k, size_t end) {
   VertexBatchRules rules;
   rules.depth = depth;
   rules.emitter_sample = rules_.nee && (!delta || rules_.nee_on_delta);
-  rules.roulette = rules_.roulette == VertexRules::Roulette::kNori && depth >= 3;
+  rules.light_samples = rules_.light_samples;
+  rules.ends_path =
+      !rules_.bsdf_sampling || (rules.emitter_sample && rules_.nee_ends_path && !delta);
+  // Nori's roulette from depth 3 (as integrator.cpp's path loop), Whitted's at every vertex.
+  const bool nori_too_early = rules_.roulette == VertexRules::Roulette::kNori && depth < 3;
+  rules.roulette = nori_too_early ? VertexRules::Roulette::kNone : rules_.roulette;
+  rules.sobol = sobol_;
   rules.first_request = uint32_t(n_requests_);
   const size_t n = end - k;
+  const size_t n_light = size_t(rules.light_samples);
   if (rules.emitter_sample) {
-    n_requests_ += n;
-    nee_paths_.resize(n_requests_);
+    n_requests_ += n * n_light;
+    nee_paths_.resize(n_requests_ / n_light);
   }
   EmitterColumns& a = area_;
   BsdfColumns& b = bsdf_;
-  const uint32_t area_at = a.next[g], bsdf_at = b.next[g];
   VertexBatchOutputs out;
-  const EmitterColumns::Pointers ac = a.At(area_at);
-  const BsdfColumns::Pointers bc = b.At(bsdf_at);
+  const EmitterColumns::Pointers ac = a.At(a.next[g]);
+  const BsdfColumns::Pointers bc = b.At(b.next[g]);
+  const OtherPickColumns::Pointers oc = other_picks_.At(0);
   out.area = {ac.request, ac.entry, ac.light, ac.pick_pmf, ac.ref_x, ac.ref_y,
               ac.ref_z,   ac.wo_x,  ac.wo_y,  ac.wo_z,     ac.u_x,   ac.u_y};
+  out.other = {oc.request, oc.entry, oc.emitter, oc.pick_pmf, oc.u_x, oc.u_y};
   out.bsdf = {bc.path, bc.entry, bc.material_index, bc.roulette_scale,
               bc.wo_x, bc.wo_y,  bc.wo_z,           bc.u_lobe,
               bc.u_x,  bc.u_y};
@@ -100,105 +108,51 @@ void Wavefront::SampleGroupBatch(int depth, bool delta, int g, size_t k, size_t 
   const size_t nonfinite_at = nonfinite_nee_.size();
   nonfinite_nee_.resize(nonfinite_at + n);
   out.nonfinite = nonfinite_nee_.data() + nonfinite_at;
-  const VertexBatchInputs in{goes_on_.data() + k, rays_.owner.data(), its_.data(), wo_.data(),
-                             eta_.data()};
+  VertexBatchInputs in{goes_on_.data() + k, rays_.owner.data(), its_.data(), wo_.data(),
+                       eta_.data()};
+  if (sobol_) {
+    // DrawVertexNumbers' rows are goes_on_'s: row k of this group is row k there.
+    const size_t m = continuing_.size();
+    if (!light_point_.empty()) in.light_point = light_point_.data() + k, in.light_stride = m;
+    if (!roulette_.empty()) in.roulette = roulette_.data() + k;
+    if (!bsdf_lobe_.empty()) in.bsdf_lobe = bsdf_lobe_.data() + k;
+    if (!bsdf_direction_.empty()) in.bsdf_direction = bsdf_direction_.data() + k;
+  }
   const VertexBatchPaths paths{sampler_.data(), throughput_.data(), nee_throughput_.data()};
   kernels_->vertices(*scene_, rules, n, in, paths, &out);
   nonfinite_nee_.resize(nonfinite_at + out.nonfinite_rows);
   a.rows += out.area_rows, a.next[g] += uint32_t(out.area_rows);
   b.rows += out.bsdf_rows, b.next[g] += uint32_t(out.bsdf_rows);
+  RouteOtherPicks(out.other_rows);
 }
 
-// Sample's rows [k, end) of goes_on_, all of material group g (delta: its tag's lobes are all
-// Dirac deltas).
-void Wavefront::SampleGroup(int depth, bool delta, int g, size_t k, size_t end) {
-  if (vertex_batch_) {
-    SampleGroupBatch(depth, delta, g, k, end);
-    return;
+// Rows [0, n) of other_picks_, in request order: environment-map and distant-disk picks to
+// their emitter stages' columns, delta lights prepared here (one position or direction each,
+// nothing to batch; kernels.h).
+void Wavefront::RouteOtherPicks(size_t n) {
+  const OtherPickColumns& o = other_picks_;
+  for (size_t c = 0; c < n; ++c) {
+    const EmitterRef emitter{o.emitter[c]};
+    const uint32_t request = o.request[c], q = o.entry[c];
+    const Vec2f u{o.u_x[c], o.u_y[c]};
+    switch (emitter.tag()) {
+      case EmitterTag::kEnvironment:
+        environment_[emitter.index()].Push(request, q, o.pick_pmf[c], u);
+        break;
+      case EmitterTag::kDistantDisk:
+        distant_disk_[emitter.index()].Push(request, q, o.pick_pmf[c], u);
+        break;
+      case EmitterTag::kPoint:
+      case EmitterTag::kDirectional:
+      case EmitterTag::kSpot:
+      case EmitterTag::kProjector:
+        StoreRequest(request, PrepareEmitterSampleFrom(*scene_, its_[q], wo_[q], rules_.mis, emitter,
+                                                       o.pick_pmf[c], u));
+        break;
+      case EmitterTag::kArea:  // the vertices slot writes these to the area columns
+        break;
+    }
   }
-  const int n_light = rules_.light_samples;
-  const bool emitters = !scene_->emitters.empty();
-  const size_t m = continuing_.size();  // with sobol: entry c of the drawn numbers
-  uint32_t area_at = area_.next[g], bsdf_at = bsdf_.next[g];
-  for (; k < end; ++k) {
-    const uint32_t q = goes_on_[k];
-    const uint32_t i = rays_.owner[q];
-    const SurfaceInteraction& its = its_[q];
-    const Vec3f& wo = wo_[q];
-    PathSampler& sampler = sampler_[i];
-    if (rules_.nee && (!delta || rules_.nee_on_delta)) {
-      for (int s = 0; s < n_light; ++s) {
-        const uint32_t request = uint32_t(n_requests_++);
-        request_traced_[request] = 0;
-        if (!emitters) continue;
-        // PrepareEmitterSample's numbers and pick (DrawEmitterNumbers, PickEmitter), as
-        // plain floats; area-light, environment-map and distant-disk picks go to the emitter
-        // stage's batches, the delta lights are prepared here.
-        float pick_pmf = 0.0f;
-        EmitterRef emitter;
-        Vec2f u;
-        if (sobol_) {
-          u = light_point_[size_t(s) * m + k];
-          emitter = SelectEmitter(*scene_, u.x, &pick_pmf, &u.x);
-        } else {
-          const float pick = sampler.Get1D(DecisionDimension(depth, Decision::kLightPick),
-                                           uint32_t(s), uint32_t(n_light));
-          u = sampler.Get2D(DecisionDimension(depth, Decision::kLightPoint), uint32_t(s),
-                            uint32_t(n_light));
-          emitter = SelectEmitter(*scene_, pick, &pick_pmf);
-        }
-        if (!(pick_pmf > 0)) continue;
-        switch (emitter.tag()) {
-          case EmitterTag::kArea:
-            area_.Put(area_at++, request, uint32_t(q), emitter.index(), pick_pmf, its.p, wo, u);
-            break;
-          case EmitterTag::kEnvironment:
-            environment_[emitter.index()].Push(request, uint32_t(q), pick_pmf, u);
-            break;
-          case EmitterTag::kDistantDisk:
-            distant_disk_[emitter.index()].Push(request, uint32_t(q), pick_pmf, u);
-            break;
-          // Delta lights: one position or direction each, nothing to batch.
-          case EmitterTag::kPoint:
-          case EmitterTag::kDirectional:
-          case EmitterTag::kSpot:
-          case EmitterTag::kProjector:
-            StoreRequest(request, PrepareEmitterSampleFrom(*scene_, its, wo, rules_.mis, emitter,
-                                                           pick_pmf, u));
-            break;
-        }
-      }
-      // With one sample per vertex, the request of nee path p is row p.
-      if (n_light == 1 && !IsFinite(throughput_[i])) nonfinite_nee_.push_back(n_requests_ - 1);
-      nee_paths_.push_back(i);
-      nee_throughput_[i] = throughput_[i];
-      if (rules_.nee_ends_path && !delta) continue;
-    }
-    if (!rules_.bsdf_sampling) continue;
-    const auto roulette = [&] {
-      return sobol_ ? roulette_[k] : sampler.Get1D(DecisionDimension(depth, Decision::kRoulette));
-    };
-    float roulette_scale = 1.0f;
-    if (rules_.roulette == VertexRules::Roulette::kNori && depth >= 3) {
-      const float q_continue = NoriContinuation(throughput_[i], eta_[i]);
-      if (!(roulette() < q_continue)) continue;
-      throughput_[i] *= 1.0f / q_continue;
-    } else if (rules_.roulette == VertexRules::Roulette::kWhitted) {
-      if (depth >= kWhittedMaxDepth || roulette() >= kWhittedContinuation) continue;
-      roulette_scale = 1.0f / kWhittedContinuation;
-    }
-    // The lobe number, then the direction (SampleBsdf's order).
-    float u_lobe;
-    Vec2f u_dir;
-    if (sobol_) {
-      u_lobe = bsdf_lobe_[k], u_dir = bsdf_direction_[k];
-    } else {
-      DrawBsdfNumbers(sampler, depth, &u_lobe, &u_dir);
-    }
-    bsdf_.Put(bsdf_at++, i, uint32_t(q), its.material, wo, u_lobe, u_dir, roulette_scale);
-  }
-  area_.rows += area_at - area_.next[g], area_.next[g] = area_at;
-  bsdf_.rows += bsdf_at - bsdf_.next[g], bsdf_.next[g] = bsdf_at;
 }
 
 // Sobol' numbers of every decision of vertex `depth` for the paths that go on (continuing_,

@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "engine/bsdf/beckmann.h"
+#include "engine/bsdf/bsdf.h"  // IsDeltaMaterial, MixesDeltaLobes
 #include "engine/bsdf/fresnel.h"
 #include "engine/wavefront/bsdf.h"
 #include "engine/scene/material_tables.h"
@@ -359,7 +360,9 @@ inline void DielectricFresnelKernel(const float* cos_i, const float* eta, size_t
 
 // Column order of the shade step's BlockIo (see ShadeInputs / ShadeOutputs).
 enum ShadeIn { kWoX, kWoY, kWoZ, kWlX, kWlY, kWlZ, kULobe, kUX, kUY, kShadeInCount };
-enum ShadeOut { kFR, kFG, kFB, kPdfL, kWiX, kWiY, kWiZ, kWR, kWG, kWB, kPdf, kEta, kShadeOutCount };
+// kDelta (matB): ShadeOutputs::delta, written only by the kernels of tags that MixesDeltaLobes.
+enum ShadeOut { kFR, kFG, kFB, kPdfL, kWiX, kWiY, kWiZ, kWR, kWG, kWB, kPdf, kEta, kDelta,
+                kShadeOutCount };
 using ShadeIo = BlockIo<kShadeInCount, kShadeOutCount>;
 
 /// Column c of the shade step's inputs, rows [i, i + Lanes(d)).
@@ -459,9 +462,16 @@ inline void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool 
     if (eval) StoreEval(d, b, i, zero, zero, zero, zero);
     if (!sample) return;
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
-    const V8 rr = Gather(d, t.reflectance_r, b.index, i),
-             rg = Gather(d, t.reflectance_g, b.index, i),
-             rb = Gather(d, t.reflectance_b, b.index, i);
+    V8 rr = Gather(d, t.reflectance_r, b.index, i), rg = Gather(d, t.reflectance_g, b.index, i),
+       rb = Gather(d, t.reflectance_b, b.index, i);
+    if (t.fresnel()) {  // matA: Mitsuba's smooth conductor (SmoothConductorSample)
+      rr = hn::Mul(rr, FresnelConductor(d, oz, Gather(d, t.eta_r, b.index, i),
+                                        Gather(d, t.k_r, b.index, i)));
+      rg = hn::Mul(rg, FresnelConductor(d, oz, Gather(d, t.eta_g, b.index, i),
+                                        Gather(d, t.k_g, b.index, i)));
+      rb = hn::Mul(rb, FresnelConductor(d, oz, Gather(d, t.eta_b, b.index, i),
+                                        Gather(d, t.k_b, b.index, i)));
+    }
     StoreSample(d, b, i, hn::Gt(oz, zero), hn::Neg(ox), hn::Neg(oy), oz, rr, rg, rb, one, one);
   });
 }
@@ -686,10 +696,25 @@ inline void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, siz
   });
 }
 
-/// ShadeBatch for one tag.
-inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
-                             const uint32_t* material_index, size_t n, const ShadeInputs& in,
-                             const ShadeOutputs& out) {
+}  // namespace HWY_NAMESPACE
+}  // namespace ptlab::simd
+HWY_AFTER_NAMESPACE();
+// matB: the models in their own files (they use the helpers above).
+#include "simd/wavefront/blend8-inl.h"
+#include "simd/wavefront/plastic8-inl.h"
+#include "simd/wavefront/thin_dielectric8-inl.h"
+#include "simd/wavefront/two_sided8-inl.h"
+// matA: the Mitsuba microfacet models, each in its own -inl file.
+#include "simd/wavefront/rough_conductor8-inl.h"
+#include "simd/wavefront/rough_dielectric8-inl.h"
+HWY_BEFORE_NAMESPACE();
+namespace ptlab::simd {
+namespace HWY_NAMESPACE {
+
+/// ShadeBatch for one tag, every row one-sided (ShadeBatchKernel applies the two-sided flags).
+inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
+                                     const uint32_t* material_index, size_t n,
+                                     const ShadeInputs& in, const ShadeOutputs& out) {
   const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
   ShadeIo io;
   io.index = material_index;
@@ -705,6 +730,9 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
     io.out[kWiX] = out.wi.x, io.out[kWiY] = out.wi.y, io.out[kWiZ] = out.wi.z;
     io.out[kWR] = out.weight.r, io.out[kWG] = out.weight.g, io.out[kWB] = out.weight.b;
     io.out[kPdf] = out.pdf, io.out[kEta] = out.eta;
+    // Only the kernels of tags that mix lobes write it (ForEachBlock's partial last block
+    // copies back every column it is given; ShadeBatchKernel fills it for the others).
+    if (MixesDeltaLobes(tag)) io.out[kDelta] = out.delta;
   }
   switch (tag) {
     case MaterialTag::kDiffuse:
@@ -714,10 +742,34 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
     case MaterialTag::kDielectric:
       return ShadeDielectric(m.dielectric, io, n, eval, sample);
     case MaterialTag::kConductor:
+      if (m.conductor.microfacet()) return ShadeRoughConductor(m.conductor, io, n, eval, sample);
       return ShadeConductor(m.conductor, io, n, eval, sample);
+    case MaterialTag::kRoughDielectric:  // matA
+      return ShadeRoughDielectric(m.rough_dielectric, io, n, eval, sample);
     case MaterialTag::kRoughPlastic:
       return ShadeRoughPlastic(m.rough_plastic, io, n, eval, sample);
+    // matB
+    case MaterialTag::kPlastic:
+      return ShadePlasticRows(m, material_index, n, in, out, io, eval, sample);
+    case MaterialTag::kThinDielectric:
+      return ShadeThinDielectric(m.thin_dielectric, io, n, eval, sample);
+    case MaterialTag::kBlend:
+      return ShadeBlend(m, material_index, n, in, out);
   }
+}
+
+/// ShadeBatch for one tag: ShadeBatchKernelOneSided, with out.delta filled for the tags whose
+/// lobes are all of one kind and the two-sided rows (TwoSidedFlags) mirrored (matB).
+inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
+                             const uint32_t* material_index, size_t n, const ShadeInputs& in,
+                             const ShadeOutputs& out) {
+  if (in.u_lobe != nullptr && out.delta != nullptr && !MixesDeltaLobes(tag))
+    std::fill(out.delta, out.delta + n, IsDeltaMaterial(tag) ? 1.0f : 0.0f);
+  size_t flag_count = 0;
+  const uint8_t* flags = m.two_sided.Column(tag, &flag_count);
+  if (flags != nullptr)
+    return ShadeTwoSided(m, tag, flags, flag_count, material_index, n, in, out);
+  ShadeBatchKernelOneSided(m, tag, material_index, n, in, out);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -126,6 +126,9 @@ inline void ContinuePathsKernel(const ContinueBatchRules& rules, size_t n,
     }
     const auto goes_on_i = hn::RebindMask(di, goes_on);
     auto flag = specular;
+    if (in.delta != nullptr)  // matB: the row's own lobe (ContinueBatchInputs::delta)
+      flag = hn::IfThenElseZero(hn::RebindMask(di, hn::Ne(hn::LoadU(df, in.delta + r), zero)),
+                                one);
     auto prev_pdf = pdf;
     if (!hn::AllTrue(df, goes_on)) {
       // The paths that end here keep their state: their lanes write back what they gather.
@@ -172,6 +175,7 @@ inline void ContinuePathsKernel(const ContinueBatchRules& rules, size_t n,
   rest.path += r, rest.entry += r, rest.weight_r += r, rest.weight_g += r, rest.weight_b += r;
   if (rest.roulette_scale != nullptr) rest.roulette_scale += r;
   rest.pdf += r, rest.eta += r, rest.wi_x += r, rest.wi_y += r, rest.wi_z += r;
+  if (rest.delta != nullptr) rest.delta += r;
   ptlab::ContinuePaths(rules, n - r, rest, paths, out);
 }
 

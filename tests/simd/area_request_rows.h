@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/bsdf/plastic_precompute.h"
 #include "engine/core/frame.h"
 #include "engine/core/rng.h"
 #include "engine/light/area_light.h"
@@ -67,6 +68,18 @@ inline void AddRequestMaterials(Scene* scene) {
   m.AddConductor(1e-3f, {1, 1, 1}, {0, 0, 0});
   m.AddRoughPlastic(0.1f, 1.5f, 1.0f, {0.5f, 0.5f, 0.5f});
   m.AddRoughPlastic(0.01f, 1.5f, 1.0f, {0, 0, 0});
+  // matB: a smooth plastic (two-sided too), a thin dielectric, blends with a delta child.
+  PlasticDesc d;
+  d.diffuse = {0.6f, 0.4f, 0.2f};
+  const MaterialRef plastic = m.AddPlastic(*MakePlasticRow(d));
+  m.two_sided.Set(m.AddPlastic(*MakePlasticRow(d)));
+  m.AddThinDielectric(1.5f);
+  m.AddBlend(0.3f, MaterialRef::Make(MaterialTag::kDiffuse, 0), plastic);
+  m.AddBlend(0.6f, MaterialRef::Make(MaterialTag::kMirror, 0),
+             MaterialRef::Make(MaterialTag::kConductor, 0));
+  // matA: rough glass, Beckmann isotropic and GGX anisotropic.
+  m.AddRoughDielectric(0.1f, 0.1f, kMicrofacetSampleVisible, 1.5f, 1.0f);
+  m.AddRoughDielectric(0.05f, 0.5f, uint8_t(kMicrofacetSampleVisible | kMicrofacetGgx), 1.33f, 1.0f);
 }
 
 inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
@@ -81,6 +94,15 @@ inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
       return uint32_t(m.conductor.size());
     case MaterialTag::kRoughPlastic:
       return uint32_t(m.rough_plastic.size());
+    // matB
+    case MaterialTag::kPlastic:
+      return uint32_t(m.plastic.size());
+    case MaterialTag::kThinDielectric:
+      return uint32_t(m.thin_dielectric.size());
+    case MaterialTag::kBlend:
+      return uint32_t(m.blend.size());
+    case MaterialTag::kRoughDielectric:  // matA
+      return uint32_t(m.rough_dielectric.size());
   }
   return 0;
 }

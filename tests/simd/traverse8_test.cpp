@@ -1088,6 +1088,12 @@ TEST(Traverse8Render, PacketPathMatchesOracleOnOwnScenes) {
   }
 }
 
+// matB: Mitsuba's plastic (a delta and a diffuse lobe: the per-sample delta flag through the
+// wavefront), blendbsdf, twosided and thindielectric (scenes/coated.xml).
+TEST(Traverse8Render, PacketPathMatchesOracleOnCoatedMaterials) {
+  ExpectPacketRenderMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/coated.xml", 64);
+}
+
 // Issue 11's other scenes: the smooth dielectric (motto, every path through the dielectric
 // kernel) and our demo (glass, rough gold and rough plastic under the Venice environment map,
 // thin lens; the map is read from ../shared/data).

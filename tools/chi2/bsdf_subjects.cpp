@@ -16,6 +16,7 @@
 #include "engine/core/check.h"
 #include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/lobe_disk.h"
+#include "tools/chi2/microfacet_subjects.h"  // matA
 #include "tools/chi2/stats_math.h"
 
 namespace ptlab {
@@ -85,6 +86,8 @@ std::shared_ptr<const MaterialTables> OneRowTables(Chi2BsdfModel model, float al
   return m;
 }
 
+}  // namespace
+
 // simd::ShadeBatch over n rows of one material: wo broadcast, no light evaluation.
 Chi2BatchSampleFn ShadeBatchSampler(std::shared_ptr<const MaterialTables> m, MaterialRef ref,
                                     const Vec3f& wo) {
@@ -116,6 +119,8 @@ Chi2BatchSampleFn ShadeBatchSampler(std::shared_ptr<const MaterialTables> m, Mat
     }
   };
 }
+
+namespace {
 
 // (simd::)SampleBeckmannReflectionBatch: reflect wo about h ~ BeckmannPdfH.
 Chi2BatchSampleFn BeckmannReflectionSampler(Chi2BsdfPath path, float alpha, const Vec3f& wo) {
@@ -299,6 +304,8 @@ void RegisterBsdfSubjects(Chi2Registry* r) {
   add("simd/shade_conductor", Chi2BsdfModel::kConductor, kSimd, 0.5f, kIncidences[3]);
   add("simd/shade_rough_plastic", Chi2BsdfModel::kRoughPlastic, kSimd, 0.05f, kIncidences[2]);
   add("simd/shade_rough_plastic", Chi2BsdfModel::kRoughPlastic, kSimd, 0.5f, kIncidences[1]);
+  RegisterCoatedBsdfSubjects(r);  // matB
+  RegisterMicrofacetBsdfSubjects(r);  // matA: the Mitsuba microfacet models
 
   // Deliberately wrong pdfs for the right samplers. Both keep the true albedo, so the lab
   // compares their integral (and the absorbed count) with the sampler's actual mass.

@@ -1,9 +1,11 @@
 // Chi-square subjects of the BSDFs: each model's Sample against its Pdf, scalar and SIMD.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "engine/core/vec.h"
+#include "engine/scene/material_tables.h"
 #include "tools/chi2/subjects.h"
 
 namespace ptlab {
@@ -49,6 +51,11 @@ Vec3f Chi2Direction(float theta_deg, float phi_deg);
 Chi2Subject BsdfChi2Subject(std::string name, Chi2BsdfModel model, Chi2BsdfPath path, float alpha,
                             const Vec3f& wo, bool zoom = true);
 
+/// A batch sampler for the χ² lab running simd::ShadeBatch on one row `ref` of `m` with wo
+/// broadcast (no light evaluation); a sample is valid where its pdf is > 0.
+Chi2BatchSampleFn ShadeBatchSampler(std::shared_ptr<const MaterialTables> m, MaterialRef ref,
+                                    const Vec3f& wo);
+
 /// Registers, all expected to pass unless named "broken/...", incidences θ ∈ {0°, 30°, 60°, 85°}
 /// with azimuths φ ∈ {0°, 35°, 110°, 250°}:
 /// - "bsdf/diffuse_t{0,30,60,85}";
@@ -62,5 +69,12 @@ Chi2Subject BsdfChi2Subject(std::string name, Chi2BsdfModel model, Chi2BsdfPath 
 /// - "broken/rough_plastic_pdf_swapped_weights": (1 − ks) specular + ks diffuse (α = 0.5,
 ///   θ = 30°).
 void RegisterBsdfSubjects(Chi2Registry* registry);
+
+/// matB (tools/chi2/coated_subjects.cpp; called by RegisterBsdfSubjects): the non-delta
+/// samples of the smooth plastic ("bsdf/plastic_eta*_t*", η ∈ {1.1, 1.5, 3}, θ ∈ {0°, 30°,
+/// 60°, 85°}, both models; "simd/shade_plastic_eta1p5_t*") and of a blend of a diffuse and a
+/// plastic ("bsdf/blend_w{0p25,0p7}", "simd/shade_blend_w*"); a delta sample counts as
+/// absorbed, so the mass is the non-delta lobes' probability.
+void RegisterCoatedBsdfSubjects(Chi2Registry* registry);
 
 }  // namespace ptlab

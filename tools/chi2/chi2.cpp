@@ -21,6 +21,11 @@ constexpr int kChunk = 256;
 // many forced subdivisions (65 points per axis), so a sliver of support clipping a cell
 // corner between the default 9 points per axis is not mistaken for zero mass.
 constexpr int kRecheckMinDepth = 6;
+// The batch integration keeps every evaluated point (about 50 bytes each with its table): a
+// budget on their number bounds its memory (~0.4 GB) whatever the pdf. A smooth pdf needs ~0.4 M
+// points at res 51; one that is noise within cells would otherwise grow without bound (found by
+// tests/fuzz/fuzz_chi2_api.cpp: 1.9 GB and rising).
+constexpr int64_t kMaxBatchPdfPoints = 8'000'000;
 
 std::string FormatPoint(const Chi2Domain& domain, const Chi2Point& p) {
   char buf[96];
@@ -312,6 +317,13 @@ double IntegrateWithBatchPdf(const Chi2Subject& subject, const Chi2Options& opti
     replay.misses = 0, replay.complete = &complete, missing.clear(), missing_cell.clear();
     IntegrateCells(subject, lookup, options, &pass, &replay);
     if (missing.empty()) break;
+    if (points + int64_t(missing.size()) > kMaxBatchPdfPoints) {
+      r->failures.push_back(Format(
+          "the pdf needed more than %.0f evaluations to integrate over the cells (a smooth pdf "
+          "needs ~0.4 M at res 51): it is not smooth within cells (noise?), or res is too high",
+          double(kMaxBatchPdfPoints)));
+      return std::numeric_limits<double>::quiet_NaN();
+    }
     std::vector<double> values(missing.size());
     ++calls;
     if (!subject.pdf_batch(missing.data(), int64_t(missing.size()), values.data())) {

@@ -80,8 +80,9 @@ std::shared_ptr<const Scene> EmittersScene() {
   s->spot_lights.intensity.push_back({1, 1, 1});
   s->spot_lights.cos_half_angle.push_back(std::cos(0.7f));
   s->spot_lights.exponent.push_back(1.0f);
-  s->spot_lights.cos_beam.push_back(std::cos(0.7f));  // no ramp (the cos^e spot)
-  s->spot_lights.cutoff.push_back(0.7f);
+  // No linear ramp (COLLADA's spots): cos^exponent up to the cone's edge.
+  s->spot_lights.cos_beam.push_back(s->spot_lights.cos_half_angle.back());
+  s->spot_lights.cutoff.push_back(std::acos(s->spot_lights.cos_half_angle.back()));
   s->spot_lights.inv_transition.push_back(0.0f);
   s->emitters.push_back(EmitterRef::Make(EmitterTag::kSpot, 0));
   (void)AddDistantDisk({1, 1, 1}, 40.0f, Frame(Normalize(Vec3f{0.2f, 1.0f, 0.4f})), "disk",

@@ -47,6 +47,15 @@ const char* MaterialName(MaterialTag tag) {
       return "roughconductor";
     case MaterialTag::kRoughPlastic:
       return "microfacet";
+    case MaterialTag::kRoughDielectric:  // matA
+      return "roughdielectric";
+    // matB
+    case MaterialTag::kPlastic:
+      return "plastic";
+    case MaterialTag::kThinDielectric:
+      return "thindielectric";
+    case MaterialTag::kBlend:
+      return "blendbsdf";
   }
   return "?";
 }

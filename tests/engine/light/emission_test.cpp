@@ -62,8 +62,9 @@ Scene QuadLightScene() {
   s.spot_lights.intensity.push_back({2, 2, 2});
   s.spot_lights.cos_half_angle.push_back(std::cos(0.5f));
   s.spot_lights.exponent.push_back(3.0f);
-  s.spot_lights.cos_beam.push_back(std::cos(0.5f));  // no ramp (the cos^e spot)
-  s.spot_lights.cutoff.push_back(0.5f);
+  // No linear ramp (COLLADA's spots): cos^exponent up to the cone's edge.
+  s.spot_lights.cos_beam.push_back(s.spot_lights.cos_half_angle.back());
+  s.spot_lights.cutoff.push_back(std::acos(s.spot_lights.cos_half_angle.back()));
   s.spot_lights.inv_transition.push_back(0.0f);
   s.emitters.push_back(EmitterRef::Make(EmitterTag::kSpot, 0));
   s.directional_lights.direction.push_back(Normalize(Vec3f{1, -2, 0.5f}));

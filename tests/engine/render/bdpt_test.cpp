@@ -224,8 +224,9 @@ TEST(BdptParity, DeltaLightsAgreeWithPathMis) {
   scene.spot_lights.intensity.push_back({3, 2, 1});
   scene.spot_lights.cos_half_angle.push_back(std::cos(0.6f));
   scene.spot_lights.exponent.push_back(2.0f);
-  scene.spot_lights.cos_beam.push_back(std::cos(0.6f));  // no ramp (the cos^e spot)
-  scene.spot_lights.cutoff.push_back(0.6f);
+  // No linear ramp (COLLADA's spots): cos^exponent up to the cone's edge.
+  scene.spot_lights.cos_beam.push_back(scene.spot_lights.cos_half_angle.back());
+  scene.spot_lights.cutoff.push_back(std::acos(scene.spot_lights.cos_half_angle.back()));
   scene.spot_lights.inv_transition.push_back(0.0f);
   scene.emitters.push_back(EmitterRef::Make(EmitterTag::kSpot, 0));
   scene.directional_lights.direction.push_back(Normalize(Vec3f{0.5f, -1.0f, -0.6f}));

@@ -84,6 +84,7 @@ void ExpectBatchMatchesOracle(const std::string& path) {
   Pcg32 rng(5, 17);
   for (int t = 0; t < kMaterialTagCount; ++t) {
     const MaterialTag tag = static_cast<MaterialTag>(t);
+    if (test::MaterialRows(scene.materials, tag) == 0) continue;  // another branch's tag
     SCOPED_TRACE("tag " + std::to_string(t));
     const test::AreaRequestRows rows = test::MakeAreaRequestRows(scene, tag, 200000, true, rng);
     const size_t n = rows.size();

@@ -1,0 +1,24 @@
+// Mitsuba <bsdf>s of the microfacet family: conductor, roughconductor, roughdielectric.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/core/status.h"
+#include "engine/io/mitsuba_properties.h"
+#include "engine/scene/material_tables.h"
+
+namespace ptlab::internal {
+
+/// Adds the material of `obj` (type conductor, roughconductor or roughdielectric) to
+/// `materials` with Mitsuba 3's parameters and defaults: `material` names (default "none", the
+/// perfect mirror) are read from ior/NAME.{eta,k}.spd in `search_paths` (LookupMitsubaConductor);
+/// `distribution` beckmann (default) or ggx; `alpha` (default 0.1) or both `alpha_u` and
+/// `alpha_v`; `sample_visible` (default true); int_ior / ext_ior as numbers or names (default
+/// bk7 / air); specular_reflectance / specular_transmittance as constant colours. Errors name
+/// the file, line and the accepted values.
+StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
+                                               const std::vector<std::string>& search_paths,
+                                               MaterialTables* materials);
+
+}  // namespace ptlab::internal
