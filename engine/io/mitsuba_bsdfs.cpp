@@ -107,15 +107,6 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
   } else if (type == "plastic" || type == "roughplastic") {  // matB
     StatusOr<PlasticDesc> desc = ReadPlastic(obj, type == "roughplastic");
     if (!desc.ok()) return desc.status();
-    // The rough coating is implemented (engine/bsdf/plastic_rough.h), and the suite's two
-    // roughplastic scenes render with every sphere pixel passing Mitsuba's Z test; they still
-    // fail it (98.9 % of channels, 99.75 % needed) on pixels of the environment map seen
-    // directly at the image border, which no other suite scene exercises yet. Refused until
-    // that is resolved, so the suite's table stays true (docs/materials.md). Delete this test
-    // to enable it.
-    if (desc->distribution != CoatingDistribution::kSmooth)
-      return Unsupported(node, "refused until the suite's envmap background matches "
-                               "(docs/materials.md)");
     StatusOr<PlasticRow> row = MakePlasticRow(*desc);
     if (!row.ok()) return Unsupported(node, row.status().message());
     ref = scene_.materials.AddPlastic(*row);

@@ -449,11 +449,14 @@ TEST_F(MitsubaLoader, BsdfsAndValues) {
   EXPECT_NEAR(s->materials.diffuse.albedo_g[0], 0.2158605f, 1e-5f);
   EXPECT_FLOAT_EQ(s->materials.diffuse.albedo_b[0], 0.0f);
   EXPECT_FLOAT_EQ(s->materials.diffuse.albedo_g[1], 0.25f);  // uniform reflectance
-  // matB: roughplastic is read and refused with a note; twosided loads (its own test:
+  // roughplastic loads as a plastic row with a rough coating (its own tests:
   // tests/engine/io/mitsuba_coated_bsdfs_test.cpp).
-  EXPECT_EQ(Error(Scene("<shape type=\"cube\">\n <bsdf type=\"roughplastic\"/></shape>"))
-                .rfind(Path("scene.xml") + ":4:2: unsupported: bsdf \"roughplastic\"", 0),
-            0u);
+  {
+    const StatusOr<ptlab::Scene> rough =
+        Load(Scene("<shape type=\"cube\">\n <bsdf type=\"roughplastic\"/></shape>"));
+    ASSERT_TRUE(rough.ok()) << rough.status().message();
+    EXPECT_EQ(rough->materials.plastic.size(), 1u);
+  }
   // A diffuse reflectance may be a texture (docs/textures.md); other colours may not yet.
   EXPECT_NE(Error(Scene("<bsdf type=\"diffuse\">\n <texture name=\"reflectance\" "
                         "type=\"bitmap\"/></bsdf>"))
