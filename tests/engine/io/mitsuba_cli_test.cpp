@@ -34,9 +34,9 @@ TEST(MitsubaCli, DefinesAndUnsupportedExitTwo) {
                              (dir / "out.exr").string();
   EXPECT_EQ(RunShell(render, log), 0) << ReadFile(log);
   EXPECT_TRUE(fs::exists(dir / "out.exr"));
-  EXPECT_EQ(RunShell(render + " -D bsdf=roughplastic", log), 2);
+  EXPECT_EQ(RunShell(render + " -D bsdf=principled", log), 2);
   EXPECT_NE(
-      ReadFile(log).find((dir / "scene.xml").string() + ":6:5: unsupported: bsdf \"roughplastic\""),
+      ReadFile(log).find((dir / "scene.xml").string() + ":6:5: unsupported: bsdf \"principled\""),
       std::string::npos)
       << ReadFile(log);
   EXPECT_EQ(RunShell(render + " -D bsdf", log), 2);
