@@ -5,8 +5,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "engine/bvh/box_intersect.h"
-#include "engine/core/check.h"
+#include "engine/bvh/bvh_walk.h"
 
 namespace ptlab {
 namespace {
@@ -53,11 +52,6 @@ uint32_t BuildNode(std::vector<InstanceBox>& boxes, size_t begin, size_t end, In
   l->nodes[index].axis = uint16_t(axis);
   return index;
 }
-
-struct StackEntry {
-  uint32_t node;
-  float t_entry;
-};
 
 }  // namespace
 
@@ -107,90 +101,30 @@ Ray RayToInstance(const InstanceLevel& level, uint32_t i, const Ray& ray) {
 bool IntersectInstances(const InstanceLevel& level, const Ray& ray, bool found, Hit* best,
                         GroupIntersectFn intersect, const void* groups) {
   if (level.empty() || !(ray.t_min < ray.t_max)) return found;
-  const BvhNode* nodes = level.nodes.data();
-  const SlabRay slab = MakeSlabRay(ray);
   float best_t = found ? best->t : ray.t_max;
-  StackEntry stack[kBvhMaxDepth];
-  int stack_size = 0;
-  float t_entry;
-  if (!IntersectBox(nodes[0], slab, ray.t_min, best_t, &t_entry)) return found;
-  uint32_t current = 0;
-  for (;;) {
-    const BvhNode& node = nodes[current];
-    if (!node.IsLeaf()) {
-      const uint32_t left = current + 1, right = node.offset;
-      float t_left, t_right;
-      const bool hit_left = IntersectBox(nodes[left], slab, ray.t_min, best_t, &t_left);
-      const bool hit_right = IntersectBox(nodes[right], slab, ray.t_min, best_t, &t_right);
-      if (hit_left && hit_right) {
-        PTLAB_DCHECK(stack_size < kBvhMaxDepth);
-        const bool right_first = t_right < t_left;
-        stack[stack_size++] = right_first ? StackEntry{left, t_left} : StackEntry{right, t_right};
-        current = right_first ? right : left;
-        continue;
-      }
-      if (hit_left || hit_right) {
-        current = hit_left ? left : right;
-        continue;
-      }
-    } else {
-      const uint32_t i = level.order[node.offset];
-      Hit h;
-      if (intersect(groups, level.group[i], RayToInstance(level, i, ray), &h)) {
-        const uint32_t prim = level.first_prim[i] + h.prim;
-        if (!found || h.t < best->t || (h.t == best->t && prim < best->prim)) {
-          *best = {h.t, h.b1, h.b2, prim};
-          best_t = h.t;
-          found = true;
-        }
-      }
-    }
-    for (;;) {
-      if (stack_size == 0) return found;
-      const StackEntry& e = stack[--stack_size];
-      if (e.t_entry <= best_t * kRobustFarScale) {
-        current = e.node;
-        break;
-      }
-    }
-  }
+  WalkBvhClosest(level.nodes.data(), MakeSlabRay(ray), ray.t_min, &best_t,
+                 [&](const BvhNode& node) {
+                   const uint32_t i = level.order[node.offset];
+                   Hit h;
+                   if (!intersect(groups, level.group[i], RayToInstance(level, i, ray), &h)) return;
+                   const uint32_t prim = level.first_prim[i] + h.prim;
+                   if (!found || h.t < best->t || (h.t == best->t && prim < best->prim)) {
+                     *best = {h.t, h.b1, h.b2, prim};
+                     best_t = h.t;
+                     found = true;
+                   }
+                 });
+  return found;
 }
 
 bool OccludedInstances(const InstanceLevel& level, const Ray& ray, GroupOccludedFn occluded,
                        const void* groups) {
   if (level.empty() || !(ray.t_min < ray.t_max)) return false;
-  const BvhNode* nodes = level.nodes.data();
-  const SlabRay slab = MakeSlabRay(ray);
-  uint32_t stack[kBvhMaxDepth];
-  int stack_size = 0;
-  float t_entry;
-  if (!IntersectBox(nodes[0], slab, ray.t_min, ray.t_max, &t_entry)) return false;
-  uint32_t current = 0;
-  for (;;) {
-    const BvhNode& node = nodes[current];
-    if (!node.IsLeaf()) {
-      const uint32_t left = current + 1, right = node.offset;
-      float t_left, t_right;
-      const bool hit_left = IntersectBox(nodes[left], slab, ray.t_min, ray.t_max, &t_left);
-      const bool hit_right = IntersectBox(nodes[right], slab, ray.t_min, ray.t_max, &t_right);
-      if (hit_left && hit_right) {
-        PTLAB_DCHECK(stack_size < kBvhMaxDepth);
-        const bool right_first = t_right < t_left;
-        stack[stack_size++] = right_first ? left : right;
-        current = right_first ? right : left;
-        continue;
-      }
-      if (hit_left || hit_right) {
-        current = hit_left ? left : right;
-        continue;
-      }
-    } else {
-      const uint32_t i = level.order[node.offset];
-      if (occluded(groups, level.group[i], RayToInstance(level, i, ray))) return true;
-    }
-    if (stack_size == 0) return false;
-    current = stack[--stack_size];
-  }
+  return WalkBvhAny(level.nodes.data(), MakeSlabRay(ray), ray.t_min, ray.t_max,
+                    [&](const BvhNode& node) {
+                      const uint32_t i = level.order[node.offset];
+                      return occluded(groups, level.group[i], RayToInstance(level, i, ray));
+                    });
 }
 
 }  // namespace ptlab

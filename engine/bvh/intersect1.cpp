@@ -5,11 +5,10 @@
 #include <cstdint>
 #include <limits>
 
-#include "engine/bvh/box_intersect.h"
+#include "engine/bvh/bvh_walk.h"
 #include "engine/bvh/instance_level.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/bvh/watertight_triangle.h"
-#include "engine/core/check.h"
 
 namespace ptlab {
 namespace {
@@ -33,124 +32,55 @@ inline bool IntersectLeafTriangle(const PermutedColumns& c, uint32_t i, const Wa
                                              c.bz[i], c.cx[i], c.cy[i], c.cz[i], t_min, t_max, hit);
 }
 
-struct StackEntry {
-  uint32_t node;
-  float t_entry;
-};
-
 // The triangles' closest hit (the BVH).
 bool IntersectTriangles1(const Bvh& bvh, const Ray& ray, Hit* hit) {
   if (bvh.nodes.empty() || !(ray.t_min < ray.t_max)) return false;
-  const BvhNode* nodes = bvh.nodes.data();
-  const SlabRay slab = MakeSlabRay(ray);
   const WatertightRay wt = MakeWatertightRay(ray.o, ray.d);
   const PermutedColumns cols = PermuteColumns(bvh.leaf_triangles, wt);
-
   float best_t = ray.t_max;
   uint32_t best_prim = kNoHit;
   float best_b1 = 0.0f, best_b2 = 0.0f;
-  StackEntry stack[kBvhMaxDepth];
-  int stack_size = 0;
-  float t_entry;
-  if (!IntersectBox(nodes[0], slab, ray.t_min, best_t, &t_entry)) return false;
-  uint32_t current = 0;
-  for (;;) {
-    const BvhNode& node = nodes[current];
-    if (!node.IsLeaf()) {
-      const uint32_t left = current + 1, right = node.offset;
-      float t_left, t_right;
-      const bool hit_left = IntersectBox(nodes[left], slab, ray.t_min, best_t, &t_left);
-      const bool hit_right = IntersectBox(nodes[right], slab, ray.t_min, best_t, &t_right);
-      if (hit_left && hit_right) {
-        PTLAB_DCHECK(stack_size < kBvhMaxDepth);
-        if (t_right < t_left) {
-          stack[stack_size++] = {left, t_left};
-          current = right;
-        } else {
-          stack[stack_size++] = {right, t_right};
-          current = left;
-        }
-        continue;
-      }
-      if (hit_left || hit_right) {
-        current = hit_left ? left : right;
-        continue;
-      }
-    } else {
-      for (uint32_t i = node.offset, end = node.offset + node.count; i < end; ++i) {
-        // The triangle test always gets the ray's own interval, not the closest hit so far:
-        // the set of accepted hits is then independent of visiting order, and the closest
-        // one (lowest row on a tie) is the same as a brute-force loop's.
-        TriangleHit th;
-        if (!IntersectLeafTriangle(cols, i, wt, ray.t_min, ray.t_max, &th)) continue;
-        const uint32_t prim = bvh.prim_id[i];
-        if (th.t < best_t || (th.t == best_t && prim < best_prim)) {
-          best_t = th.t;
-          best_prim = prim;
-          best_b1 = th.b1;
-          best_b2 = th.b2;
-        }
-      }
-    }
-    // Pop the next subtree that may still hold a hit at or before the closest one.
-    for (;;) {
-      if (stack_size == 0) {
-        if (best_prim == kNoHit) return false;
-        hit->t = best_t;
-        hit->b1 = best_b1;
-        hit->b2 = best_b2;
-        hit->prim = best_prim;
-        return true;
-      }
-      const StackEntry& e = stack[--stack_size];
-      if (e.t_entry <= best_t * kRobustFarScale) {
-        current = e.node;
-        break;
-      }
-    }
-  }
+  WalkBvhClosest(bvh.nodes.data(), MakeSlabRay(ray), ray.t_min, &best_t,
+                 [&](const BvhNode& node) {
+                   for (uint32_t i = node.offset, end = node.offset + node.count; i < end; ++i) {
+                     // The triangle test always gets the ray's own interval, not the closest
+                     // hit so far: the set of accepted hits is then independent of visiting
+                     // order, and the closest one (lowest row on a tie) is the same as a
+                     // brute-force loop's.
+                     TriangleHit th;
+                     if (!IntersectLeafTriangle(cols, i, wt, ray.t_min, ray.t_max, &th)) continue;
+                     const uint32_t prim = bvh.prim_id[i];
+                     if (th.t < best_t || (th.t == best_t && prim < best_prim)) {
+                       best_t = th.t;
+                       best_prim = prim;
+                       best_b1 = th.b1;
+                       best_b2 = th.b2;
+                     }
+                   }
+                 });
+  if (best_prim == kNoHit) return false;
+  hit->t = best_t;
+  hit->b1 = best_b1;
+  hit->b2 = best_b2;
+  hit->prim = best_prim;
+  return true;
 }
 
 // Any triangle hit (the BVH).
 bool OccludedTriangles1(const Bvh& bvh, const Ray& ray) {
   if (bvh.nodes.empty() || !(ray.t_min < ray.t_max)) return false;
-  const BvhNode* nodes = bvh.nodes.data();
-  const SlabRay slab = MakeSlabRay(ray);
   const WatertightRay wt = MakeWatertightRay(ray.o, ray.d);
   const PermutedColumns cols = PermuteColumns(bvh.leaf_triangles, wt);
-
-  uint32_t stack[kBvhMaxDepth];
-  int stack_size = 0;
-  float t_entry;
-  if (!IntersectBox(nodes[0], slab, ray.t_min, ray.t_max, &t_entry)) return false;
-  uint32_t current = 0;
-  for (;;) {
-    const BvhNode& node = nodes[current];
-    if (!node.IsLeaf()) {
-      const uint32_t left = current + 1, right = node.offset;
-      float t_left, t_right;
-      const bool hit_left = IntersectBox(nodes[left], slab, ray.t_min, ray.t_max, &t_left);
-      const bool hit_right = IntersectBox(nodes[right], slab, ray.t_min, ray.t_max, &t_right);
-      if (hit_left && hit_right) {
-        PTLAB_DCHECK(stack_size < kBvhMaxDepth);
-        const bool right_first = t_right < t_left;
-        stack[stack_size++] = right_first ? left : right;
-        current = right_first ? right : left;
-        continue;
-      }
-      if (hit_left || hit_right) {
-        current = hit_left ? left : right;
-        continue;
-      }
-    } else {
-      for (uint32_t i = node.offset, end = node.offset + node.count; i < end; ++i) {
-        TriangleHit th;
-        if (IntersectLeafTriangle(cols, i, wt, ray.t_min, ray.t_max, &th)) return true;
-      }
-    }
-    if (stack_size == 0) return false;
-    current = stack[--stack_size];
-  }
+  return WalkBvhAny(bvh.nodes.data(), MakeSlabRay(ray), ray.t_min, ray.t_max,
+                    [&](const BvhNode& node) {
+                      for (uint32_t i = node.offset, end = node.offset + node.count; i < end;
+                           ++i) {
+                        TriangleHit th;
+                        if (IntersectLeafTriangle(cols, i, wt, ray.t_min, ray.t_max, &th))
+                          return true;
+                      }
+                      return false;
+                    });
 }
 
 bool IntersectGroup1(const void* groups, uint32_t g, const Ray& ray, Hit* hit) {

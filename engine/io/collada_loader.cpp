@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/core/memory_budget.h"
+#include "engine/core/similarity.h"
 #include "engine/core/parse_number.h"
 #include "engine/io/collada_document.h"
 #include "engine/io/collada_effect.h"
@@ -391,7 +392,7 @@ class ColladaReader {
       // An analytic sphere where it stays one: not emissive (area lights sample triangles) and
       // under a similarity transform (a non-uniform scale makes an ellipsoid).
       float scale = 0;
-      if (IsBlack(radiance) && UniformScale(world, &scale))
+      if (IsBlack(radiance) && IsSimilarity(world, &scale))
         return AddAnalyticSphere(instance, ApplyPoint(world, {0, 0, 0}), g.sphere_radius * scale,
                                  ref);
       return add_mesh(MakeSphere({0, 0, 0}, g.sphere_radius), ref, radiance);

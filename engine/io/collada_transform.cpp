@@ -18,21 +18,6 @@ Vec3f ApplyVector(const Matrix4& m, const Vec3f& v) {
   return ApplyPoint(m, v) - ApplyPoint(m, {0, 0, 0});
 }
 
-bool UniformScale(const Matrix4& m, float* scale) {
-  const Vec3f c[3] = {{m.m[0][0], m.m[1][0], m.m[2][0]},
-                      {m.m[0][1], m.m[1][1], m.m[2][1]},
-                      {m.m[0][2], m.m[1][2], m.m[2][2]}};
-  const float l = Length(c[0]);
-  if (!(l > 0) || !std::isfinite(l)) return false;
-  constexpr float kTolerance = 1e-5f;
-  for (int i = 0; i < 3; ++i) {
-    if (!(std::fabs(Length(c[i]) - l) <= kTolerance * l)) return false;
-    if (!(std::fabs(Dot(c[i], c[(i + 1) % 3])) <= kTolerance * l * l)) return false;
-  }
-  *scale = l;
-  return true;
-}
-
 Matrix4 Columns(const Vec3f& x, const Vec3f& y, const Vec3f& z, const Vec3f& p) {
   Matrix4 m;
   const Vec3f c[4] = {x, y, z, p};

@@ -18,10 +18,6 @@ Vec3f ApplyPoint(const Matrix4& m, const Vec3f& p);
 /// m applied to the vector v (its translation ignored).
 Vec3f ApplyVector(const Matrix4& m, const Vec3f& v);
 
-/// True when the upper 3x3 of m is a rotation (or reflection) times one scale factor > 0, which
-/// it stores in *scale: its columns are orthogonal and of one length, to float precision.
-bool UniformScale(const Matrix4& m, float* scale);
-
 /// The affine matrix with columns x, y, z and translation p.
 Matrix4 Columns(const Vec3f& x, const Vec3f& y, const Vec3f& z, const Vec3f& p);
 

@@ -9,20 +9,6 @@
 namespace ptlab::internal {
 namespace {
 
-// An IOR given as a number or as one of Mitsuba's names ("bk7", "air", ...).
-Status Ior(const MitsubaObject& obj, const char* name, float* ior) {
-  const MitsubaProperty* p = obj.Get(name);
-  if (p && p->type == MitsubaProperty::Type::kString) {
-    if (!LookupNamedIor(p->text, ior))
-      return obj.Error(name, "unknown IOR name '" + p->text + "'; expected a number or one of " +
-                                 NamedIorList());
-    return Status::Ok();
-  }
-  PTLAB_RETURN_IF_ERROR(obj.Float(name, ior));
-  if (!(*ior > 0)) return obj.Error(name, std::string(name) + " must be > 0");
-  return Status::Ok();
-}
-
 // matB: a colour property that must be ≥ 0 (and ≤ 1 when `at_most_one`).
 Status CheckedColor(const MitsubaObject& obj, const char* name, bool at_most_one, Color3f* c) {
   PTLAB_RETURN_IF_ERROR(obj.Color(name, SpectrumUse::kReflectance, c));
@@ -42,8 +28,8 @@ StatusOr<PlasticDesc> ReadPlastic(const MitsubaObject& obj, bool rough) {
   if (rough) names.insert(names.end(), {"distribution", "alpha", "sample_visible"});
   PTLAB_RETURN_IF_ERROR(obj.Expect(names));
   PlasticDesc p;
-  PTLAB_RETURN_IF_ERROR(Ior(obj, "int_ior", &p.int_ior));
-  PTLAB_RETURN_IF_ERROR(Ior(obj, "ext_ior", &p.ext_ior));
+  PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "int_ior", &p.int_ior));
+  PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "ext_ior", &p.ext_ior));
   PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "diffuse_reflectance", true, &p.diffuse));
   PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "specular_reflectance", false, &p.specular));
   PTLAB_RETURN_IF_ERROR(obj.Boolean("nonlinear", &p.nonlinear));
@@ -93,8 +79,8 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(
         obj.Expect({"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"}));
     float int_ior = 1.5046f, ext_ior = 1.000277f;  // Mitsuba's defaults: bk7 in air
-    PTLAB_RETURN_IF_ERROR(Ior(obj, "int_ior", &int_ior));
-    PTLAB_RETURN_IF_ERROR(Ior(obj, "ext_ior", &ext_ior));
+    PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "int_ior", &int_ior));
+    PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "ext_ior", &ext_ior));
     for (const char* name : {"specular_reflectance", "specular_transmittance"}) {
       Color3f c{1, 1, 1};
       PTLAB_RETURN_IF_ERROR(obj.Color(name, SpectrumUse::kReflectance, &c));
@@ -114,8 +100,8 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(
         obj.Expect({"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"}));
     float int_ior = 1.5046f, ext_ior = 1.000277f;  // Mitsuba's defaults: bk7 in air
-    PTLAB_RETURN_IF_ERROR(Ior(obj, "int_ior", &int_ior));
-    PTLAB_RETURN_IF_ERROR(Ior(obj, "ext_ior", &ext_ior));
+    PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "int_ior", &int_ior));
+    PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "ext_ior", &ext_ior));
     Color3f refl{1, 1, 1}, trans{1, 1, 1};
     PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "specular_reflectance", false, &refl));
     PTLAB_RETURN_IF_ERROR(CheckedColor(obj, "specular_transmittance", false, &trans));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/bvh/sphere_intersect.h"
+#include "engine/core/similarity.h"
 #include "engine/io/mitsuba_scene_builder.h"
 #include "engine/scene/scene_limits.h"
 
@@ -15,19 +16,6 @@ namespace {
 // Instanced hit ids stay below 2^30 (InstanceTable), so with the scene's triangle rows (fewer
 // than 2^28) they never reach a sphere's id bit.
 constexpr uint64_t kMaxInstancedTriangles = uint64_t{1} << 30;
-
-// True when the upper 3x3 of `m` is a rotation (or mirror) times a uniform scale s > 0.
-bool UniformScale(const Matrix4& m, float* s) {
-  Vec3f c[3];
-  for (int j = 0; j < 3; ++j) c[j] = {m.m[0][j], m.m[1][j], m.m[2][j]};
-  const float s0 = Length(c[0]);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!(std::fabs(Dot(c[i], c[j]) - (i == j ? s0 * s0 : 0.0f)) <= 1e-5f * s0 * s0))
-        return false;
-  *s = s0;
-  return s0 > 0;
-}
 
 const std::string& TypeOf(const MitsubaNode& node) {
   static const std::string kNone;
@@ -124,7 +112,7 @@ Status MitsubaSceneBuilder::Instance(const MitsubaNode& node) {
   }
   if (shapes.spheres.size() > 0) {
     float scale = 0;
-    if (!UniformScale(to_world.matrix(), &scale))
+    if (!IsSimilarity(to_world.matrix(), &scale))
       return Unsupported(node, "an instance of a group with a sphere under a non-uniform scale "
                                "or shear");
     for (size_t i = 0; i < shapes.spheres.size(); ++i) {

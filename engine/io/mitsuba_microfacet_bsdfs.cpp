@@ -79,8 +79,9 @@ Status Roughness(const MitsubaObject& obj, float* alpha_u, float* alpha_v, uint8
   return Status::Ok();
 }
 
-// An IOR given as a number (> 0) or as one of Mitsuba's names ("bk7", "air", ...).
-Status NamedOrNumericIor(const MitsubaObject& obj, const char* name, float* ior) {
+}  // namespace
+
+Status MitsubaIor(const MitsubaObject& obj, const char* name, float* ior) {
   const MitsubaProperty* p = obj.Get(name);
   if (p && p->type == MitsubaProperty::Type::kString) {
     if (!LookupNamedIor(p->text, ior))
@@ -93,8 +94,6 @@ Status NamedOrNumericIor(const MitsubaObject& obj, const char* name, float* ior)
     return obj.Error(name, std::string(name) + " must be a finite number > 0");
   return Status::Ok();
 }
-
-}  // namespace
 
 StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
                                                const std::vector<std::string>& search_paths,
@@ -124,8 +123,8 @@ StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
                                       "specular_transmittance", "distribution", "alpha",
                                       "alpha_u", "alpha_v", "sample_visible"}));
     float int_ior = 1.5046f, ext_ior = 1.000277f;  // Mitsuba's defaults: bk7 in air
-    PTLAB_RETURN_IF_ERROR(NamedOrNumericIor(obj, "int_ior", &int_ior));
-    PTLAB_RETURN_IF_ERROR(NamedOrNumericIor(obj, "ext_ior", &ext_ior));
+    PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "int_ior", &int_ior));
+    PTLAB_RETURN_IF_ERROR(MitsubaIor(obj, "ext_ior", &ext_ior));
     Color3f reflectance, transmittance;
     PTLAB_RETURN_IF_ERROR(Specular(obj, "specular_reflectance", &reflectance));
     PTLAB_RETURN_IF_ERROR(Specular(obj, "specular_transmittance", &transmittance));

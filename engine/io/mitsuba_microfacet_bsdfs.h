@@ -10,6 +10,10 @@
 
 namespace ptlab::internal {
 
+/// An IOR property of a Mitsuba BSDF (`int_ior`, `ext_ior`): a finite number > 0 or one of
+/// Mitsuba's names ("bk7", "air", ...). Left unchanged when absent.
+Status MitsubaIor(const MitsubaObject& obj, const char* name, float* ior);
+
 /// Adds the material of `obj` (type conductor, roughconductor or roughdielectric) to
 /// `materials` with Mitsuba 3's parameters and defaults: `material` names (default "none", the
 /// perfect mirror) are read from ior/NAME.{eta,k}.spd in `search_paths` (LookupMitsubaConductor);

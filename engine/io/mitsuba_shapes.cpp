@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "engine/bvh/sphere_intersect.h"
+#include "engine/core/similarity.h"
 #include "engine/core/frame.h"
 #include "engine/io/mitsuba_meshes.h"
 #include "engine/io/mitsuba_scene_builder.h"
@@ -40,19 +41,6 @@ void ComputeAngleWeightedNormals(MeshData* mesh) {
   mesh->normals.resize(sum.size());
   for (size_t i = 0; i < sum.size(); ++i)
     mesh->normals[i] = Length(sum[i]) > 0 ? Normalize(sum[i]) : Vec3f{0, 0, 1};
-}
-
-// True when `m` is a rotation times a uniform scale s > 0 (plus a translation).
-bool IsSimilarity(const Matrix4& m, float* s) {
-  Vec3f c[3];
-  for (int j = 0; j < 3; ++j) c[j] = {m.m[0][j], m.m[1][j], m.m[2][j]};
-  const float s0 = Length(c[0]);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!(std::fabs(Dot(c[i], c[j]) - (i == j ? s0 * s0 : 0.0f)) <= 1e-5f * s0 * s0))
-        return false;
-  *s = s0;
-  return s0 > 0;
 }
 
 }  // namespace

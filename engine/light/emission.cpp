@@ -9,6 +9,7 @@
 #include "engine/light/area_light.h"
 #include "engine/light/infinite_light.h"
 #include "engine/sampling/warp.h"
+#include "engine/scene/world_bounds.h"
 
 namespace ptlab {
 namespace {
@@ -31,23 +32,9 @@ float DiskPdf(const SceneSphere& sphere) {
 }  // namespace
 
 SceneSphere BoundingSphereOf(const Scene& scene) {
-  const TriangleTable& t = scene.triangles;
-  const SphereTable& spheres = scene.spheres;
   SceneSphere s;
-  if (t.size() == 0 && spheres.size() == 0) return s;
-  constexpr float kMax = std::numeric_limits<float>::max();
-  Vec3f lo{kMax, kMax, kMax}, hi{-kMax, -kMax, -kMax};
-  const auto expand = [&lo, &hi](const Vec3f& v) {
-    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-  };
-  for (size_t i = 0; i < t.size(); ++i)
-    for (const Vec3f& v : {t.V0(i), t.V1(i), t.V2(i)}) expand(v);
-  for (size_t i = 0; i < spheres.size(); ++i) {
-    const float r = spheres.radius[i];
-    expand(spheres.Center(i) - Vec3f{r, r, r});
-    expand(spheres.Center(i) + Vec3f{r, r, r});
-  }
+  Vec3f lo, hi;
+  if (!WorldBounds(scene, &lo, &hi)) return s;
   s.center = (lo + hi) * 0.5f;
   // A little margin, so that the disk lies outside every surface it shines on.
   s.radius = std::max(1e-3f, 0.5f * Length(hi - lo) * 1.001f);

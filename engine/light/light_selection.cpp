@@ -6,28 +6,16 @@
 #include <limits>
 
 #include "engine/sampling/guide_table.h"
+#include "engine/scene/world_bounds.h"
 
 namespace ptlab {
 namespace {
 
-// Radius of a sphere around every triangle and analytic sphere (0 without geometry): the disk
-// an infinite or directional emitter shines on, pbrt's measure of such a light's power.
-double SceneRadius(const TriangleTable& t, const SphereTable& spheres) {
-  if (t.size() == 0 && spheres.size() == 0) return 0.0;
-  Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-           std::numeric_limits<float>::max()};
-  Vec3f hi = -lo;
-  const auto expand = [&lo, &hi](const Vec3f& v) {
-    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-  };
-  for (size_t i = 0; i < t.size(); ++i)
-    for (const Vec3f& v : {t.V0(i), t.V1(i), t.V2(i)}) expand(v);
-  for (size_t i = 0; i < spheres.size(); ++i) {
-    const float r = spheres.radius[i];
-    expand(spheres.Center(i) - Vec3f{r, r, r});
-    expand(spheres.Center(i) + Vec3f{r, r, r});
-  }
+// Radius of a sphere around the scene's world geometry (0 without any; WorldBounds): the disk an
+// infinite or directional emitter shines on, pbrt's measure of such a light's power.
+double SceneRadius(const Scene& scene) {
+  Vec3f lo, hi;
+  if (!WorldBounds(scene, &lo, &hi)) return 0.0;
   return 0.5 * double(Length(hi - lo));
 }
 
@@ -47,7 +35,7 @@ void BuildEmitterSelection(Scene* scene) {
   t.slot_spot.assign(scene->spot_lights.size(), 0);
   t.slot_projector.assign(scene->projectors.size(), 0);
   if (n == 0) return;
-  const double radius = SceneRadius(scene->triangles, scene->spheres);
+  const double radius = SceneRadius(*scene);
   // An infinite or directional emitter in a scene without geometry lights nothing; a unit
   // disk keeps it selectable.
   const double disk_area = kPiD * std::max(radius * radius, 1.0);

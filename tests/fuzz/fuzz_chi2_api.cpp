@@ -2,7 +2,7 @@
 // (tools/chi2/python/module.cpp: chi2_test with a sample array or a sample function, t_test
 // one-sample and Welch), with every argument taken from the input: the domain text, the
 // options (samples, res, alpha, test count, uniforms per sample, coarse blocks, power), the
-// points a sampler returns and the densities a pdf returns (NaN, Inf, negative, huge and
+// points a sampler returns and the one density the pdf returns (NaN, Inf, negative, huge and
 // out-of-domain values included). Each call must return a Status (an error for bad input) and
 // never crash, hang or abort. Sample counts are kept small so that an execution takes
 // milliseconds; the counts' own limits are checked by the API's tests.
@@ -81,16 +81,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.coarse_blocks = int(in.Get<int8_t>()) % 12;
   options.power = (in.Get<uint8_t>() & 1) != 0 && options.samples <= 256;
   const int dims = domain.dims();
-  // The points a sampler returns and the densities a pdf returns, cycled through.
+  // The points a sampler returns, cycled through.
   std::vector<chi2::Point> points(1 + in.Get<uint8_t>() % 16);
   for (chi2::Point& p : points) p = {FuzzFloat(in), FuzzFloat(in), dims == 3 ? FuzzFloat(in) : 0};
-  std::vector<double> densities(1 + in.Get<uint8_t>() % 16);
-  for (double& d : densities) d = double(FuzzFloat(in));
   // One density for every point (NaN, Inf, negative and huge included): a pdf that is noise
   // within cells runs the integration to its 8 M-point budget, tens of seconds per input under
   // ASan, past ./lab fuzz's 10 s timeout (that budget has its own check in chi2.cpp).
-  const chi2::PdfFn pdf = [&](const chi2::Point*, int64_t n, double* out) {
-    for (int64_t i = 0; i < n; ++i) out[i] = densities[0];
+  const double density = double(FuzzFloat(in));
+  const chi2::PdfFn pdf = [density](const chi2::Point*, int64_t n, double* out) {
+    for (int64_t i = 0; i < n; ++i) out[i] = density;
     return chi2::Status::Ok();
   };
   chi2::Result result;

@@ -90,11 +90,12 @@ std::shared_ptr<const MaterialTables> OneRowTables(Chi2BsdfModel model, float al
 
 // simd::ShadeBatch over n rows of one material: wo broadcast, no light evaluation.
 Chi2BatchSampleFn ShadeBatchSampler(std::shared_ptr<const MaterialTables> m, MaterialRef ref,
-                                    const Vec3f& wo) {
-  return [m, ref, wo](const float* u1, const Vec2f* u2, int n, Chi2Point* p, uint8_t* ok) {
+                                    const Vec3f& wo, bool reject_delta) {
+  return [m, ref, wo, reject_delta](const float* u1, const Vec2f* u2, int n, Chi2Point* p,
+                                    uint8_t* ok) {
     float wo_x[kBatch], wo_y[kBatch], wo_z[kBatch], u_lobe[kBatch], u_x[kBatch], u_y[kBatch];
     float wi_x[kBatch], wi_y[kBatch], wi_z[kBatch], w_r[kBatch], w_g[kBatch], w_b[kBatch];
-    float pdf[kBatch], eta[kBatch];
+    float pdf[kBatch], eta[kBatch], delta[kBatch];
     uint32_t index[kBatch];
     for (int begin = 0; begin < n; begin += kBatch) {
       const int count = std::min(kBatch, n - begin);
@@ -111,9 +112,10 @@ Chi2BatchSampleFn ShadeBatchSampler(std::shared_ptr<const MaterialTables> m, Mat
       out.weight = {w_r, w_g, w_b};
       out.pdf = pdf;
       out.eta = eta;
+      if (reject_delta) out.delta = delta;
       simd::ShadeBatch(*m, ref.tag(), index, size_t(count), in, out);
       for (int i = 0; i < count; ++i) {
-        ok[begin + i] = pdf[i] > 0 ? 1 : 0;
+        ok[begin + i] = pdf[i] > 0 && !(reject_delta && delta[i] != 0) ? 1 : 0;
         p[begin + i] = {wi_x[i], wi_y[i], wi_z[i]};
       }
     }

@@ -52,9 +52,11 @@ Chi2Subject BsdfChi2Subject(std::string name, Chi2BsdfModel model, Chi2BsdfPath 
                             const Vec3f& wo, bool zoom = true);
 
 /// A batch sampler for the χ² lab running simd::ShadeBatch on one row `ref` of `m` with wo
-/// broadcast (no light evaluation); a sample is valid where its pdf is > 0.
+/// broadcast (no light evaluation); a sample is valid where its pdf is > 0 and, with
+/// `reject_delta`, where it did not take a Dirac-delta lobe (ShadeOutputs::delta: the
+/// non-delta part of a model that mixes both).
 Chi2BatchSampleFn ShadeBatchSampler(std::shared_ptr<const MaterialTables> m, MaterialRef ref,
-                                    const Vec3f& wo);
+                                    const Vec3f& wo, bool reject_delta = false);
 
 /// Registers, all expected to pass unless named "broken/...", incidences θ ∈ {0°, 30°, 60°, 85°}
 /// with azimuths φ ∈ {0°, 35°, 110°, 250°}:

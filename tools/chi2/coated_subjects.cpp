@@ -44,34 +44,7 @@ Chi2Subject NonDeltaSubject(std::string name, std::string params,
     return s;
   }
   s.params += std::string(" target=") + simd::ShadeTargetName();
-  s.sample_batch = [m, ref, wo](const float* u1, const Vec2f* u2, int n, Chi2Point* p,
-                                uint8_t* ok) {
-    constexpr int kBatch = 256;
-    float wo_x[kBatch], wo_y[kBatch], wo_z[kBatch], u_lobe[kBatch], u_x[kBatch], u_y[kBatch];
-    float wi_x[kBatch], wi_y[kBatch], wi_z[kBatch], w_r[kBatch], w_g[kBatch], w_b[kBatch];
-    float pdf[kBatch], eta[kBatch], delta[kBatch];
-    uint32_t index[kBatch];
-    for (int begin = 0; begin < n; begin += kBatch) {
-      const int count = std::min(kBatch, n - begin);
-      for (int i = 0; i < count; ++i) {
-        wo_x[i] = wo.x, wo_y[i] = wo.y, wo_z[i] = wo.z;
-        u_lobe[i] = u1[begin + i], u_x[i] = u2[begin + i].x, u_y[i] = u2[begin + i].y;
-        index[i] = ref.index();
-      }
-      ShadeInputs in;
-      in.wo = {wo_x, wo_y, wo_z};
-      in.u_lobe = u_lobe, in.u_x = u_x, in.u_y = u_y;
-      ShadeOutputs out;
-      out.wi = {wi_x, wi_y, wi_z};
-      out.weight = {w_r, w_g, w_b};
-      out.pdf = pdf, out.eta = eta, out.delta = delta;
-      simd::ShadeBatch(*m, ref.tag(), index, size_t(count), in, out);
-      for (int i = 0; i < count; ++i) {
-        ok[begin + i] = pdf[i] > 0 && delta[i] == 0 ? 1 : 0;
-        p[begin + i] = {wi_x[i], wi_y[i], wi_z[i]};
-      }
-    }
-  };
+  s.sample_batch = ShadeBatchSampler(m, ref, wo, /*reject_delta=*/true);
   return s;
 }
 
