@@ -30,4 +30,15 @@ inline Color3f TexturedColor(const AlignedVector<uint32_t>& texture, size_t i,
   return {std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f)};
 }
 
+/// Row i's value of a scalar parameter that may be textured (roughness, opacity, a blend
+/// weight, ...): `constant` unless the texture-id column names a texture for row i; then the
+/// luminance of that texture at `site` (Mitsuba 3's `eval_1`: a one-channel texture stored as
+/// equal r = g = b gives its value, since the luminance weights sum to 1), clamped to ≥ 0.
+inline float TexturedFloat(const AlignedVector<uint32_t>& texture, size_t i, float constant,
+                           const TextureSite& site) {
+  if (texture.empty() || texture[i] == kNoTexture) return constant;
+  PTLAB_CHECK(site.textures != nullptr);
+  return std::max(Luminance(EvalTexture(*site.textures, texture[i], site.at)), 0.0f);
+}
+
 }  // namespace ptlab

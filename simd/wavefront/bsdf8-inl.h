@@ -428,6 +428,21 @@ HWY_INLINE void TexturedColor8(D8 d, const ShadeInputs::Textures& tex,
   *b_out = hn::IfThenElse(has, hn::IfThenZeroElse(hn::Lt(tb, zero), tb), *b_out);
 }
 
+/// A textured scalar parameter (TexturedFloat, engine/texture/texture_site.h): the rows with a
+/// texture get the luminance of its color at their shading point, products rounded before the
+/// sums as the oracle's Luminance is, clamped to ≥ 0; the others keep *value.
+HWY_INLINE void TexturedFloat8(D8 d, const ShadeInputs::Textures& tex,
+                               const AlignedVector<uint32_t>& texture, const ShadeIo& b, size_t i,
+                               V8* value) {
+  const V8 none = hn::Set(d, -1.0f);
+  V8 r = none, g = none, bl = none;
+  TexturedColor8(d, tex, texture, b, i, &r, &g, &bl);
+  const M8 has = hn::Ge(r, hn::Zero(d));  // textured rows' channels are ≥ 0 after the clamp
+  const V8 lum = hn::Add(hn::Add(hn::Mul(hn::Set(d, 0.212671f), r), hn::Mul(hn::Set(d, 0.715160f), g)),
+                         hn::Mul(hn::Set(d, 0.072169f), bl));
+  *value = hn::IfThenElse(has, hn::Max(lum, hn::Zero(d)), *value);
+}
+
 inline void ShadeDiffuse(const DiffuseTable& t, const ShadeInputs::Textures& tex,
                          const ShadeIo& io, size_t n, bool eval, bool sample) {
   const bool textured = tex.textures != nullptr && t.textured();

@@ -13,6 +13,7 @@
 #include "engine/io/mitsuba_loader.h"
 #include "engine/io/ply_loader.h"
 #include "engine/render/interaction.h"
+#include "engine/texture/texture_site.h"
 
 namespace ptlab {
 namespace {
@@ -139,6 +140,23 @@ TEST(Texture, CheckerboardParity) {
   // to_uv scales the squares: u' = 4u.
   t.m00[id] = 4;
   EXPECT_EQ(At(t, id, 0.1875f, 0.25f).r, 0.2f);  // u' = 0.75
+}
+
+TEST(Texture, TexturedFloatIsTheLuminanceOfTheRowsTexture) {
+  TextureTable t;
+  const uint32_t id = t.AddRow(TextureKind::kCheckerboard, 1, 1, 6);
+  float* c = &t.data[t.offset[id]];
+  c[0] = c[1] = c[2] = 0.7f;                     // a one-channel color0: its value
+  c[3] = 1.0f, c[4] = 0.0f, c[5] = -2.0f;        // an RGB color1 with a negative channel
+  TextureSite site{&t, {{0.25f, 0.25f}, {0, 0, 0}, 0}};
+  AlignedVector<uint32_t> column = {kNoTexture, id};
+  EXPECT_EQ(TexturedFloat(column, 0, 0.3f, site), 0.3f);  // no texture for row 0
+  EXPECT_EQ(TexturedFloat(AlignedVector<uint32_t>{}, 1, 0.3f, site), 0.3f);  // empty column
+  EXPECT_FLOAT_EQ(TexturedFloat(column, 1, 0.3f, site), 0.7f);
+  site.at.uv = {0.75f, 0.25f};                   // color1: 0.212671 − 2 · 0.072169 > 0
+  EXPECT_FLOAT_EQ(TexturedFloat(column, 1, 0.3f, site), 0.212671f - 2 * 0.072169f);
+  c[3] = 0.0f;                                   // luminance −0.144 clamps to 0
+  EXPECT_EQ(TexturedFloat(column, 1, 0.3f, site), 0.0f);
 }
 
 TEST(Texture, MeshAttributesOfTheRowsTrianglesOnly) {
