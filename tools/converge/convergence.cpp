@@ -41,37 +41,43 @@ double Mean(const std::vector<double>& v) {
 }  // namespace
 
 double EstimateRelMseFromHalves(const Image& a, const Image& b) {
-  // The denominator stands in for the reference: the mean of the halves over a 3x3 pixel
-  // neighbourhood, which has 1/9 of a pixel's variance. The pixel's own noisy mean there would
-  // bias the estimate up by Jensen's inequality (E[1/m^2] > 1/E[m]^2): +35 % where the noise of
-  // a half is 40 % of the mean, against +3 % with the neighbourhood (convergence_test.cpp).
+  // Per pixel and channel: d = (a − b)/2 has the variance of the merged mean m = (a + b)/2, and
+  // relMSE = E[d²] / (μ² + ε). μ is unknown; the pixel's own m in its place makes the estimate
+  // too high by Jensen's inequality, E[1/(m² + ε)] ≈ (1 + (4t − 1) r²) / (μ² + ε) to second
+  // order, with r² = var(m) / (μ² + ε) and t = μ² / (μ² + ε). That factor is divided out, r²
+  // taken from the eight neighbours' own d² / (m² + ε) (not the pixel's: its d² is the
+  // numerator). A mean over a neighbourhood as the denominator instead would be biased at every
+  // edge: −23 % on a direct-lit Cornell box (docs/converge.md).
   const int w = a.width, h = a.height;
-  auto mean_at = [&](int x, int y, int c) {
-    const size_t i = (size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c);
-    return 0.5 * (double(a.rgb[i]) + double(b.rgb[i]));
-  };
+  auto at = [w](int x, int y, int c) { return (size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c); };
+  auto half_diff = [&](size_t i) { return 0.5 * (double(a.rgb[i]) - double(b.rgb[i])); };
+  auto mean = [&](size_t i) { return 0.5 * (double(a.rgb[i]) + double(b.rgb[i])); };
   double sum = 0;
   int64_t n = 0;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       for (int c = 0; c < 3; ++c) {
-        const size_t i = (size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c);
-        const double half_diff = 0.5 * (double(a.rgb[i]) - double(b.rgb[i]));
-        if (!std::isfinite(half_diff)) continue;
-        double local = 0;
+        const size_t i = at(x, y, c);
+        const double d = half_diff(i), m = mean(i);
+        if (!std::isfinite(d) || !std::isfinite(m)) continue;
+        double r2 = 0;
         int taps = 0;
         for (int dy = -1; dy <= 1; ++dy) {
           for (int dx = -1; dx <= 1; ++dx) {
             const int xx = x + dx, yy = y + dy;
-            if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
-            const double m = mean_at(xx, yy, c);
-            if (!std::isfinite(m)) continue;
-            local += m;
+            if ((dx == 0 && dy == 0) || xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+            const size_t j = at(xx, yy, c);
+            const double dj = half_diff(j), mj = mean(j);
+            if (!std::isfinite(dj) || !std::isfinite(mj)) continue;
+            r2 += dj * dj / (mj * mj + kRelMseEpsilon);
             ++taps;
           }
         }
-        local /= double(taps);
-        sum += half_diff * half_diff / (local * local + kRelMseEpsilon);
+        if (taps > 0) r2 /= double(taps);
+        const double q = m * m + kRelMseEpsilon, t = m * m / q;
+        // The factor is ≥ 1 − r² for any t; held ≥ ½ where a wild neighbourhood would turn it over.
+        const double jensen = std::max(1.0 + (4.0 * t - 1.0) * r2, 0.5);
+        sum += d * d / q / jensen;
         ++n;
       }
     }

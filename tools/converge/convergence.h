@@ -30,7 +30,8 @@ struct ConvergencePoint {
 /// relMSE expected of (a + b) / 2 from two independent half images a and b (the same
 /// estimator with half the samples each): var of the mean = E[(a - b)^2] / 4 per pixel and
 /// channel, divided by ((a + b)/2)^2 + kRelMseEpsilon as imgdiff's relMSE divides by the
-/// reference's. Precondition: same size.
+/// reference's, with that denominator's second-order Jensen bias divided out (its relative
+/// variance taken from the 3×3 neighbours). Precondition: same size.
 double EstimateRelMseFromHalves(const Image& a, const Image& b);
 
 /// Least-squares line through (log x, log y) over the points with x, y > 0 and finite.

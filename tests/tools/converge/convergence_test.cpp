@@ -2,6 +2,7 @@
 #include "tools/converge/convergence.h"
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <tuple>
 
@@ -40,31 +41,45 @@ TEST(Convergence, TimeToQualityInterpolatesLogLog) {
 }
 
 // Two halves of N samples each of a known noise: the estimate of the mean's relMSE is the
-// expected value, var/(2N) / (mu^2 + eps), within its sampling error and the bias of its
-// denominator (a 3x3 mean of the halves with 1/9 of a pixel's variance: +3 r^2 for a relative
-// noise r of that mean). Sigma 0.2 is docs/converge.md's case: a half's noise 40 % of the signal.
+// truth within its sampling error and the bias left by its denominator's second-order Jensen
+// correction, the next term of E[1/(1 + x)²] for Gaussian x: 15 r⁴ with r² = var(m) / μ² the
+// merged mean's relative variance (r² = 0.02 and 0.08 here: +0.006 and +0.096). On a flat image
+// and on stripes two pixels wide that alternate 0.5 and 5 (edges everywhere: a neighbourhood
+// mean as the denominator read +7 % at 20 % noise there).
 TEST(Convergence, TwoHalvesEstimateTheErrorOfTheirMean) {
-  struct Case {
-    double sigma, bias, tol;  // bias: the expected +3 r^2
-  };
-  for (const Case c : {Case{0.1, 0.007, 0.02}, Case{0.2, 0.026, 0.02}}) {
-    const int w = 200, h = 200;
-    const double mu = 0.5;
-    std::mt19937 rng(7);
-    std::normal_distribution<double> noise(0.0, c.sigma);
-    Image a(w, h), b(w, h), mean(w, h), truth(w, h);
-    for (size_t i = 0; i < a.rgb.size(); ++i) {
-      a.rgb[i] = float(mu + noise(rng));
-      b.rgb[i] = float(mu + noise(rng));
-      mean.rgb[i] = 0.5f * (a.rgb[i] + b.rgb[i]);
-      truth.rgb[i] = float(mu);
+  for (const double noise_of_a_half : {0.2, 0.4}) {  // relative to the signal
+    for (const bool stripes : {false, true}) {
+      const int w = 200, h = 200;
+      std::mt19937 rng(7);
+      std::normal_distribution<double> noise(0.0, noise_of_a_half);
+      Image a(w, h), b(w, h), mean(w, h), truth(w, h);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < 3; ++c) {
+            const size_t i = (size_t(y) * w + x) * 3 + c;
+            const double mu = stripes && (x / 2) % 2 == 1 ? 5.0 : 0.5;
+            a.rgb[i] = float(mu * (1 + noise(rng)));
+            b.rgb[i] = float(mu * (1 + noise(rng)));
+            mean.rgb[i] = 0.5f * (a.rgb[i] + b.rgb[i]);
+            truth.rgb[i] = float(mu);
+          }
+      const double actual = CompareImages(mean, truth, {}).rel_mse_all;
+      const double r2 = noise_of_a_half * noise_of_a_half / 2;
+      // 120,000 values: the ratio's sampling error is ~0.5 %; 0.02 leaves 4 of them.
+      const double expected_bias = 15 * r2 * r2;
+      const double ratio = EstimateRelMseFromHalves(a, b) / actual;
+      std::printf("half noise %.0f %%, %s: estimate / truth %.3f (expected %.3f)\n",
+                  100 * noise_of_a_half, stripes ? "stripes" : "flat", ratio, 1 + expected_bias);
+      if (stripes && noise_of_a_half > 0.3) {
+        // Beyond the expansion: at 40 % noise next to 10x contrast the neighbours' r² is
+        // itself inflated; measured +42 %. Bounded, not claimed.
+        EXPECT_LT(ratio, 1.6);
+        EXPECT_GT(ratio, 1.0);
+      } else {
+        EXPECT_NEAR(ratio, 1.0 + expected_bias, 0.02)
+            << "half noise " << noise_of_a_half << (stripes ? " stripes" : " flat");
+      }
     }
-    const double expected = c.sigma * c.sigma / 2 / (mu * mu + kRelMseEpsilon);
-    const double estimate = EstimateRelMseFromHalves(a, b);
-    const double actual = CompareImages(mean, truth, {}).rel_mse_all;
-    // 120,000 values: the sampling error of both ratios is ~0.4 %.
-    EXPECT_NEAR(estimate / expected, 1.0 + c.bias, c.tol) << "sigma " << c.sigma;
-    EXPECT_NEAR(actual / expected, 1.0, 0.02) << "sigma " << c.sigma;
   }
 }
 
