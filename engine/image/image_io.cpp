@@ -1,4 +1,5 @@
-// Image file I/O: EXR via OpenEXR, PNG and HDR via stb_image, PFM by hand; atomic writes.
+// Image file I/O: EXR via OpenEXR, PNG and HDR via stb_image, PFM by hand (writes through
+// engine/image/atomic_file.h, header checks in engine/image/image_header_checks.h).
 #include "engine/image/image_io.h"
 
 #include <OpenEXR/ImfChannelList.h>
@@ -10,8 +11,6 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
-#include <signal.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -25,11 +24,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <mutex>
 #include <set>
 
 #include "engine/core/input_file.h"
 #include "engine/core/parse_number.h"
+#include "engine/image/image_header_checks.h"
 #include "engine/image/srgb.h"
 
 namespace ptlab {
@@ -39,7 +38,6 @@ namespace fs = std::filesystem;
 
 // Refuse images larger than this many pixels: a garbage header must not trigger a huge allocation.
 constexpr int64_t kMaxPixels = int64_t(1) << 28;
-constexpr int kMaxImageSide = 1 << 20;
 
 Status ReadError(const std::string& path, const std::string& what) {
   return Status::Error("ReadImage: " + path + ": " + what);
@@ -64,136 +62,6 @@ std::string HexPrefix(const std::string& bytes) {
 }
 
 bool SizeOk(int64_t w, int64_t h) { return w > 0 && h > 0 && w * h <= kMaxPixels; }
-
-// The most pixels one byte of a file can decode to, per format, with margin: Radiance RLE
-// packs a run of 127 pixels in 2 bytes per channel (4 channels); EXR's ZIP (deflate, at most
-// about 1032:1) over a half-float channel; PNG's deflate over 1-bit pixels. A header that
-// claims more pixels than the file can hold is refused before the pixels are allocated.
-constexpr int64_t kMaxHdrPixelsPerByte = 32;
-constexpr int64_t kMaxExrPixelsPerByte = 1100;
-constexpr int64_t kMaxPngPixelsPerByte = 8300;
-
-// Empty when a w x h image fits in `file_bytes` of a format decoding at most
-// `pixels_per_byte`; else the reason.
-std::string ClaimedSizeError(int64_t w, int64_t h, size_t file_bytes, int64_t pixels_per_byte) {
-  if (w * h <= int64_t(file_bytes) * pixels_per_byte) return "";
-  return "header claims " + std::to_string(w) + "x" + std::to_string(h) + " pixels, more than " +
-         std::to_string(int64_t(file_bytes) * pixels_per_byte) + " that a file of " +
-         std::to_string(file_bytes) + " bytes can hold (truncated or corrupt)";
-}
-
-// The body of `HdrBodyError` from byte `pos`.
-std::string HdrRunsError(const std::string& bytes, size_t pos, int64_t w, int64_t h) {
-  const uint64_t size = bytes.size();
-  auto flat_error = [&](uint64_t from, int64_t pixels) -> std::string {
-    if (from + uint64_t(pixels) * 4 <= size) return "";
-    return "truncated: " + std::to_string(pixels) + " flat pixels need " +
-           std::to_string(uint64_t(pixels) * 4) + " bytes from offset " + std::to_string(from) +
-           ", the file has " + std::to_string(size - std::min(size, from));
-  };
-  if (w < 8 || w >= 32768) return flat_error(pos, w * h);
-  auto byte = [&](uint64_t at) { return uint8_t(bytes[size_t(at)]); };
-  for (int64_t y = 0; y < h; ++y) {
-    if (pos + 4 > size) return "truncated at scanline " + std::to_string(y) + " of " + std::to_string(h);
-    if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80)) {
-      return flat_error(pos + 4, w * h - 1);  // stb decodes the whole image flat from here
-    }
-    pos += 4;
-    for (int c = 0; c < 4; ++c) {
-      for (int64_t x = 0; x < w;) {
-        if (pos >= size)
-          return "truncated in the run-length data of scanline " + std::to_string(y) + " of " +
-                 std::to_string(h);
-        const int count = byte(pos++);
-        if (count > 128) {
-          x += count - 128;
-          pos += 1;
-        } else {
-          x += count;
-          pos += uint64_t(count);
-        }
-      }
-    }
-    if (pos > size)
-      return "truncated in the run-length data of scanline " + std::to_string(y) + " of " +
-             std::to_string(h);
-  }
-  return "";
-}
-
-// Radiance HDR bodies are checked before stb_image decodes them: stb reads a missing byte as 0,
-// so a truncated file either decodes as black or, in a run-length scanline, loops forever on
-// zero-length runs. This walks the body with stb's own rules (flat pixels when the width is
-// outside [8, 32768) or a scanline lacks the 2,2 RLE marker, which makes stb re-read the whole
-// image flat from that point) and says whether every byte stb will read is there.
-std::string HdrBodyError(const std::string& bytes, int64_t w, int64_t h) {
-  // The header is lines up to an empty one, then the resolution line; the body follows.
-  size_t pos = 0;
-  bool header_done = false;
-  for (int line = 0; pos < bytes.size(); ++line) {
-    const size_t end = bytes.find('\n', pos);
-    if (end == std::string::npos) break;
-    const bool empty = end == pos;
-    pos = end + 1;
-    if (header_done) return HdrRunsError(bytes, pos, w, h);
-    if (line > 0 && empty) header_done = true;
-  }
-  return "truncated header (no resolution line)";
-}
-
-// OpenEXR allocates every header attribute at the size its header field claims (an unknown type
-// becomes an opaque blob of that size) before it reads the value. This walks the header(s)
-// first and refuses a size that the rest of the file cannot hold, so a corrupt field costs
-// nothing. Layout: magic, version flags, then attributes "name\0type\0<int32 size><value>"
-// ending in an empty name; a multi-part file repeats headers until an empty one.
-std::string ExrHeaderError(const std::string& bytes) {
-  // OpenEXR sizes its line/tile offset tables from the data window before anything checks it:
-  // cap the sides it accepts (the pixel budget is checked after the header is read).
-  static std::once_flag limits;
-  std::call_once(limits, [] {
-    Imf::Header::setMaxImageSize(kMaxImageSide, kMaxImageSide);
-    Imf::Header::setMaxTileSize(kMaxImageSide, kMaxImageSide);
-  });
-  const uint64_t size = bytes.size();
-  if (size < 8) return "truncated (no version field)";
-  auto u32_at = [&](uint64_t at) {  // little endian, as EXR stores every integer
-    uint32_t v = 0;
-    for (int k = 3; k >= 0; --k) v = v << 8 | uint8_t(bytes[size_t(at) + size_t(k)]);
-    return v;
-  };
-  const uint32_t flags = u32_at(4);
-  const bool multipart = flags & 0x1000;
-  const uint64_t max_name = (flags & 0x400) ? 255 : 31;
-  uint64_t pos = 8;
-  auto read_name = [&](std::string* name) {
-    const size_t end = bytes.find('\0', size_t(pos));
-    if (end == std::string::npos || end - pos > max_name) return false;
-    *name = bytes.substr(size_t(pos), end - size_t(pos));
-    pos = end + 1;
-    return true;
-  };
-  for (int header = 0;; ++header) {
-    for (int attribute = 0;; ++attribute) {
-      std::string name, type;
-      if (!read_name(&name)) return "truncated or corrupt header (attribute name)";
-      if (name.empty()) {
-        if (attribute == 0 && multipart && header > 0) return "";  // the empty header ends them
-        break;
-      }
-      if (!read_name(&type)) return "corrupt header: attribute '" + name + "' has no type name";
-      if (pos + 4 > size) return "truncated header at attribute '" + name + "'";
-      const int32_t value_size = int32_t(u32_at(pos));
-      pos += 4;
-      if (value_size < 0 || uint64_t(value_size) > size - pos) {
-        return "corrupt header: attribute '" + name + "' (" + type + ") claims " +
-               std::to_string(value_size) + " bytes, " + std::to_string(size - pos) +
-               " remain in the file";
-      }
-      pos += uint64_t(value_size);
-    }
-    if (!multipart) return "";
-  }
-}
 
 // An Imf::IStream over bytes already in memory, so the file is read exactly once.
 class MemoryIStream : public Imf::IStream {
@@ -424,30 +292,6 @@ Status ValidateForWrite(const char* fn, const std::string& path, const Image& im
   return Status::Ok();
 }
 
-void RemoveTemporary(const std::string& tmp) {
-  std::error_code ec;
-  // Only a regular file (ours); never a directory or something else that happens to be there.
-  if (fs::is_regular_file(fs::symlink_status(tmp, ec))) fs::remove(tmp, ec);
-}
-
-Status WriteTemporary(const std::string& tmp, std::string_view bytes) {
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) return Status::Error("cannot create " + tmp + ": " + std::strerror(errno));
-  const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
-  const int write_errno = errno;
-  const bool flushed = std::fflush(f) == 0;
-  const int flush_errno = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (written != bytes.size()) {
-    return Status::Error("cannot write " + tmp + ": " + std::strerror(write_errno));
-  }
-  if (!flushed || !closed) {
-    return Status::Error("cannot write " + tmp + ": " +
-                         std::strerror(flush_errno ? flush_errno : errno));
-  }
-  return Status::Ok();
-}
-
 }  // namespace
 
 const char* ImageFormatName(ImageFormat format) {
@@ -527,62 +371,6 @@ StatusOr<std::vector<std::pair<std::string, std::string>>> ReadExrStringAttribut
   } catch (const std::exception& e) {
     return ReadError(path, std::string("bad EXR header: ") + e.what());
   }
-}
-
-Status WriteFileAtomically(const std::string& path, std::string_view bytes) {
-  if (path.empty()) return Status::Error("WriteFileAtomically: empty output path");
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  Status s = WriteTemporary(tmp, bytes);
-  if (!s.ok()) {
-    RemoveTemporary(tmp);
-    return Status::Error(path + ": " + s.message());
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    RemoveTemporary(tmp);
-    return Status::Error(path + ": cannot rename " + tmp + " into place: " + ec.message());
-  }
-  return Status::Ok();
-}
-
-namespace {
-// The pid of a temporary "<name>.tmp-<pid>" of `name`, or 0.
-pid_t TemporaryPid(const std::string& file, const std::string& name) {
-  const std::string prefix = name + ".tmp-";
-  if (file.rfind(prefix, 0) != 0 || file.size() == prefix.size()) return 0;
-  long pid = 0;
-  for (size_t i = prefix.size(); i < file.size(); ++i) {
-    if (!std::isdigit(uint8_t(file[i])) || pid > 1000000000L) return 0;
-    pid = pid * 10 + (file[i] - '0');
-  }
-  return pid_t(pid);
-}
-}  // namespace
-
-Status PrepareOutputFile(const std::string& path) {
-  if (path.empty()) return Status::Error("output path is empty; expected a file name");
-  const fs::path p(path);
-  if (!p.has_filename()) return Status::Error(path + ": output path names a directory; expected a file");
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    return Status::Error(path + ": output directory '" + dir.string() + "' does not exist");
-  if (fs::is_directory(p, ec)) return Status::Error(path + ": output path is a directory");
-  const std::string name = p.filename().string();
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const pid_t pid = TemporaryPid(it->path().filename().string(), name);
-    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH)
-      RemoveTemporary(it->path().string());  // a stale temporary of a dead process
-  }
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  std::FILE* f = std::fopen(tmp.c_str(), "wbx");
-  if (f == nullptr)
-    return Status::Error(path + ": cannot write beside the output (" + std::strerror(errno) +
-                         "); expected a writable directory");
-  std::fclose(f);
-  RemoveTemporary(tmp);
-  return Status::Ok();
 }
 
 StatusOr<std::string> EncodeExr(

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/status.h"
+#include "engine/image/atomic_file.h"  // WriteFileAtomically, PrepareOutputFile
 #include "engine/image/image.h"
 
 namespace ptlab {
@@ -43,18 +44,6 @@ StatusOr<Image> DecodeImage(const std::string& path, const std::string& bytes);
 /// The string attributes of an EXR file's header, as (name, value), sorted by name.
 StatusOr<std::vector<std::pair<std::string, std::string>>> ReadExrStringAttributes(
     const std::string& path);
-
-/// Replaces the file at `path` by `bytes` atomically: writes `<path>.tmp-<pid>` in the same
-/// directory, then renames it over `path`. On any failure the temporary is removed and an error
-/// naming the file is returned; an existing `path` is then left untouched, never half-written.
-/// Not for concurrent writes of the same path from several threads of one process.
-Status WriteFileAtomically(const std::string& path, std::string_view bytes);
-
-/// Before a long computation whose result goes to `path` (through WriteFileAtomically):
-/// removes the temporaries `<path>.tmp-<pid>` left by processes that no longer run (a render
-/// killed with SIGKILL), then checks that `path` can be written by creating and removing this
-/// process's temporary beside it. The error names `path` and says what is wrong.
-Status PrepareOutputFile(const std::string& path);
 
 /// Writes `image` as an OpenEXR file: scanline, ZIP, 32-bit float R,G,B, plus each
 /// (name, value) of `header_attributes` as a string attribute. Atomic (see WriteFileAtomically).
