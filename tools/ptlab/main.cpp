@@ -184,17 +184,32 @@ Status WriteStrategyImages(const std::string& dir, const Scene& scene, const Ren
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return Status::Error("--strategies: cannot create directory " + dir + ": " + ec.message());
-  const std::vector<StrategyImage> images =
+  std::vector<StrategyImage> images =
       RenderStrategyImages(scene, setup.bvh(), &setup.kernels(), spp, seed);
+  // Paths of up to 4 bounces one image each (Veach's figure shows up to 3); longer ones summed
+  // into longer.exr, so the files still add up to the image.
+  constexpr int kMaxBounces = 4;
+  Image longer(scene.camera.width, scene.camera.height);
+  size_t n_longer = 0;
   for (const StrategyImage& im : images) {
-    const std::string name = "s" + std::to_string(im.s) + "_t" + std::to_string(im.t);
+    if (im.s + im.t - 2 <= kMaxBounces) continue;
+    for (size_t i = 0; i < longer.rgb.size(); ++i) longer.rgb[i] += im.image.rgb[i];
+    ++n_longer;
+  }
+  std::erase_if(images, [](const StrategyImage& im) { return im.s + im.t - 2 > kMaxBounces; });
+  if (n_longer > 0) images.push_back({-1, -1, std::move(longer)});
+  for (const StrategyImage& im : images) {
+    const std::string name = im.s < 0 ? std::string("longer")
+                                      : "s" + std::to_string(im.s) + "_t" + std::to_string(im.t);
     header.emplace_back("ptlab:strategy", name);
     const Status st = WriteExr((std::filesystem::path(dir) / (name + ".exr")).string(), im.image,
                                header);
     header.pop_back();
     if (!st.ok()) return st;
   }
-  std::fprintf(stderr, "wrote %zu strategy images to %s\n", images.size(), dir.c_str());
+  std::fprintf(stderr, "wrote %zu strategy images to %s (paths of more than %d bounces: %zu "
+                       "strategies summed in longer.exr)\n",
+               images.size(), dir.c_str(), kMaxBounces, n_longer);
   return Status::Ok();
 }
 
