@@ -70,6 +70,7 @@ struct BatchState {
   std::vector<Connection> connections;
   std::vector<uint32_t> owner, shadow_of, endpoint_of;
   std::vector<Vertex> endpoints;
+  std::vector<int> nc, nl;  // vertices of each sample's camera and light subpath
 };
 
 constexpr uint32_t kNone = 0xffffffffu;
@@ -117,7 +118,9 @@ void TraceBidirectionalBatch(const RenderContext& ctx, const BidirectionalSetup&
   for (size_t i = 0; i < n; ++i)
     bdpt::StartCameraWalk(setup, samples[i].ray, max_camera, &b->camera[i], &b->walks[i]);
   WalkAll(scene, setup, tracer, samples, b->camera, b);
-  std::vector<int> nc(n), nl(n);
+  std::vector<int>& nc = b->nc;
+  std::vector<int>& nl = b->nl;
+  nc.resize(n), nl.resize(n);
   for (size_t i = 0; i < n; ++i) nc[i] = b->walks[i].n;
   for (size_t i = 0; i < n; ++i)
     bdpt::StartLightWalk(scene, setup, max_light, samples[i].sampler, &b->light[i], &b->walks[i]);
