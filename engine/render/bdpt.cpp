@@ -106,8 +106,7 @@ void TraceBidirectionalBatch(const RenderContext& ctx, const BidirectionalSetup&
   const bool ptracer = scene.integrator.type == IntegratorDesc::Type::kPtracer;
   const int max_depth = scene.integrator.max_depth;
   // s + t - 2 <= maxDepth bounces; the particle tracer's camera subpath only finds emitters.
-  const int max_camera =
-      ptracer ? 2 : (max_depth >= 0 ? max_depth + 2 : kBidirectionalMaxVertices);
+  const int max_camera = ptracer ? 2 : (max_depth >= 0 ? max_depth + 2 : kBidirectionalMaxVertices);
   const int max_light = max_depth >= 0 ? max_depth + 1 : kBidirectionalMaxVertices;
   thread_local BatchState state;
   BatchState* b = &state;

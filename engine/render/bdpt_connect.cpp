@@ -87,8 +87,8 @@ bool SampleLightVertex(const Scene& scene, const BidirectionalSetup& setup, cons
 }  // namespace
 
 bool PrepareConnection(const Scene& scene, const BidirectionalSetup& setup, Subpath& light, int s,
-                       Subpath& camera, int t, PathSampler& sampler, bool ptracer,
-                       Connection* out, Ray* shadow, Vertex* endpoint) {
+                       Subpath& camera, int t, PathSampler& sampler, bool ptracer, Connection* out,
+                       Ray* shadow, Vertex* endpoint) {
   out->s = s, out->t = t;
   out->shadow = true;
   if (s == 0) {
@@ -166,8 +166,8 @@ bool PrepareConnection(const Scene& scene, const BidirectionalSetup& setup, Subp
 }
 
 Color3f FinishConnection(const Scene& scene, const BidirectionalSetup& setup, Subpath& light,
-                         Subpath& camera, const Connection& c, const Vertex& endpoint,
-                         bool ptracer, std::vector<LightSplat>* splats) {
+                         Subpath& camera, const Connection& c, const Vertex& endpoint, bool ptracer,
+                         std::vector<LightSplat>* splats) {
   if (c.s == 0) return c.value;
   if (c.t == 1) {
     const Vertex saved = camera[0];

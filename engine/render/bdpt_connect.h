@@ -12,7 +12,7 @@ namespace ptlab::bdpt {
 // One strategy (s, t) of one sample with a contribution, waiting for its shadow ray.
 struct Connection {
   int s = 0, t = 0;
-  bool shadow = false;  // needs its segment unoccluded (every strategy but s = 0)
+  bool shadow = false;   // needs its segment unoccluded (every strategy but s = 0)
   float sx = 0, sy = 0;  // t = 1: the film position it lands at
   Color3f value;         // s = 0: with its MIS weight; else without
 };
@@ -21,13 +21,13 @@ struct Connection {
 // false when it contributes nothing. Else *out, the segment to test in *shadow (out->shadow),
 // and for s = 1 or t = 1 the sampled vertex in *endpoint (the other vertex of the connection).
 bool PrepareConnection(const Scene& scene, const BidirectionalSetup& setup, Subpath& light, int s,
-                       Subpath& camera, int t, PathSampler& sampler, bool ptracer,
-                       Connection* out, Ray* shadow, Vertex* endpoint);
+                       Subpath& camera, int t, PathSampler& sampler, bool ptracer, Connection* out,
+                       Ray* shadow, Vertex* endpoint);
 
 // The contribution of connection c whose segment is free, MIS weight included (for t = 1
 // appended to *splats, and 0 returned). `endpoint`: Prepare's sampled vertex.
 Color3f FinishConnection(const Scene& scene, const BidirectionalSetup& setup, Subpath& light,
-                         Subpath& camera, const Connection& c, const Vertex& endpoint,
-                         bool ptracer, std::vector<LightSplat>* splats);
+                         Subpath& camera, const Connection& c, const Vertex& endpoint, bool ptracer,
+                         std::vector<LightSplat>* splats);
 
 }  // namespace ptlab::bdpt

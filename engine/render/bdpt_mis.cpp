@@ -135,8 +135,8 @@ float MisWeightOf(const Scene& scene, const BidirectionalSetup& setup, Subpath& 
     pt_light.kind = VertexKind::kLight;
   }
   if (pt) {
-    pt->pdf_rev = s > 0 ? PdfOf(scene, setup, qs_minus, *qs, *pt)
-                        : PdfLightOrigin(scene, setup, pt_light);
+    pt->pdf_rev =
+        s > 0 ? PdfOf(scene, setup, qs_minus, *qs, *pt) : PdfLightOrigin(scene, setup, pt_light);
     pt->delta = false;
   }
   if (pt_minus) {

@@ -34,8 +34,10 @@ std::vector<StrategyImage> RenderStrategyImages(const Scene& scene, const Bvh& b
   auto films_of = [&](int s, int t) -> Films& {
     auto it = films.find({s, t});
     if (it == films.end())
-      it = films.emplace(std::pair{s, t}, Films{FilmBlock(0, 0, width, height),
-                                                LightFilm(filter, width, height)}).first;
+      it = films
+               .emplace(std::pair{s, t},
+                        Films{FilmBlock(0, 0, width, height), LightFilm(filter, width, height)})
+               .first;
     return it->second;
   };
 

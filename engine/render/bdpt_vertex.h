@@ -19,9 +19,9 @@ enum class VertexKind : uint8_t { kCamera, kLight, kSurface };
 // infinity, whose `w` is then the unit direction towards the emitter).
 struct Vertex {
   VertexKind kind = VertexKind::kSurface;
-  Vec3f p, ng, n;   // position, geometric and shading normals (zero for points and the camera)
-  Vec3f wo;         // surface: unit direction towards the previous vertex of its subpath
-  Vec3f w;          // vertex at infinity: unit direction towards the emitter
+  Vec3f p, ng, n;  // position, geometric and shading normals (zero for points and the camera)
+  Vec3f wo;        // surface: unit direction towards the previous vertex of its subpath
+  Vec3f w;         // vertex at infinity: unit direction towards the emitter
   SurfaceInteraction its;
   EmitterRef emitter;  // light vertex: its emitter; surface: the area light it lies on, if any
   Color3f beta;
@@ -58,8 +58,7 @@ Vec3f DirectionTo(const Vertex& from, const Vertex& to);
 float PdfLight(const Scene& scene, const BidirectionalSetup& setup, const Vertex& v,
                const Vertex& next);
 // Veach's adjoint-BSDF factor for a light subpath turning at a surface with shading normals.
-float ShadingNormalCorrection(const SurfaceInteraction& its, const Vec3f& w_in,
-                              const Vec3f& w_out);
+float ShadingNormalCorrection(const SurfaceInteraction& its, const Vec3f& w_in, const Vec3f& w_out);
 // What surface vertex v sends towards unit direction w, the cosine at v included (camera
 // subpath: the BSDF; light subpath: the adjoint BSDF with the shading-normal factor).
 Color3f ScatterTo(const Scene& scene, const Vertex& v, const Vec3f& w, bool light_subpath);

@@ -1,5 +1,9 @@
-// The scalar tile loop (Li per sample); the packet path (the wavefront) is engine/wavefront/.
+// The scalar tile loop (Li per sample) and the bidirectional one (batches of samples,
+// bdpt_batch.h); the packet path (the wavefront) is engine/wavefront/.
 #include "engine/render/packet_render.h"
+
+#include <tuple>
+#include <utility>
 
 #include "engine/render/bdpt_batch.h"
 
@@ -48,6 +52,7 @@ void RenderTileBidirectional(const RenderContext& ctx, const WavefrontKernels* k
   const uint64_t width = uint64_t(camera.width());
   std::vector<BidirectionalSampleInput> batch;
   std::vector<Vec2f> film_pos;
+  std::vector<std::pair<int, int>> pixel_of;  // for the first dropped sample's report
   batch.reserve(kBidirectionalBatch), film_pos.reserve(kBidirectionalBatch);
   Color3f L[kBidirectionalBatch];
   // The batch's samples go on the film in sample order, as RenderTileScalar splats them.
@@ -56,12 +61,12 @@ void RenderTileBidirectional(const RenderContext& ctx, const WavefrontKernels* k
     for (size_t i = 0; i < batch.size(); ++i) {
       const float sx = film_pos[i].x, sy = film_pos[i].y;
       if (!IsFinite(L[i])) {
-        if (stats->nonfinite++ == 0) stats->first_x = int(sx), stats->first_y = int(sy);
+        if (stats->nonfinite++ == 0) std::tie(stats->first_x, stats->first_y) = pixel_of[i];
         continue;
       }
       block->Splat(filter, sx, sy, L[i]);
     }
-    batch.clear(), film_pos.clear();
+    batch.clear(), film_pos.clear(), pixel_of.clear();
   };
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
@@ -73,6 +78,7 @@ void RenderTileBidirectional(const RenderContext& ctx, const WavefrontKernels* k
         const float sx = float(x) + jitter.x, sy = float(y) + jitter.y;
         batch.push_back({camera.GenerateRay(sx, sy, lens), sampler});
         film_pos.push_back({sx, sy});
+        pixel_of.push_back({x, y});
         if (batch.size() == kBidirectionalBatch) flush();
       }
     }

@@ -183,7 +183,8 @@ Status WriteStrategyImages(const std::string& dir, const Scene& scene, const Ren
                            std::vector<std::pair<std::string, std::string>> header) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) return Status::Error("--strategies: cannot create directory " + dir + ": " + ec.message());
+  if (ec)
+    return Status::Error("--strategies: cannot create directory " + dir + ": " + ec.message());
   std::vector<StrategyImage> images =
       RenderStrategyImages(scene, setup.bvh(), &setup.kernels(), spp, seed);
   // Paths of up to 4 bounces one image each (Veach's figure shows up to 3); longer ones summed
