@@ -66,9 +66,11 @@ float PdfLightOrigin(const Scene& scene, const BidirectionalSetup& setup, const 
 }
 
 // Density (area at `next`) with which vertex `cur`, reached from `prev` (null: none), samples
-// `next`.
+// `next`. For a surface, wo / wi (when given): the directions to prev / next in its shading
+// frame, already computed (the same bits).
 float PdfOf(const Scene& scene, const BidirectionalSetup& setup, const Vertex* prev,
-            const Vertex& cur, const Vertex& next) {
+            const Vertex& cur, const Vertex& next, const Vec3f* wo_local = nullptr,
+            const Vec3f* wi_local = nullptr) {
   switch (cur.kind) {
     case VertexKind::kLight:
       return PdfLight(scene, setup, cur, next);
@@ -76,8 +78,8 @@ float PdfOf(const Scene& scene, const BidirectionalSetup& setup, const Vertex* p
       return ConvertDensity(setup.camera.DirectionPdf(cur.p, DirectionTo(cur, next)), cur, next);
     case VertexKind::kSurface: {
       if (prev == nullptr) return 0.0f;
-      const Vec3f wo = cur.its.frame.ToLocal(DirectionTo(cur, *prev));
-      const Vec3f wi = cur.its.frame.ToLocal(DirectionTo(cur, next));
+      const Vec3f wo = wo_local ? *wo_local : cur.its.frame.ToLocal(DirectionTo(cur, *prev));
+      const Vec3f wi = wi_local ? *wi_local : cur.its.frame.ToLocal(DirectionTo(cur, next));
       return ConvertDensity(BsdfPdf(scene.materials, cur.its.material, wo, wi), cur, next);
     }
   }
@@ -134,20 +136,31 @@ float MisWeightOf(const Scene& scene, const BidirectionalSetup& setup, Subpath& 
     pt_light = *pt;
     pt_light.kind = VertexKind::kLight;
   }
+  // Each surface end's direction across the connection, once, and to its own predecessor
+  // (Vertex::to_prev, from the walk): the four densities below need no other direction.
+  const bool pt_surface = s > 0 && pt->kind == VertexKind::kSurface;
+  const bool qs_surface = s > 0 && qs->kind == VertexKind::kSurface;
+  Vec3f pt_to_qs, qs_to_pt;
+  if (pt_surface) pt_to_qs = pt->its.frame.ToLocal(DirectionTo(*pt, *qs));
+  if (qs_surface) qs_to_pt = qs->its.frame.ToLocal(DirectionTo(*qs, *pt));
+  const Vec3f* pt_prev = pt_surface ? &pt->to_prev : nullptr;
+  const Vec3f* pt_conn = pt_surface ? &pt_to_qs : nullptr;
+  const Vec3f* qs_prev = qs_surface ? &qs->to_prev : nullptr;
+  const Vec3f* qs_conn = qs_surface ? &qs_to_pt : nullptr;
   if (pt) {
-    pt->pdf_rev =
-        s > 0 ? PdfOf(scene, setup, qs_minus, *qs, *pt) : PdfLightOrigin(scene, setup, pt_light);
+    pt->pdf_rev = s > 0 ? PdfOf(scene, setup, qs_minus, *qs, *pt, qs_prev, qs_conn)
+                        : PdfLightOrigin(scene, setup, pt_light);
     pt->delta = false;
   }
   if (pt_minus) {
-    pt_minus->pdf_rev = s > 0 ? PdfOf(scene, setup, qs, *pt, *pt_minus)
+    pt_minus->pdf_rev = s > 0 ? PdfOf(scene, setup, qs, *pt, *pt_minus, pt_conn, pt_prev)
                               : PdfLight(scene, setup, pt_light, *pt_minus);
   }
   if (qs) {
-    qs->pdf_rev = PdfOf(scene, setup, pt_minus, *pt, *qs);
+    qs->pdf_rev = PdfOf(scene, setup, pt_minus, *pt, *qs, pt_prev, pt_conn);
     qs->delta = false;
   }
-  if (qs_minus) qs_minus->pdf_rev = PdfOf(scene, setup, pt, *qs, *qs_minus);
+  if (qs_minus) qs_minus->pdf_rev = PdfOf(scene, setup, pt, *qs, *qs_minus, qs_conn, qs_prev);
 
   const auto remap = [](float f) { return f != 0.0f ? f : 1.0f; };
   const auto h = [power](float r) { return power ? r * r : r; };

@@ -22,6 +22,7 @@ struct Vertex {
   Vec3f p, ng, n;  // position, geometric and shading normals (zero for points and the camera)
   Vec3f wo;        // surface: unit direction towards the previous vertex of its subpath
   Vec3f w;         // vertex at infinity: unit direction towards the emitter
+  Vec3f to_prev;   // surface: DirectionTo(this, previous vertex) in its shading frame
   SurfaceInteraction its;
   EmitterRef emitter;  // light vertex: its emitter; surface: the area light it lies on, if any
   Color3f beta;

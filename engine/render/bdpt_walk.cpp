@@ -112,6 +112,7 @@ void StepWalk(const Scene& scene, const BidirectionalSetup& setup, const Hit* hi
   x.beta = w.beta;
   x.pdf_fwd = ConvertDensity(w.pdf_dir, prev, x);
   x.delta = IsDeltaMaterial(x.its.material.tag());
+  x.to_prev = x.its.frame.ToLocal(DirectionTo(x, prev));
   if (w.infinite_origin && w.n == 1) x.pdf_fwd = PdfLight(scene, setup, prev, x);
   ++w.n;
   if (w.n >= w.max_vertices) return;
