@@ -13,6 +13,8 @@
 
 namespace ptlab {
 
+struct WavefrontKernels;  // engine/wavefront/kernels.h
+
 /// PixelSeed's stride between the render seeds: MixBits hashes seed * stride + pixel.
 inline constexpr uint64_t kPixelSeedStride = 0x9e3779b97f4a7c15ULL;
 
@@ -85,5 +87,17 @@ void RenderTileScalar(const RenderContext& ctx, const Camera& camera, const Pixe
                       const PixelSampling* pixels = nullptr,
                       const BidirectionalSetup* bidirectional = nullptr,
                       std::vector<LightSplat>* splats = nullptr);
+
+/// bdpt and ptracer (IsBidirectional) as batches of kBidirectionalBatch samples in
+/// RenderTileScalar's order (bdpt_batch.h): their rays through `kernels`' intersect8 and
+/// occluded8 in packets (null: Intersect1 / Occluded1 one at a time). The same block and
+/// splats, bit for bit, as RenderTileScalar's whenever the table's traversal is the oracle's
+/// (every table's is).
+void RenderTileBidirectional(const RenderContext& ctx, const WavefrontKernels* kernels,
+                             const Camera& camera, const PixelFilter& filter, int x0, int y0,
+                             int x1, int y1, uint32_t s_begin, uint32_t s_end, uint64_t seed,
+                             FilmBlock* block, TileSampleStats* stats,
+                             const BidirectionalSetup& bidirectional,
+                             std::vector<LightSplat>* splats);
 
 }  // namespace ptlab

@@ -112,7 +112,6 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
     light_pass.emplace(filter, width, height);
     light_total.emplace(filter, width, height);
     tile_splats.resize(tiles.size());
-    result.scalar_fallback = options.kernels != nullptr;
   }
   const WavefrontKernels* kernels = bidirectional ? nullptr : options.kernels;
   RenderProgress progress;
@@ -191,7 +190,12 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
         // wavefront adds to them for every packet.
         TileStats tile_stats;
         tile_stats.time_stages = options.time_stages;
-        if (kernels != nullptr) {
+        if (bidirectional && options.kernels != nullptr) {
+          // Batches of samples whose rays go through the table's packet traversal.
+          RenderTileBidirectional(ctx, options.kernels, camera, filter, t.x0, t.y0, t.x1, t.y1,
+                                  s0, s1, options.seed, &blocks[i], &tile_stats,
+                                  *bidirectional_setup, &tile_splats[i]);
+        } else if (kernels != nullptr) {
           RenderTilePacket8(ctx, *kernels, camera, filter, t.x0, t.y0, t.x1, t.y1, s0, s1,
                             options.seed, &blocks[i], &tile_stats, pixels,
                             &workspaces[size_t(slot)]);

@@ -137,9 +137,6 @@ struct RenderResult {
   std::vector<uint32_t> pixel_samples;
   uint64_t samples_taken = 0;  // every pixel sample of the completed passes
   RenderMemory memory;
-  /// The integrator (bdpt, ptracer) has no wavefront: a kernel table was given but every tile
-  /// ran on the scalar oracle (RenderTileScalar). `ptlab render --stats` says so.
-  bool scalar_fallback = false;
 };
 
 /// Renders scene.camera's image with the scene's integrator. The image is a function of
@@ -147,9 +144,10 @@ struct RenderResult {
 /// merged in tile order, so any thread count gives the same bits. bdpt and ptracer also splat
 /// into other tiles' pixels: each tile's splats are merged into the pass's light film in tile
 /// order as tiles complete (a tile waits for the tiles before it), never with atomics, and the
-/// light film joins the camera's film after each complete pass (LightFilm::ComposeInto). They
-/// run on the scalar path (RenderResult::scalar_fallback), and refuse adaptive sampling and a
-/// distribution (RenderResult::error).
+/// light film joins the camera's film after each complete pass (LightFilm::ComposeInto). With a
+/// kernel table they run as batches of samples through its packet traversal
+/// (RenderTileBidirectional), without one one sample at a time (RenderTileScalar), the same
+/// bits either way; they refuse adaptive sampling and a distribution (RenderResult::error).
 RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& options);
 
 /// Samples per pass for a render of spp samples (passes are the unit kept on interruption).

@@ -14,6 +14,10 @@ namespace ptlab {
 /// - "emission/point_direction": a point light's (uniform) directions against pdf_dir;
 /// - "emission/distant_disk_direction": the direction light travels from a distant disk,
 ///   against pdf_dir;
+/// - "emission/spot_direction": a spot's directions (uniform over its cone) against pdf_dir;
+/// - "emission/environment_direction": an environment map's emitted directions in the map's
+///   (u, v), against pdf_dir × 2π² sin θ (on the sphere the 1/sin θ poles defeat the cells'
+///   integration);
 /// - "emission/infinite_origin_disk": an environment map's ray origin on the scene disk, in the
 ///   disk's unit coordinates, against pdf_pos × r²;
 /// - "broken/emission_area_claims_uniform_direction": cosine-sampled area emission claimed

@@ -111,6 +111,10 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
                   "ptracer (docs/bdpt.md)")
       ->check(CLI::IsMember({"normals", "direct_ems", "direct_mats", "direct_mis", "whitted",
                              "path_mats", "path_ems", "path_mis", "bdpt", "ptracer"}));
+  cmd->add_option("--strategies", cl->render.strategies,
+                  "bdpt/ptracer: also write each strategy's MIS-weighted contribution as "
+                  "DIR/s<S>_t<T>.exr (Veach fig. 10.3; a second, one-thread render with the "
+                  "same samples; docs/bdpt.md)");
   cmd->add_option("--width", cl->render.width, "Override the image width")
       ->check(CLI::Range(1, 65536))
       ->excludes(resolution_opt);

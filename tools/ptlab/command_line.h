@@ -31,6 +31,7 @@ struct RenderArgs {
   bool moments = false;  // --moments: NAME_var.exr beside NAME.exr
   std::string sampler;  // empty: the scene's
   std::string integrator;  // --integrator NAME; empty: the scene's
+  std::string strategies;  // --strategies DIR: bdpt's per-(s, t) images (docs/bdpt.md)
   double max_memory_gib = 0;  // --max-memory; 0: the default (engine/core/memory_budget.h)
   std::vector<std::string> defines;  // -D name=value (Mitsuba scene parameters)
 };

@@ -43,6 +43,8 @@
 #include "simd/bvh8.h"
 #include "simd/traverse8.h"
 #include "simd/render_setup.h"
+#include "engine/render/bdpt.h"
+#include "engine/render/bdpt_strategies.h"
 #include "tools/chi2/nori_tests.h"
 #include "tools/converge/pass_variance.h"
 #include "tools/common/exit_codes.h"
@@ -172,6 +174,43 @@ Status WriteImages(const std::string& exr, const std::string& png, const Image& 
   if (!png_bytes.ok()) return png_bytes.status();
   st = WriteFileAtomically(png, *png_bytes);
   if (!st.ok()) return Status::Error("WritePng: " + st.message());
+  return Status::Ok();
+}
+
+// --strategies DIR: each strategy's image, DIR/s<S>_t<T>.exr (each written atomically).
+Status WriteStrategyImages(const std::string& dir, const Scene& scene, const RenderSetup& setup,
+                           uint32_t spp, uint64_t seed,
+                           std::vector<std::pair<std::string, std::string>> header) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    return Status::Error("--strategies: cannot create directory " + dir + ": " + ec.message());
+  std::vector<StrategyImage> images =
+      RenderStrategyImages(scene, setup.bvh(), &setup.kernels(), spp, seed);
+  // Paths of up to 4 bounces one image each (Veach's figure shows up to 3); longer ones summed
+  // into longer.exr, so the files still add up to the image.
+  constexpr int kMaxBounces = 4;
+  Image longer(scene.camera.width, scene.camera.height);
+  size_t n_longer = 0;
+  for (const StrategyImage& im : images) {
+    if (im.s + im.t - 2 <= kMaxBounces) continue;
+    for (size_t i = 0; i < longer.rgb.size(); ++i) longer.rgb[i] += im.image.rgb[i];
+    ++n_longer;
+  }
+  std::erase_if(images, [](const StrategyImage& im) { return im.s + im.t - 2 > kMaxBounces; });
+  if (n_longer > 0) images.push_back({-1, -1, std::move(longer)});
+  for (const StrategyImage& im : images) {
+    const std::string name = im.s < 0 ? std::string("longer")
+                                      : "s" + std::to_string(im.s) + "_t" + std::to_string(im.t);
+    header.emplace_back("ptlab:strategy", name);
+    const Status st = WriteExr((std::filesystem::path(dir) / (name + ".exr")).string(), im.image,
+                               header);
+    header.pop_back();
+    if (!st.ok()) return st;
+  }
+  std::fprintf(stderr, "wrote %zu strategy images to %s (paths of more than %d bounces: %zu "
+                       "strategies summed in longer.exr)\n",
+               images.size(), dir.c_str(), kMaxBounces, n_longer);
   return Status::Ok();
 }
 
@@ -338,6 +377,13 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
     if (mpi.root()) std::fprintf(stderr, "error: %s\n", overridden.message().c_str());
     return kExitUsage;
   }
+  if (!args.strategies.empty() && !IsBidirectional(scene.integrator.type)) {
+    if (mpi.root())
+      std::fprintf(stderr, "error: --strategies: the integrator is %s; expected bdpt or ptracer "
+                           "(--integrator bdpt)\n",
+                   IntegratorTypeName(scene.integrator.type));
+    return kExitUsage;
+  }
   // A camera, lens or light that makes a degenerate image is an error, not a black image.
   if (const Status sane = CheckRenderSetup(scene); !sane.ok()) {
     if (mpi.root()) std::fprintf(stderr, "error: %s: %s\n", args.scene.c_str(), sane.message().c_str());
@@ -484,10 +530,6 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (!quiet) reporter.Finish();
   if (!mpi.root()) return result.interrupted ? interrupted_code : 0;  // rank 0 writes the film
   if (args.stats) {
-    if (result.scalar_fallback)
-      std::fprintf(stderr, "stats: %s has no wavefront yet: every tile ran on the scalar oracle "
-                           "(one ray at a time)\n",
-                   IntegratorTypeName(scene.integrator.type));
     PrintStats(result, options.threads * mpi.size());
     PrintMemory(scene, setup, result, options.threads, peak_loaded);
   }
@@ -548,6 +590,8 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
                                 "Mitsuba's _var.exr");
     st = WriteExr(var_out, moments->PerSampleVariance(result.spp_done), var_header);
   }
+  if (st.ok() && !args.strategies.empty() && !result.interrupted)
+    st = WriteStrategyImages(args.strategies, scene, setup, result.spp_done, args.seed, header);
   if (!st.ok()) {
     std::fprintf(stderr, "error: %s\n", st.message().c_str());
     return kExitRunFailed;

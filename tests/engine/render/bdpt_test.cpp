@@ -11,6 +11,7 @@
 #include "engine/io/xml_loader.h"
 #include "engine/light/light_selection.h"
 #include "engine/render/bdpt.h"
+#include "engine/render/bdpt_strategies.h"
 #include "engine/render/render.h"
 #include "tests/engine/render/packet_render_for_test.h"
 #include "tests/test_data.h"
@@ -106,11 +107,17 @@ TEST(BdptRender, DeterministicAcrossThreadCounts) {
     const RenderResult one = Render(s, bvh, options);
     options.threads = 2;
     const RenderResult two = Render(s, bvh, options);
+    // The batched route (packet traversal of the SIMD table, and of the oracle's table) on one
+    // and two threads against one sample at a time (no table).
     const RenderResult packets = RenderScene(s, 20, 2, 5);
+    const RenderResult packets_one = RenderScene(s, 20, 1, 5);
+    options.threads = 2;
+    const RenderResult oracle_batched = RenderWithOracleWavefront(s, options);
     EXPECT_TRUE(SameBits(one.image, two.image)) << IntegratorTypeName(type);
     EXPECT_TRUE(SameBits(one.image, packets.image)) << IntegratorTypeName(type);
-    EXPECT_TRUE(packets.scalar_fallback);
-    EXPECT_FALSE(one.scalar_fallback);
+    EXPECT_TRUE(SameBits(one.image, packets_one.image)) << IntegratorTypeName(type);
+    EXPECT_TRUE(SameBits(one.image, oracle_batched.image)) << IntegratorTypeName(type);
+    EXPECT_GT(packets.rays, 0u);
     EXPECT_EQ(one.spp_done, 20u);
   }
 }
@@ -296,6 +303,53 @@ TEST(BdptHardCases, NoNanOrInfOnDegenerateGeometry) {
     for (int y = 0; y < r.image.height; ++y)
       for (int x = 0; x < r.image.width; ++x)
         ASSERT_TRUE(IsFinite(r.image.At(x, y))) << IntegratorTypeName(type) << " " << x << "," << y;
+  }
+}
+
+}  // namespace
+}  // namespace ptlab
+
+namespace ptlab {
+namespace {
+
+// Veach's per-strategy images (RenderStrategyImages) add up to the bdpt image of the same
+// samples: to float rounding (1e-4 relative), and not without any one strategy that carries
+// light (so the comparison can fail).
+TEST(BdptStrategies, SumToTheBdptImage) {
+  StatusOr<Scene> loaded = LoadSceneFromString(kDiffuseBox, ".", "box.xml");
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  const Scene scene = Resized(*loaded, T::kBdpt, 32);
+  const Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
+  RenderOptions options;
+  options.spp = 4;
+  options.seed = 3;
+  options.threads = 2;
+  const RenderResult r = Render(scene, bvh, options);
+  ASSERT_EQ(r.error, "");
+  const std::vector<StrategyImage> parts = RenderStrategyImages(scene, bvh, nullptr, 4, 3);
+  ASSERT_GE(parts.size(), 6u);  // s = 0, 1, 2 and t = 1 at least, several lengths
+  bool light_tracing = false;
+  for (const StrategyImage& p : parts) light_tracing |= p.t == 1;
+  EXPECT_TRUE(light_tracing);
+  auto mismatches = [&](size_t skip) {
+    int bad = 0;
+    for (int y = 0; y < r.image.height; ++y)
+      for (int x = 0; x < r.image.width; ++x) {
+        Color3f sum;
+        for (size_t k = 0; k < parts.size(); ++k)
+          if (k != skip) sum += parts[k].image.At(x, y);
+        const Color3f ref = r.image.At(x, y);
+        for (int c = 0; c < 3; ++c)
+          bad += !(std::abs(sum[c] - ref[c]) <= 1e-4f * std::abs(ref[c]) + 1e-7f);
+      }
+    return bad;
+  };
+  EXPECT_EQ(mismatches(parts.size()), 0);
+  for (size_t k = 0; k < parts.size(); ++k) {
+    double mass = 0;
+    for (float v : parts[k].image.rgb) mass += v;
+    if (mass > 1e-3 * r.image.width * r.image.height)
+      EXPECT_GT(mismatches(k), 0) << "s" << parts[k].s << "_t" << parts[k].t;
   }
 }
 

@@ -1,5 +1,5 @@
-// `ptlab render --integrator NAME`: overrides the scene's integrator, says when bdpt falls back
-// to the scalar oracle, and refuses what bdpt does not run with.
+// `ptlab render --integrator NAME`: overrides the scene's integrator, writes bdpt's per-strategy
+// images with --strategies, and refuses what bdpt does not run with.
 #include <filesystem>
 #include <string>
 
@@ -18,16 +18,30 @@ namespace fs = std::filesystem;
 const std::string kPtlab = std::string(PTLAB_BINARY_DIR) + "/bin/ptlab";
 const std::string kCbox = std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml";
 
-TEST(PtlabIntegratorFlag, OverridesTheSceneAndReportsTheScalarFallback) {
+TEST(PtlabIntegratorFlag, OverridesTheSceneAndWritesStrategyImages) {
   const fs::path dir = TempDir("integrator_flag");
   const fs::path out = dir / "cbox.exr";
   ASSERT_EQ(RunShell(kPtlab + " render " + kCbox + " -o " + out.string() +
-                         " --spp 2 --width 32 --height 24 --integrator bdpt --stats -q",
+                         " --spp 2 --width 32 --height 24 --integrator bdpt --stats -q" +
+                         " --strategies " + (dir / "st").string(),
                      dir / "log"),
             0)
       << ReadFile(dir / "log");
-  EXPECT_NE(ReadFile(dir / "log").find("bdpt has no wavefront yet"), std::string::npos)
-      << ReadFile(dir / "log");
+  // bdpt's rays go through the packet traversal.
+  EXPECT_EQ(ReadFile(dir / "log").find(" 0 packets"), std::string::npos) << ReadFile(dir / "log");
+  for (const char* name : {"s0_t2.exr", "s1_t2.exr", "s2_t1.exr", "s2_t2.exr"}) {
+    StatusOr<Image> part = ReadImage((dir / "st" / name).string());
+    ASSERT_TRUE(part.ok()) << name << ": " << ReadFile(dir / "log");
+    EXPECT_EQ(part->width, 32);
+  }
+  // Only for the bidirectional integrators.
+  EXPECT_EQ(RunShell(kPtlab + " render " + kCbox + " -o " + (dir / "p.exr").string() +
+                         " --spp 1 --width 32 --height 24 --integrator path_mis -q --strategies " +
+                         (dir / "st2").string(),
+                     dir / "log3"),
+            2);
+  EXPECT_NE(ReadFile(dir / "log3").find("--strategies"), std::string::npos)
+      << ReadFile(dir / "log3");
   StatusOr<Image> image = ReadImage(out.string());
   ASSERT_TRUE(image.ok());
   EXPECT_EQ(image->width, 32);
