@@ -15,6 +15,7 @@
 #include "engine/bsdf/rough_conductor.h"    // matA
 #include "engine/bsdf/rough_dielectric.h"   // matA
 #include "engine/bsdf/smooth_conductor.h"   // matA
+#include "engine/bsdf/perturbed_frame.h"    // normal
 
 namespace ptlab {
 namespace {
@@ -55,6 +56,7 @@ RoughDielectricParams RoughDielectricRow(const RoughDielectricTable& t, uint32_t
 
 Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
                  const TextureSite& site) {
+  if (PerturbsFrame(m, ref, site)) return PerturbedBsdfEval(m, ref, wo, wi, site);  // normal
   if (TwoSidedFlips(m, ref, wo)) return BsdfEval(m, ref, FlipZ(wo), FlipZ(wi), site);
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
@@ -84,6 +86,7 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
 
 float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
               const TextureSite& site) {
+  if (PerturbsFrame(m, ref, site)) return PerturbedBsdfPdf(m, ref, wo, wi, site);  // normal
   if (TwoSidedFlips(m, ref, wo)) return BsdfPdf(m, ref, FlipZ(wo), FlipZ(wi), site);
   (void)site;  // no textured parameter changes a pdf yet
   switch (ref.tag()) {
@@ -115,6 +118,7 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
 
 Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const Vec3f& wi,
                     float* pdf, const TextureSite& site) {
+  if (PerturbsFrame(m, ref, site)) return PerturbedBsdfEvalPdf(m, ref, wo, wi, pdf, site);  // normal
   if (TwoSidedFlips(m, ref, wo)) return BsdfEvalPdf(m, ref, FlipZ(wo), FlipZ(wi), pdf, site);
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
@@ -153,6 +157,8 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
 
 bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, float u1,
                          const Vec2f& u2, BsdfSample* sample, const TextureSite& site) {
+  if (PerturbsFrame(m, ref, site))  // normal
+    return PerturbedBsdfSample(m, ref, wo, u1, u2, sample, site);
   if (TwoSidedFlips(m, ref, wo)) {
     if (!BsdfSampleDirection(m, ref, FlipZ(wo), u1, u2, sample, site)) return false;
     sample->wi = FlipZ(sample->wi);

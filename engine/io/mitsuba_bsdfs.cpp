@@ -113,6 +113,8 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     StatusOr<MaterialRef> added = AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials);
     if (!added.ok()) return added.status();
     ref = *added;
+  } else if (type == "normalmap" || type == "bumpmap") {  // normal
+    return PerturbedBsdf(node, obj);
   } else if (type == "principled" || type == "principledthin" || type == "mask" ||
              type == "normalmap" || type == "bumpmap" || type == "null" ||
              type == "polarizer" || type == "retarder" || type == "circular" ||
@@ -164,6 +166,9 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::WrapperBsdf(const MitsubaNode& node,
     if (!a.ok()) return a.status();
     StatusOr<MaterialRef> b = Bsdf(*kids[1]);
     if (!b.ok()) return b.status();
+    // normal: a blend's children are evaluated without their shading point's frame.
+    if (scene_.materials.perturbation.Of(*a) >= 0 || scene_.materials.perturbation.Of(*b) >= 0)
+      return Unsupported(node, "a normalmap or bumpmap inside a blendbsdf");
     ref = scene_.materials.AddBlend(weight, *a, *b);
   }
   bsdfs_[&node] = ref;

@@ -10,6 +10,7 @@
 #include "engine/io/text_parsing.h"
 #include "engine/io/xml_properties.h"
 #include "engine/scene/scene_limits.h"
+#include "engine/scene/surface_tangents.h"  // normal
 
 namespace ptlab {
 namespace internal {
@@ -425,6 +426,7 @@ StatusOr<Scene> LoadMitsubaSceneFromString(const std::string& xml, const std::st
   scene.source_path = display_name;
   scene.input_files.insert(scene.input_files.begin(), doc->files.begin(), doc->files.end());
   FinalizeAreaLights(&scene);
+  BuildSurfaceTangents(&scene);  // normal: only with normal / bump maps
   return scene;
 }
 

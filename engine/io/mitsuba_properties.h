@@ -74,6 +74,7 @@ class MitsubaObject {
   const MitsubaNode& node() const { return *node_; }
   const std::string& type() const { return type_; }
   const std::vector<const MitsubaNode*>& children() const { return children_; }
+  const std::vector<MitsubaProperty>& properties() const { return props_; }  // normal
 
   /// Fails on the first property whose name is not in `names`.
   Status Expect(const std::vector<const char*>& names) const;

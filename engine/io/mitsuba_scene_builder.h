@@ -67,6 +67,8 @@ class MitsubaSceneBuilder {
   Status Instance(const MitsubaNode& node);
   // matB: twosided and blendbsdf (engine/io/mitsuba_bsdfs.cpp).
   StatusOr<MaterialRef> WrapperBsdf(const MitsubaNode& node, const MitsubaObject& obj);
+  // normal: `normalmap` and `bumpmap` (engine/io/mitsuba_perturbed_bsdfs.cpp).
+  StatusOr<MaterialRef> PerturbedBsdf(const MitsubaNode& node, const MitsubaObject& obj);
 
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);

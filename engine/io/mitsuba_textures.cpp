@@ -73,6 +73,28 @@ StatusOr<uint32_t> MitsubaSceneBuilder::Texture(const MitsubaNode& node) {
     float* d = &t.data[t.offset[id]];
     d[0] = c0.r, d[1] = c0.g, d[2] = c0.b, d[3] = c1.r, d[4] = c1.g, d[5] = c1.b;
     SetToUv(&t, id, to_uv);
+  } else if (type == "rawconstant") {  // normal: a constant value, used as is (raw)
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"value"}));
+    PTLAB_RETURN_IF_ERROR(obj.Require("value"));
+    const MitsubaProperty* p = obj.Get("value");
+    Color3f c;
+    if (p->type == MitsubaProperty::Type::kVector || p->type == MitsubaProperty::Type::kPoint) {
+      Vec3f v;
+      PTLAB_RETURN_IF_ERROR(obj.Vector("value", &v));
+      c = {v.x, v.y, v.z};
+    } else if (p->type == MitsubaProperty::Type::kRgb) {
+      c = p->rgb;
+    } else {
+      float v = 0;
+      PTLAB_RETURN_IF_ERROR(obj.Float("value", &v));
+      c = {v, v, v};
+    }
+    if (!(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b)))
+      return obj.Error("value", "value must be finite");
+    // A checkerboard of two equal colours: the same value at every uv (gradient 0).
+    id = t.AddRow(TextureKind::kCheckerboard, 1, 1, 6);
+    float* d = &t.data[t.offset[id]];
+    d[0] = d[3] = c.r, d[1] = d[4] = c.g, d[2] = d[5] = c.b;
   } else if (type == "mesh_attribute") {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"name", "scale"}));
     PTLAB_RETURN_IF_ERROR(obj.Require("name"));

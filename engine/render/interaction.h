@@ -39,7 +39,7 @@ Vec2f SphereUv(const Vec3f& n);
 /// reads; no textures (nullptr) in a scene without any.
 inline TextureSite TextureSiteOf(const Scene& scene, const SurfaceInteraction& its) {
   if (scene.textures.empty()) return {};
-  return {&scene.textures, {its.uv, its.p, its.prim}};
+  return {&scene.textures, {its.uv, its.p, its.prim}, &its.frame, &its.ng};
 }
 
 /// Builds the interaction for a hit of `ray` (hit.prim must be valid). A sphere hit's shading

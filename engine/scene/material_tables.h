@@ -13,6 +13,7 @@
 #include "engine/scene/plastic_table.h"
 #include "engine/scene/thin_dielectric_table.h"
 #include "engine/scene/two_sided.h"
+#include "engine/scene/shading_perturbation.h"  // normal
 
 namespace ptlab {
 
@@ -121,6 +122,7 @@ struct MaterialTables {
   BlendTable blend;
   TwoSidedFlags two_sided;
   RoughDielectricTable rough_dielectric;  // matA
+  ShadingPerturbations perturbation;      // normal: normalmap / bumpmap rows
 
   MaterialRef AddDiffuse(const Color3f& albedo) {
     diffuse.albedo_r.push_back(albedo.r), diffuse.albedo_g.push_back(albedo.g),

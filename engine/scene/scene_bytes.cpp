@@ -18,7 +18,7 @@ static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
 static_assert(sizeof(MaterialTables) ==
               (4 + 3 + 9 + 7 + 6 + /* matA */ 6 + 5 + 11 + /* matB */ 11 + 7 + 3 +
-               kMaterialTagCount) * kColumn);
+               kMaterialTagCount + /* normal */ 9 + kMaterialTagCount) * kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
 static_assert(sizeof(EnvironmentMapTable) == 14 * kColumn);
@@ -56,6 +56,14 @@ size_t MatBTablesBytes(const MaterialTables& m) {
   return bytes;
 }
 
+// normal: the normal / bump map rows and the triangles' uv tangents.
+size_t PerturbationBytes(const ShadingPerturbations& p) {
+  size_t bytes = VectorsBytes(p.kind, p.texture, p.scale, p.dp_du_x, p.dp_du_y, p.dp_du_z,
+                              p.dp_dv_x, p.dp_dv_y, p.dp_dv_z);
+  for (const auto& c : p.by_tag) bytes += VectorBytes(c);
+  return bytes;
+}
+
 // matA: the smooth conductor's and rough conductor's optional columns, the rough dielectric.
 size_t MatABytes(const MaterialTables& m) {
   const MirrorTable& mi = m.mirror;
@@ -79,7 +87,8 @@ size_t TableBytes(const MaterialTables& m) {
                       m.conductor.k_r, m.conductor.k_g, m.conductor.k_b) +
          VectorsBytes(m.rough_plastic.alpha, m.rough_plastic.int_ior, m.rough_plastic.ext_ior,
                       m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b) +
-         MatBTablesBytes(m) + MatABytes(m);
+         MatBTablesBytes(m) + MatABytes(m) +
+         PerturbationBytes(m.perturbation);  // normal
 }
 
 size_t EmitterTablesBytes(const Scene& s) {

@@ -7,6 +7,7 @@
 
 #include "engine/core/aligned.h"
 #include "engine/core/check.h"
+#include "engine/core/frame.h"  // normal
 #include "engine/texture/texture.h"
 
 namespace ptlab {
@@ -16,6 +17,12 @@ namespace ptlab {
 struct TextureSite {
   const TextureTable* textures = nullptr;
   TexturePoint at;
+  // normal: the shading point's frame and unit geometric normal (world, from its
+  // SurfaceInteraction), which a row's normal or bump map reads (engine/bsdf/perturbed_frame.h);
+  // frame_perturbed: the call is already inside that wrapper (the nested row's own BSDF).
+  const Frame* frame = nullptr;
+  const Vec3f* ng = nullptr;
+  bool frame_perturbed = false;
 };
 
 /// Row i's value of a color parameter that may be textured: `constant` unless the parameter's

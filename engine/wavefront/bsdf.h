@@ -57,7 +57,7 @@ struct ShadeInputs {
 inline TextureSite RowTextureSite(const ShadeInputs::Textures& t, size_t i) {
   if (t.textures == nullptr) return {};
   const SurfaceInteraction& its = t.its[t.entry[i]];
-  return {t.textures, {its.uv, its.p, its.prim}};
+  return {t.textures, {its.uv, its.p, its.prim}, &its.frame, &its.ng};
 }
 
 /// What one shading step writes per hit.

@@ -719,6 +719,7 @@ HWY_AFTER_NAMESPACE();
 #include "simd/wavefront/plastic8-inl.h"
 #include "simd/wavefront/thin_dielectric8-inl.h"
 #include "simd/wavefront/two_sided8-inl.h"
+#include "simd/wavefront/perturbed_frame8-inl.h"  // normal
 // matA: the Mitsuba microfacet models, each in its own -inl file.
 #include "simd/wavefront/rough_conductor8-inl.h"
 #include "simd/wavefront/rough_dielectric8-inl.h"
@@ -775,9 +776,18 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
 
 /// ShadeBatch for one tag: ShadeBatchKernelOneSided, with out.delta filled for the tags whose
 /// lobes are all of one kind and the two-sided rows (TwoSidedFlags) mirrored (matB).
+// normal: a tag some of whose rows a normal or bump map perturbs goes through ShadePerturbed
+// (simd/wavefront/perturbed_frame8-inl.h), which runs ShadeBatchKernelInFrame on its copies.
 inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
                              const uint32_t* material_index, size_t n, const ShadeInputs& in,
                              const ShadeOutputs& out) {
+  if (m.perturbation.Any(tag)) return ShadePerturbed(m, tag, material_index, n, in, out);
+  ShadeBatchKernelInFrame(m, tag, material_index, n, in, out);
+}
+
+inline void ShadeBatchKernelInFrame(const MaterialTables& m, MaterialTag tag,
+                                    const uint32_t* material_index, size_t n,
+                                    const ShadeInputs& in, const ShadeOutputs& out) {
   if (in.u_lobe != nullptr && out.delta != nullptr && !MixesDeltaLobes(tag))
     std::fill(out.delta, out.delta + n, IsDeltaMaterial(tag) ? 1.0f : 0.0f);
   size_t flag_count = 0;

@@ -45,6 +45,10 @@ inline void ShadeTwoSided(const MaterialTables& m, MaterialTag tag, const uint8_
     cin.wo = {in.wo.x + at, in.wo.y + at, wo_z};
     if (eval) cin.wl = {in.wl.x + at, in.wl.y + at, wl_z};
     if (sample) cin.u_lobe = in.u_lobe + at, cin.u_x = in.u_x + at, cin.u_y = in.u_y + at;
+    // The rows' shading points, for textured parameters (without them a textured row read its
+    // constant, 0).
+    cin.texture = in.texture;
+    if (in.texture.textures != nullptr) cin.texture.entry = in.texture.entry + at;
     ShadeOutputs cout;
     if (eval) {
       cout.f = {out.f.r + at, out.f.g + at, out.f.b + at};

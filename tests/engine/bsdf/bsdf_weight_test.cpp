@@ -15,6 +15,7 @@
 #include "engine/bsdf/microfacet.h"
 #include "engine/core/rng.h"
 #include "tests/engine/bsdf/bsdf_test_inputs.h"
+#include "engine/bsdf/perturbed_frame.h"  // normal
 
 namespace ptlab {
 namespace {
@@ -189,6 +190,68 @@ TEST(BsdfWeight, DeltaModelsReturnTheirClosedFormWeights) {
     EXPECT_EQ(s.weight.r, 1.0f);  // η = κ = 0: F = 1 exactly
     ASSERT_TRUE(BsdfSampleDirection(m, glass, wo, 0.999f, {0.5f, 0.5f}, &s));  // refracts
     EXPECT_FLOAT_EQ(s.weight.r, 1.0f / (1.5f * 1.5f));
+  }
+}
+
+// normal: rows whose frame a normal map (diffuse, 10:1 anisotropic GGX conductor) or a bump
+// map (diffuse) perturbs keep the identity weight = Eval·|cos θi| / Pdf, with Eval's factor
+// |cos θi'| / |cos θi| and the shadowing term (engine/bsdf/perturbed_frame.h), at random uv
+// on a random 8 x 8 bitmap, with tangents that are not orthogonal to the normal.
+TEST(BsdfWeight, PerturbedFramesKeepTheWeightIdentity) {
+  Pcg32 rng(29, 3);
+  TextureTable textures;
+  const uint32_t bitmap = textures.AddRow(TextureKind::kBitmap, 8, 8, 3 * 64);
+  for (size_t i = 0; i < 3 * 64; ++i) textures.data[i] = 0.2f + 0.6f * rng.NextFloat();
+  Color3f al_eta, al_k;
+  LookupConductorPreset("Al", &al_eta, &al_k);
+  MaterialTables m;
+  const MaterialRef rows[] = {
+      m.AddDiffuse({0.8f, 0.5f, 0.2f}),
+      m.AddRoughConductor(0.25f, 0.025f, kMicrofacetGgx | kMicrofacetSampleVisible, al_eta, al_k, {1, 1, 1}),
+      m.AddDiffuse({0.3f, 0.6f, 0.9f})};
+  ASSERT_TRUE(m.perturbation.Add(rows[0], PerturbationKind::kNormalMap, bitmap, 1));
+  ASSERT_TRUE(m.perturbation.Add(rows[1], PerturbationKind::kNormalMap, bitmap, 1));
+  ASSERT_TRUE(m.perturbation.Add(rows[2], PerturbationKind::kBumpMap, bitmap, 0.05f));
+  const Vec3f du{1, 0.3f, 0.2f}, dv{-0.2f, 1, 0.1f};
+  m.perturbation.dp_du_x = {du.x}, m.perturbation.dp_du_y = {du.y}, m.perturbation.dp_du_z = {du.z};
+  m.perturbation.dp_dv_x = {dv.x}, m.perturbation.dp_dv_y = {dv.y}, m.perturbation.dp_dv_z = {dv.z};
+  const Frame frame;
+  const Vec3f ng{0, 0, 1};
+  for (const MaterialRef ref : rows) {
+    int checked = 0;
+    double worst = 0;
+    for (const Vec3f& wo : Incidences()) {
+      if (wo.z < 0) continue;
+      for (int i = 0; i < 2000; ++i) {
+        TextureSite site;
+        site.textures = &textures;
+        site.at.uv = {rng.NextFloat(), rng.NextFloat()};
+        site.frame = &frame, site.ng = &ng;
+        BsdfSample s;
+        const float u1 = rng.NextFloat();
+        const Vec2f u2{rng.NextFloat(), rng.NextFloat()};
+        if (!BsdfSampleDirection(m, ref, wo, u1, u2, &s, site)) continue;
+        ASSERT_TRUE(IsFinite(s.weight) && std::isfinite(s.pdf) && s.pdf > 0);
+        float pdf;
+        const Color3f f = BsdfEvalPdf(m, ref, wo, s.wi, &pdf, site);
+        if (!(pdf > 0)) continue;
+        ++checked;
+        for (int c = 0; c < 3; ++c) {
+          const double expect = double(f[c]) * std::fabs(s.wi.z) / pdf;
+          const double err = std::fabs(s.weight[c] - expect) / std::max(expect, 1e-6);
+          worst = std::max(worst, err);
+          ASSERT_LE(err, 1e-3 + 1e-6 / (0.025 * std::fabs(wo.z)))
+              << "row " << int(ref.tag()) << " wo.z " << wo.z << " weight " << s.weight[c]
+              << " eval·cos/pdf " << expect;
+        }
+      }
+    }
+    // Of 8000 draws (measured: 2981 normal-mapped diffuse, 1803 conductor, 7992 bump-mapped
+    // diffuse; the random map tilts normals by up to ~40°, and samples that leave the perturbed
+    // or the shading hemisphere are no samples).
+    EXPECT_GT(checked, 1000) << int(ref.tag());
+    std::printf("perturbed tag %d row %u: checked %d, max rel %.2g\n", int(ref.tag()),
+                ref.index(), checked, worst);
   }
 }
 
