@@ -80,7 +80,7 @@ float PdfOf(const Scene& scene, const BidirectionalSetup& setup, const Vertex* p
       if (prev == nullptr) return 0.0f;
       const Vec3f wo = wo_local ? *wo_local : cur.its.frame.ToLocal(DirectionTo(cur, *prev));
       const Vec3f wi = wi_local ? *wi_local : cur.its.frame.ToLocal(DirectionTo(cur, next));
-      return ConvertDensity(BsdfPdf(scene.materials, cur.its.material, wo, wi), cur, next);
+      return ConvertDensity(BsdfPdf(scene.materials, cur.its.material, wo, wi, TextureSiteOf(scene, cur.its)), cur, next);
     }
   }
   return 0.0f;
@@ -106,8 +106,8 @@ float ShadingNormalCorrection(const SurfaceInteraction& its, const Vec3f& w_in,
 Color3f ScatterTo(const Scene& scene, const Vertex& v, const Vec3f& w, bool light_subpath) {
   const Frame& frame = v.its.frame;
   const Vec3f wo = frame.ToLocal(v.wo), wl = frame.ToLocal(w);
-  if (!light_subpath) return BsdfEval(scene.materials, v.its.material, wo, wl) * AbsCosTheta(wl);
-  const Color3f f = BsdfEval(scene.materials, v.its.material, wl, wo);
+  if (!light_subpath) return BsdfEval(scene.materials, v.its.material, wo, wl, TextureSiteOf(scene, v.its)) * AbsCosTheta(wl);
+  const Color3f f = BsdfEval(scene.materials, v.its.material, wl, wo, TextureSiteOf(scene, v.its));
   return f * (AbsCosTheta(wl) * ShadingNormalCorrection(v.its, v.wo, w));
 }
 

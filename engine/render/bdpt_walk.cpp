@@ -145,7 +145,7 @@ void StepWalk(const Scene& scene, const BidirectionalSetup& setup, const Hit* hi
     w.pdf_dir = 0.0f;
   } else {
     w.pdf_dir = bs.pdf;
-    pdf_rev = BsdfPdf(scene.materials, x.its.material, bs.wi, wo);
+    pdf_rev = BsdfPdf(scene.materials, x.its.material, bs.wi, wo, TextureSiteOf(scene, x.its));
   }
   prev.pdf_rev = ConvertDensity(pdf_rev, x, prev);
   w.ray = Ray{SpawnOrigin(x.its, wi), wi, 0.0f, kInfinity};
