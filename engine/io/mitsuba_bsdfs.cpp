@@ -113,6 +113,8 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     StatusOr<MaterialRef> added = AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials);
     if (!added.ok()) return added.status();
     ref = *added;
+  } else if (type == "principled" || type == "principledthin") {  // principled
+    return PrincipledBsdf(node, obj);
   } else if (type == "principled" || type == "principledthin" || type == "mask" ||
              type == "normalmap" || type == "bumpmap" || type == "null" ||
              type == "polarizer" || type == "retarder" || type == "circular" ||

@@ -67,6 +67,8 @@ class MitsubaSceneBuilder {
   Status Instance(const MitsubaNode& node);
   // matB: twosided and blendbsdf (engine/io/mitsuba_bsdfs.cpp).
   StatusOr<MaterialRef> WrapperBsdf(const MitsubaNode& node, const MitsubaObject& obj);
+  // principled: principled and principledthin (engine/io/mitsuba_principled.cpp).
+  StatusOr<MaterialRef> PrincipledBsdf(const MitsubaNode& node, const MitsubaObject& obj);
 
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);
