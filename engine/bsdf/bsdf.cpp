@@ -16,6 +16,8 @@
 #include "engine/bsdf/rough_dielectric.h"   // matA
 #include "engine/bsdf/smooth_conductor.h"   // matA
 #include "engine/bsdf/perturbed_frame.h"    // normal
+#include "engine/bsdf/principled.h"         // principled
+#include "engine/bsdf/principled_thin.h"    // principled
 
 namespace ptlab {
 namespace {
@@ -76,6 +78,10 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
     }
     case MaterialTag::kBlend:
       return BlendEval(m, ref.index(), wo, wi);
+    case MaterialTag::kPrincipled:  // principled
+      return PrincipledEval(PrincipledAt(m.principled, ref.index(), site), wo, wi);
+    case MaterialTag::kPrincipledThin:
+      return PrincipledThinEval(PrincipledAt(m.principled_thin, ref.index(), site), wo, wi);
     case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
@@ -88,7 +94,6 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
               const TextureSite& site) {
   if (PerturbsFrame(m, ref, site)) return PerturbedBsdfPdf(m, ref, wo, wi, site);  // normal
   if (TwoSidedFlips(m, ref, wo)) return BsdfPdf(m, ref, FlipZ(wo), FlipZ(wi), site);
-  (void)site;  // no textured parameter changes a pdf yet
   switch (ref.tag()) {
     case MaterialTag::kDiffuse:
       return DiffusePdf(wo, wi);
@@ -108,6 +113,10 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
     }
     case MaterialTag::kBlend:
       return BlendPdf(m, ref.index(), wo, wi);
+    case MaterialTag::kPrincipled:  // principled: the textured parameters change the pdf
+      return PrincipledPdf(PrincipledAt(m.principled, ref.index(), site), wo, wi);
+    case MaterialTag::kPrincipledThin:
+      return PrincipledThinPdf(PrincipledAt(m.principled_thin, ref.index(), site), wo, wi);
     case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
@@ -146,6 +155,11 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
       return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, pdf);
     case MaterialTag::kBlend:
       return BlendEvalPdf(m, ref.index(), wo, wi, pdf);
+    case MaterialTag::kPrincipled:  // principled
+      return PrincipledEvalPdf(PrincipledAt(m.principled, ref.index(), site), wo, wi, pdf);
+    case MaterialTag::kPrincipledThin:
+      return PrincipledThinEvalPdf(PrincipledAt(m.principled_thin, ref.index(), site), wo, wi,
+                                   pdf);
     case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
@@ -201,6 +215,11 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
     }
     case MaterialTag::kBlend:
       return BlendSample(m, ref.index(), wo, u1, u2, sample);
+    case MaterialTag::kPrincipled:  // principled
+      return PrincipledSample(PrincipledAt(m.principled, ref.index(), site), wo, u1, u2, sample);
+    case MaterialTag::kPrincipledThin:
+      return PrincipledThinSample(PrincipledAt(m.principled_thin, ref.index(), site), wo, u1, u2,
+                                  sample);
   }
   return false;
 }

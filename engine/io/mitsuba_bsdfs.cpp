@@ -115,8 +115,9 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     ref = *added;
   } else if (type == "normalmap" || type == "bumpmap") {  // normal
     return PerturbedBsdf(node, obj);
-  } else if (type == "principled" || type == "principledthin" || type == "mask" ||
-             type == "normalmap" || type == "bumpmap" || type == "null" ||
+  } else if (type == "principled" || type == "principledthin") {  // principled
+    return PrincipledBsdf(node, obj);
+  } else if (type == "mask" || type == "null" ||
              type == "polarizer" || type == "retarder" || type == "circular" ||
              type == "measured" || type == "pplastic" || type == "hair") {
     return Unsupported(node);

@@ -69,6 +69,8 @@ class MitsubaSceneBuilder {
   StatusOr<MaterialRef> WrapperBsdf(const MitsubaNode& node, const MitsubaObject& obj);
   // normal: `normalmap` and `bumpmap` (engine/io/mitsuba_perturbed_bsdfs.cpp).
   StatusOr<MaterialRef> PerturbedBsdf(const MitsubaNode& node, const MitsubaObject& obj);
+  // principled: principled and principledthin (engine/io/mitsuba_principled.cpp).
+  StatusOr<MaterialRef> PrincipledBsdf(const MitsubaNode& node, const MitsubaObject& obj);
 
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);

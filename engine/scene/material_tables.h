@@ -14,6 +14,8 @@
 #include "engine/scene/thin_dielectric_table.h"
 #include "engine/scene/two_sided.h"
 #include "engine/scene/shading_perturbation.h"  // normal
+// principled: Mitsuba's principled and principledthin.
+#include "engine/scene/principled_table.h"
 
 namespace ptlab {
 
@@ -123,6 +125,8 @@ struct MaterialTables {
   TwoSidedFlags two_sided;
   RoughDielectricTable rough_dielectric;  // matA
   ShadingPerturbations perturbation;      // normal: normalmap / bumpmap rows
+  // principled: one table per tag (the same columns; engine/scene/principled_table.h).
+  PrincipledTable principled, principled_thin;
 
   MaterialRef AddDiffuse(const Color3f& albedo) {
     diffuse.albedo_r.push_back(albedo.r), diffuse.albedo_g.push_back(albedo.g),
@@ -247,6 +251,11 @@ struct MaterialTables {
   }
   MaterialRef AddBlend(float weight, MaterialRef first, MaterialRef second) {
     return MaterialRef::Make(MaterialTag::kBlend, blend.Add(weight, first, second));
+  }
+  // principled: a `principled` row (thin = false) or a `principledthin` row.
+  MaterialRef AddPrincipled(const PrincipledRow& row, bool thin = false) {
+    return thin ? MaterialRef::Make(MaterialTag::kPrincipledThin, principled_thin.Add(row))
+                : MaterialRef::Make(MaterialTag::kPrincipled, principled.Add(row));
   }
 };
 

@@ -18,8 +18,11 @@ enum class MaterialTag : uint8_t {
   kPlastic = 7,
   kThinDielectric = 8,
   kBlend = 9,
+  // principled: Mitsuba's principled and principledthin (engine/bsdf/principled*.h).
+  kPrincipled = 10,
+  kPrincipledThin = 11,
 };
-inline constexpr int kMaterialTagCount = 10;
+inline constexpr int kMaterialTagCount = 12;
 
 /// The closed set of emitter kinds.
 enum class EmitterTag : uint8_t {

@@ -18,7 +18,9 @@ static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
 static_assert(sizeof(MaterialTables) ==
               (4 + 3 + 9 + 7 + 6 + /* matA */ 6 + 5 + 11 + /* matB */ 11 + 7 + 3 +
-               kMaterialTagCount + /* normal */ 9 + kMaterialTagCount) * kColumn);
+               kMaterialTagCount + /* normal */ 9 + kMaterialTagCount +
+               /* principled */ 2 * (3 + 1 + 2 * kPrincipledParamCount)) *
+              kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
 static_assert(sizeof(EnvironmentMapTable) == 14 * kColumn);
@@ -64,6 +66,17 @@ size_t PerturbationBytes(const ShadingPerturbations& p) {
   return bytes;
 }
 
+// principled: the principled and principledthin tables.
+size_t PrincipledTablesBytes(const MaterialTables& m) {
+  size_t bytes = 0;
+  for (const PrincipledTable* t : {&m.principled, &m.principled_thin}) {
+    bytes += VectorsBytes(t->base_r, t->base_g, t->base_b, t->base_color_texture);
+    for (int p = 0; p < kPrincipledParamCount; ++p)
+      bytes += VectorBytes(t->value[p]) + VectorBytes(t->texture[p]);
+  }
+  return bytes;
+}
+
 // matA: the smooth conductor's and rough conductor's optional columns, the rough dielectric.
 size_t MatABytes(const MaterialTables& m) {
   const MirrorTable& mi = m.mirror;
@@ -87,7 +100,7 @@ size_t TableBytes(const MaterialTables& m) {
                       m.conductor.k_r, m.conductor.k_g, m.conductor.k_b) +
          VectorsBytes(m.rough_plastic.alpha, m.rough_plastic.int_ior, m.rough_plastic.ext_ior,
                       m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b) +
-         MatBTablesBytes(m) + MatABytes(m) +
+         MatBTablesBytes(m) + MatABytes(m) + PrincipledTablesBytes(m) +
          PerturbationBytes(m.perturbation);  // normal
 }
 

@@ -723,6 +723,8 @@ HWY_AFTER_NAMESPACE();
 // matA: the Mitsuba microfacet models, each in its own -inl file.
 #include "simd/wavefront/rough_conductor8-inl.h"
 #include "simd/wavefront/rough_dielectric8-inl.h"
+// principled: principled and principledthin (through the oracle for now).
+#include "simd/wavefront/principled8-inl.h"
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
 namespace HWY_NAMESPACE {
@@ -771,6 +773,9 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
       return ShadeThinDielectric(m.thin_dielectric, io, n, eval, sample);
     case MaterialTag::kBlend:
       return ShadeBlend(m, material_index, n, in, out);
+    case MaterialTag::kPrincipled:  // principled
+    case MaterialTag::kPrincipledThin:
+      return ShadePrincipledRows(m, tag, material_index, n, in, out);
   }
 }
 

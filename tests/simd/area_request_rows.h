@@ -103,6 +103,10 @@ inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
       return uint32_t(m.blend.size());
     case MaterialTag::kRoughDielectric:  // matA
       return uint32_t(m.rough_dielectric.size());
+    case MaterialTag::kPrincipled:  // principled
+      return uint32_t(m.principled.size());
+    case MaterialTag::kPrincipledThin:
+      return uint32_t(m.principled_thin.size());
   }
   return 0;
 }

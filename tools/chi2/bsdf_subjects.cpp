@@ -17,6 +17,7 @@
 #include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/lobe_disk.h"
 #include "tools/chi2/microfacet_subjects.h"  // matA
+#include "tools/chi2/principled_subjects.h"  // principled
 #include "tools/chi2/stats_math.h"
 
 namespace ptlab {
@@ -308,6 +309,7 @@ void RegisterBsdfSubjects(Chi2Registry* r) {
   add("simd/shade_rough_plastic", Chi2BsdfModel::kRoughPlastic, kSimd, 0.5f, kIncidences[1]);
   RegisterCoatedBsdfSubjects(r);  // matB
   RegisterMicrofacetBsdfSubjects(r);  // matA: the Mitsuba microfacet models
+  RegisterPrincipledBsdfSubjects(r);  // principled: principled and principledthin
 
   // Deliberately wrong pdfs for the right samplers. Both keep the true albedo, so the lab
   // compares their integral (and the absorbed count) with the sampler's actual mass.

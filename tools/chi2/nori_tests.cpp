@@ -56,6 +56,10 @@ const char* MaterialName(MaterialTag tag) {
       return "thindielectric";
     case MaterialTag::kBlend:
       return "blendbsdf";
+    case MaterialTag::kPrincipled:  // principled
+      return "principled";
+    case MaterialTag::kPrincipledThin:
+      return "principledthin";
   }
   return "?";
 }

@@ -257,3 +257,75 @@ TEST(BsdfWeight, PerturbedFramesKeepTheWeightIdentity) {
 
 }  // namespace
 }  // namespace ptlab
+
+// principled: Mitsuba's principled and principledthin (their own block: the white furnace of
+// these non-energy-conserving models is in principled_test.cpp). Parameter sets covering every
+// lobe, roughness down to 0 (α = 0.001), anisotropic 1, η → 1; wo on both sides.
+namespace ptlab {
+namespace {
+
+TEST(BsdfWeight, PrincipledSampleWeightIsEvalCosOverPdf) {
+  struct Set {
+    const char* name;
+    bool thin;
+    float roughness, anisotropic, metallic, spec_trans, clearcoat, sheen, eta, diff_trans;
+  };
+  const Set sets[] = {
+      {"diffuse_sheen", false, 0.5f, 0, 0, 0, 0, 1, 1.5f, 0},
+      {"metal_aniso_cc", false, 0.3f, 1, 0.7f, 0, 0.9f, 0.2f, 1.62f, 0},
+      {"glass", false, 0.15f, 0.2f, 0, 0.7f, 0.6f, 0.9f, 1.38f, 0},
+      {"glass_smooth", false, 0.0f, 0, 0, 1, 0, 0, 1.5f, 0},
+      {"glass_eta1p001", false, 0.7f, 0.5f, 0.2f, 1, 0.3f, 0, 1.001f, 0},
+      {"rough1", false, 1, 0, 0.5f, 0.5f, 1, 1, 1.2f, 0},
+      {"thin", true, 0.5f, 0.8f, 0, 0.8f, 0, 0.8f, 1.33f, 0.7f},
+      {"thin_smooth", true, 0.0f, 1, 0, 0.5f, 0, 0, 2.0f, 1},
+      {"thin_rough", true, 1, 0, 0, 0.2f, 0, 0.3f, 1.05f, 0.2f},
+  };
+  Pcg32 rng(31, 7);
+  for (const Set& set : sets) {
+    MaterialTables m;
+    PrincipledRow row;
+    row.base_color = {0.7f, 0.4f, 0.2f};
+    row.value[kPrincipledRoughness] = set.roughness;
+    row.value[kPrincipledAnisotropic] = set.anisotropic;
+    row.value[kPrincipledMetallic] = set.metallic;
+    row.value[kPrincipledSpecTrans] = set.spec_trans;
+    row.value[kPrincipledClearcoat] = set.clearcoat;
+    row.value[kPrincipledSheen] = set.sheen;
+    row.value[kPrincipledSheenTint] = 0.5f;
+    row.value[kPrincipledSpecTint] = 0.5f;
+    row.value[kPrincipledEta] = set.eta;
+    row.value[kPrincipledDiffTrans] = 2 * set.diff_trans;
+    const MaterialRef ref = m.AddPrincipled(row, set.thin);
+    // α = roughness² ≥ 0.001 (and the thin transmission's scaled roughness).
+    const float alpha_min = std::max(0.001f, set.roughness * set.roughness * 0.3f);
+    double worst = 0;
+    int checked = 0;
+    for (const Vec3f& wo : Incidences()) {
+      const double tol = 1e-3 + 1e-6 / (alpha_min * std::fabs(wo.z));
+      for (int i = 0; i < 1000; ++i) {
+        BsdfSample s;
+        const float u1 = rng.NextFloat();
+        const Vec2f u2{rng.NextFloat(), rng.NextFloat()};
+        if (!BsdfSampleDirection(m, ref, wo, u1, u2, &s)) continue;
+        ASSERT_TRUE(IsFinite(s.weight) && std::isfinite(s.pdf) && s.pdf > 0) << set.name;
+        ASSERT_FALSE(s.delta) << set.name;
+        float pdf;
+        const Color3f f = BsdfEvalPdf(m, ref, wo, s.wi, &pdf);
+        ASSERT_GT(pdf, 0) << set.name;
+        ++checked;
+        for (int c = 0; c < 3; ++c) {
+          const double expect = double(f[c]) * std::fabs(s.wi.z) / pdf;
+          const double err = std::fabs(s.weight[c] - expect) / std::max(expect, 1e-6);
+          worst = std::max(worst, err);
+          ASSERT_LE(err, tol) << set.name << " wo " << wo.x << " " << wo.y << " " << wo.z;
+        }
+      }
+    }
+    EXPECT_GT(checked, 1500) << set.name;
+    std::printf("%-24s checked %5d  max rel %.2g\n", set.name, checked, worst);
+  }
+}
+
+}  // namespace
+}  // namespace ptlab

@@ -34,9 +34,11 @@ TEST(MitsubaCli, DefinesAndUnsupportedExitTwo) {
                              (dir / "out.exr").string();
   EXPECT_EQ(RunShell(render, log), 0) << ReadFile(log);
   EXPECT_TRUE(fs::exists(dir / "out.exr"));
-  EXPECT_EQ(RunShell(render + " -D bsdf=principled", log), 2);
+  // principled: principled loads now (and renders); pplastic is an unsupported BSDF.
+  EXPECT_EQ(RunShell(render + " -D bsdf=principled", log), 0) << ReadFile(log);
+  EXPECT_EQ(RunShell(render + " -D bsdf=pplastic", log), 2);
   EXPECT_NE(
-      ReadFile(log).find((dir / "scene.xml").string() + ":6:5: unsupported: bsdf \"principled\""),
+      ReadFile(log).find((dir / "scene.xml").string() + ":6:5: unsupported: bsdf \"pplastic\""),
       std::string::npos)
       << ReadFile(log);
   EXPECT_EQ(RunShell(render + " -D bsdf", log), 2);

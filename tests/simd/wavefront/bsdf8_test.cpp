@@ -375,6 +375,10 @@ size_t RowCount(const MaterialTables& m, MaterialTag tag) {
       return m.blend.size();
     case MaterialTag::kRoughDielectric:  // matA
       return m.rough_dielectric.size();
+    case MaterialTag::kPrincipled:  // principled
+      return m.principled.size();
+    case MaterialTag::kPrincipledThin:
+      return m.principled_thin.size();
   }
   return 0;
 }
