@@ -56,6 +56,8 @@ const char* MaterialName(MaterialTag tag) {
       return "thindielectric";
     case MaterialTag::kBlend:
       return "blendbsdf";
+    case MaterialTag::kMask:  // mask
+      return "mask";
   }
   return "?";
 }
