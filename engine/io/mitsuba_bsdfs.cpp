@@ -1,5 +1,7 @@
 // Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse, dielectric, (matA) conductor,
 // roughconductor, roughdielectric, (matB) plastic, roughplastic, thindielectric, twosided, blendbsdf.
+#include <string_view>
+
 #include "engine/bsdf/plastic_precompute.h"      // matB
 #include "engine/io/mitsuba_microfacet_bsdfs.h"  // matA
 #include "engine/io/mitsuba_scene_builder.h"
@@ -118,8 +120,9 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
         continue;
       StatusOr<uint32_t> texture = Texture(*p->object);
       if (!texture.ok()) return texture.status();
-      if (name[5] != 'v') rough.alpha_u = *texture;
-      if (name[5] != 'u') rough.alpha_v = *texture;
+      const std::string_view n = name;
+      if (n != "alpha_v") rough.alpha_u = *texture;
+      if (n != "alpha_u") rough.alpha_v = *texture;
     }
     StatusOr<MaterialRef> added =
         AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials, rough);

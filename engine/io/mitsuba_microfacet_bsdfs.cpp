@@ -1,6 +1,8 @@
 // Mitsuba <bsdf>s of the microfacet family: conductor, roughconductor, roughdielectric.
 #include "engine/io/mitsuba_microfacet_bsdfs.h"
 
+#include <string_view>
+
 #include <cmath>
 
 #include "engine/io/mitsuba_loader.h"
@@ -73,7 +75,8 @@ Status Roughness(const MitsubaObject& obj, float* alpha_u, float* alpha_v, uint8
     *alpha_v = *alpha_u;
   }
   for (const char* name : {"alpha", "alpha_u", "alpha_v"}) {
-    const float a = name[5] == 'v' ? *alpha_v : *alpha_u;
+    // mask: "alpha_v"[5] is '_': compare the name (the old test read αu for alpha_v).
+    const float a = std::string_view(name) == "alpha_v" ? *alpha_v : *alpha_u;
     // Mitsuba clamps α to 1e-4 (with a warning for 0); so does ptlab (MakeMicrofacet).
     if (obj.Has(name) && !(a >= 0 && std::isfinite(a)))
       return obj.Error(name, std::string(name) + " = " + std::to_string(a) +
