@@ -219,8 +219,12 @@ TEST(Mask8, MaskRowsMatchTheOracleOnEveryTarget) {
   MaterialTables& m = fx.m;
   const MaterialRef twosided = m.AddDiffuse({0.1f, 0.8f, 0.1f});
   m.two_sided.Set(twosided);
+  // A two-sided textured diffuse: ShadeTwoSided passes the chunk's shading points on.
+  const MaterialRef twosided_textured = m.AddTexturedDiffuse(albedo);
+  m.two_sided.Set(twosided_textured);
   const MaterialRef kids[] = {m.AddDiffuse({0.8f, 0.5f, 0.2f}), twosided,
-                              m.AddTexturedDiffuse(albedo), m.AddMirror({0.9f, 0.8f, 0.7f}),
+                              m.AddTexturedDiffuse(albedo), twosided_textured,
+                              m.AddMirror({0.9f, 0.8f, 0.7f}),
                               m.AddRoughConductor(0.2f, 0.05f, kMicrofacetSampleVisible, eta, k,
                                                   {1, 1, 1})};
   const std::vector<float> opacities = {0.0f, 1e-40f, 0.3f, 0.5f, 0x1.fffffep-1f, 1.0f};
