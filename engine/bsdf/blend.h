@@ -5,6 +5,7 @@
 
 #include "engine/bsdf/bsdf_sample.h"
 #include "engine/scene/material_tables.h"
+#include "engine/texture/texture_site.h"
 
 namespace ptlab {
 
@@ -21,15 +22,22 @@ namespace ptlab {
 
 /// f of row `row` (children evaluated through BsdfEval, so nested blends and two-sided
 /// children work).
-Color3f BlendEval(const MaterialTables& m, uint32_t row, const Vec3f& wo, const Vec3f& wi);
+Color3f BlendEval(const MaterialTables& m, uint32_t row, const Vec3f& wo, const Vec3f& wi,
+                  const TextureSite& site = {});
 /// Σ P(k) pdf_k(wi): the density of BlendSample's non-delta samples.
-float BlendPdf(const MaterialTables& m, uint32_t row, const Vec3f& wo, const Vec3f& wi);
+float BlendPdf(const MaterialTables& m, uint32_t row, const Vec3f& wo, const Vec3f& wi,
+               const TextureSite& site = {});
 Color3f BlendEvalPdf(const MaterialTables& m, uint32_t row, const Vec3f& wo, const Vec3f& wi,
-                     float* pdf);
+                     float* pdf, const TextureSite& site = {});
 /// u_lobe < w picks the second child (u_lobe / w is passed on as its lobe number), else the
 /// first ((u_lobe − w) / (1 − w)); see above for the sample's weight and pdf.
 bool BlendSample(const MaterialTables& m, uint32_t row, const Vec3f& wo, float u_lobe,
-                 const Vec2f& u, BsdfSample* s);
+                 const Vec2f& u, BsdfSample* s, const TextureSite& site = {});
+/// mask: row `row`'s weight at `site`: the constant or its texture's value (TexturedFloat),
+/// clamped to [0, 1] as Mitsuba clips it (NaN → 1). The children get the same site.
+inline float BlendWeight(const BlendTable& t, uint32_t row, const TextureSite& site) {
+  return TexturedUnitFloat(t.weight_texture, row, t.weight[row], site);
+}
 
 /// The child pick of BlendSample: true for the second child, *u_child its lobe number.
 inline bool BlendPicksSecond(float weight, float u_lobe, float* u_child) {

@@ -18,6 +18,7 @@
 #include "engine/bsdf/perturbed_frame.h"    // normal
 #include "engine/bsdf/principled.h"         // principled
 #include "engine/bsdf/principled_thin.h"    // principled
+#include "engine/bsdf/mask.h"               // mask
 
 namespace ptlab {
 namespace {
@@ -32,11 +33,15 @@ RoughPlasticParams RoughPlasticRow(const RoughPlasticTable& t, uint32_t i) {
 }
 
 // matA: the conductor table's Mitsuba form and the rough dielectric.
-RoughConductorParams RoughConductorRow(const ConductorTable& t, uint32_t i) {
+RoughConductorParams RoughConductorRow(const ConductorTable& t, uint32_t i,
+                                       const TextureSite& site) {
   RoughConductorParams p;
   const uint8_t f = t.flags[i];
+  // mask: αu, αv may be textured (TexturedFloat).
   p.dist = MakeMicrofacet((f & kMicrofacetGgx) ? MicrofacetType::kGgx : MicrofacetType::kBeckmann,
-                          t.alpha[i], t.alpha_v[i], (f & kMicrofacetSampleVisible) != 0);
+                          TexturedFloat(t.alpha_texture, i, t.alpha[i], site),
+                          TexturedFloat(t.alpha_v_texture, i, t.alpha_v[i], site),
+                          (f & kMicrofacetSampleVisible) != 0);
   p.eta = {t.eta_r[i], t.eta_g[i], t.eta_b[i]};
   p.k = {t.k_r[i], t.k_g[i], t.k_b[i]};
   p.specular = {t.specular_r[i], t.specular_g[i], t.specular_b[i]};
@@ -65,7 +70,7 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
       return DiffuseEval(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, wi);
     case MaterialTag::kConductor:
       if (m.conductor.microfacet())
-        return RoughConductorEval(RoughConductorRow(m.conductor, ref.index()), wo, wi);
+        return RoughConductorEval(RoughConductorRow(m.conductor, ref.index(), site), wo, wi);
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughDielectric:  // matA
       return RoughDielectricEval(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, wi);
@@ -77,11 +82,13 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
       return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, &pdf);
     }
     case MaterialTag::kBlend:
-      return BlendEval(m, ref.index(), wo, wi);
+      return BlendEval(m, ref.index(), wo, wi, site);
     case MaterialTag::kPrincipled:  // principled
       return PrincipledEval(PrincipledAt(m.principled, ref.index(), site), wo, wi);
     case MaterialTag::kPrincipledThin:
       return PrincipledThinEval(PrincipledAt(m.principled_thin, ref.index(), site), wo, wi);
+    case MaterialTag::kMask:  // mask
+      return MaskEval(m, ref.index(), wo, wi, site);
     case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
@@ -99,7 +106,7 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
       return DiffusePdf(wo, wi);
     case MaterialTag::kConductor:
       if (m.conductor.microfacet())
-        return RoughConductorPdf(RoughConductorRow(m.conductor, ref.index()), wo, wi);
+        return RoughConductorPdf(RoughConductorRow(m.conductor, ref.index(), site), wo, wi);
       return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughDielectric:  // matA
       return RoughDielectricPdf(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, wi);
@@ -112,11 +119,13 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
       return pdf;
     }
     case MaterialTag::kBlend:
-      return BlendPdf(m, ref.index(), wo, wi);
+      return BlendPdf(m, ref.index(), wo, wi, site);
     case MaterialTag::kPrincipled:  // principled: the textured parameters change the pdf
       return PrincipledPdf(PrincipledAt(m.principled, ref.index(), site), wo, wi);
     case MaterialTag::kPrincipledThin:
       return PrincipledThinPdf(PrincipledAt(m.principled_thin, ref.index(), site), wo, wi);
+    case MaterialTag::kMask:  // mask
+      return MaskPdf(m, ref.index(), wo, wi, site);
     case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
@@ -135,7 +144,7 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
       return DiffuseEval(DiffuseAlbedo(m.diffuse, ref.index(), site), wo, wi);
     case MaterialTag::kConductor: {
       if (m.conductor.microfacet()) {
-        const RoughConductorParams p = RoughConductorRow(m.conductor, ref.index());
+        const RoughConductorParams p = RoughConductorRow(m.conductor, ref.index(), site);
         *pdf = RoughConductorPdf(p, wo, wi);
         return RoughConductorEval(p, wo, wi);
       }
@@ -154,12 +163,14 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
     case MaterialTag::kPlastic:
       return PlasticRowEvalPdf(m.plastic, ref.index(), wo, wi, pdf);
     case MaterialTag::kBlend:
-      return BlendEvalPdf(m, ref.index(), wo, wi, pdf);
+      return BlendEvalPdf(m, ref.index(), wo, wi, pdf, site);
     case MaterialTag::kPrincipled:  // principled
       return PrincipledEvalPdf(PrincipledAt(m.principled, ref.index(), site), wo, wi, pdf);
     case MaterialTag::kPrincipledThin:
       return PrincipledThinEvalPdf(PrincipledAt(m.principled_thin, ref.index(), site), wo, wi,
                                    pdf);
+    case MaterialTag::kMask:  // mask
+      return MaskEvalPdf(m, ref.index(), wo, wi, pdf, site);
     case MaterialTag::kThinDielectric:
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
@@ -198,7 +209,7 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
     }
     case MaterialTag::kConductor:
       if (m.conductor.microfacet())
-        return RoughConductorSample(RoughConductorRow(m.conductor, ref.index()), wo, u2, sample);
+        return RoughConductorSample(RoughConductorRow(m.conductor, ref.index(), site), wo, u2, sample);
       return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);
     case MaterialTag::kRoughDielectric:  // matA
       return RoughDielectricSample(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, u1, u2,
@@ -214,12 +225,14 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
       return ThinDielectricSample(t.eta[i], t.Reflectance(i), t.Transmittance(i), wo, u1, sample);
     }
     case MaterialTag::kBlend:
-      return BlendSample(m, ref.index(), wo, u1, u2, sample);
+      return BlendSample(m, ref.index(), wo, u1, u2, sample, site);
     case MaterialTag::kPrincipled:  // principled
       return PrincipledSample(PrincipledAt(m.principled, ref.index(), site), wo, u1, u2, sample);
     case MaterialTag::kPrincipledThin:
       return PrincipledThinSample(PrincipledAt(m.principled_thin, ref.index(), site), wo, u1, u2,
                                   sample);
+    case MaterialTag::kMask:  // mask
+      return MaskSample(m, ref.index(), wo, u1, u2, sample, site);
   }
   return false;
 }

@@ -17,7 +17,8 @@ constexpr bool IsDeltaMaterial(MaterialTag tag) {
 /// took, and a path that continues from such a sample is specular (its emission is not seen
 /// by emitter sampling), while Eval / Pdf cover the non-delta lobes only.
 constexpr bool MixesDeltaLobes(MaterialTag tag) {
-  return tag == MaterialTag::kPlastic || tag == MaterialTag::kBlend;
+  return tag == MaterialTag::kPlastic || tag == MaterialTag::kBlend ||
+         tag == MaterialTag::kMask;  // mask: a delta nested material's samples
 }
 
 // The functions below are the scalar oracle of every model, addressed by MaterialRef (the

@@ -1,5 +1,7 @@
 // Mitsuba <bsdf>s that map exactly to ptlab's materials: diffuse, dielectric, (matA) conductor,
 // roughconductor, roughdielectric, (matB) plastic, roughplastic, thindielectric, twosided, blendbsdf.
+#include <string_view>
+
 #include "engine/bsdf/plastic_precompute.h"      // matB
 #include "engine/io/mitsuba_microfacet_bsdfs.h"  // matA
 #include "engine/io/mitsuba_scene_builder.h"
@@ -110,14 +112,29 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
     return WrapperBsdf(node, obj);
   } else if (type == "conductor" || type == "roughconductor" || type == "roughdielectric") {
     // matA: the microfacet family (engine/io/mitsuba_microfacet_bsdfs.cpp).
-    StatusOr<MaterialRef> added = AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials);
+    // mask: a textured alpha / alpha_u / alpha_v (resolved here, where textures are built).
+    MicrofacetRoughnessTextures rough;
+    for (const char* name : {"alpha", "alpha_u", "alpha_v"}) {
+      const MitsubaProperty* p = obj.Get(name);
+      if (p == nullptr || p->type != MitsubaProperty::Type::kObject || p->object->tag != "texture")
+        continue;
+      StatusOr<uint32_t> texture = Texture(*p->object);
+      if (!texture.ok()) return texture.status();
+      const std::string_view n = name;
+      if (n != "alpha_v") rough.alpha_u = *texture;
+      if (n != "alpha_u") rough.alpha_v = *texture;
+    }
+    StatusOr<MaterialRef> added =
+        AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials, rough);
     if (!added.ok()) return added.status();
     ref = *added;
   } else if (type == "normalmap" || type == "bumpmap") {  // normal
     return PerturbedBsdf(node, obj);
   } else if (type == "principled" || type == "principledthin") {  // principled
     return PrincipledBsdf(node, obj);
-  } else if (type == "mask" || type == "null" ||
+  } else if (type == "mask") {  // mask: engine/io/mitsuba_mask_bsdf.cpp
+    return MaskBsdf(node, obj);
+  } else if (type == "null" ||
              type == "polarizer" || type == "retarder" || type == "circular" ||
              type == "measured" || type == "pplastic" || type == "hair") {
     return Unsupported(node);
@@ -158,10 +175,15 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::WrapperBsdf(const MitsubaNode& node,
     PTLAB_RETURN_IF_ERROR(obj.Expect({"weight"}));
     const MitsubaProperty* p = obj.Get("weight");
     float weight = 0.5f;
-    if (p != nullptr && p->type == MitsubaProperty::Type::kObject)
-      return Unsupported(node, "a textured weight (only a scalar <float name=\"weight\">)");
-    PTLAB_RETURN_IF_ERROR(obj.Float("weight", &weight));
-    if (!(weight >= 0 && weight <= 1)) return obj.Error("weight", "weight must be in [0, 1]");
+    uint32_t weight_texture = kNoTexture;  // mask: a textured weight
+    if (p != nullptr && p->type == MitsubaProperty::Type::kObject && p->object->tag == "texture") {
+      StatusOr<uint32_t> texture = Texture(*p->object);
+      if (!texture.ok()) return texture.status();
+      weight_texture = *texture;
+    } else {
+      PTLAB_RETURN_IF_ERROR(obj.Float("weight", &weight));
+      if (!(weight >= 0 && weight <= 1)) return obj.Error("weight", "weight must be in [0, 1]");
+    }
     if (kids.size() != 2) return node.Error("blendbsdf expects two nested <bsdf>s");
     StatusOr<MaterialRef> a = Bsdf(*kids[0]);
     if (!a.ok()) return a.status();
@@ -170,7 +192,7 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::WrapperBsdf(const MitsubaNode& node,
     // normal: a blend's children are evaluated without their shading point's frame.
     if (scene_.materials.perturbation.Of(*a) >= 0 || scene_.materials.perturbation.Of(*b) >= 0)
       return Unsupported(node, "a normalmap or bumpmap inside a blendbsdf");
-    ref = scene_.materials.AddBlend(weight, *a, *b);
+    ref = scene_.materials.AddBlend(weight, *a, *b, weight_texture);
   }
   bsdfs_[&node] = ref;
   return ref;

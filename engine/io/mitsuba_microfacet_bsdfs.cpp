@@ -1,6 +1,8 @@
 // Mitsuba <bsdf>s of the microfacet family: conductor, roughconductor, roughdielectric.
 #include "engine/io/mitsuba_microfacet_bsdfs.h"
 
+#include <string_view>
+
 #include <cmath>
 
 #include "engine/io/mitsuba_loader.h"
@@ -45,7 +47,8 @@ Status Specular(const MitsubaObject& obj, const char* name, Color3f* c) {
 }
 
 // distribution, alpha | alpha_u + alpha_v, sample_visible → αu, αv, MicrofacetFlags.
-Status Roughness(const MitsubaObject& obj, float* alpha_u, float* alpha_v, uint8_t* flags) {
+Status Roughness(const MitsubaObject& obj, float* alpha_u, float* alpha_v, uint8_t* flags,
+                 const MicrofacetRoughnessTextures& textures = {}) {
   std::string distribution = "beckmann";
   PTLAB_RETURN_IF_ERROR(obj.String("distribution", &distribution));
   for (char& ch : distribution) ch = char(std::tolower(static_cast<unsigned char>(ch)));
@@ -62,15 +65,18 @@ Status Roughness(const MitsubaObject& obj, float* alpha_u, float* alpha_v, uint8
       return obj.Error("alpha", "give either 'alpha' or 'alpha_u' and 'alpha_v', not both");
     if (!has_u || !has_v)
       return obj.Error(has_u ? "alpha_u" : "alpha_v", "both 'alpha_u' and 'alpha_v' are needed");
-    PTLAB_RETURN_IF_ERROR(obj.Float("alpha_u", alpha_u));
-    PTLAB_RETURN_IF_ERROR(obj.Float("alpha_v", alpha_v));
+    // mask: a textured αu / αv is not read as a number (its constant stays 0.1, unused).
+    *alpha_u = *alpha_v = 0.1f;
+    if (textures.alpha_u == kNoTexture) PTLAB_RETURN_IF_ERROR(obj.Float("alpha_u", alpha_u));
+    if (textures.alpha_v == kNoTexture) PTLAB_RETURN_IF_ERROR(obj.Float("alpha_v", alpha_v));
   } else {
     *alpha_u = 0.1f;
-    PTLAB_RETURN_IF_ERROR(obj.Float("alpha", alpha_u));
+    if (textures.alpha_u == kNoTexture) PTLAB_RETURN_IF_ERROR(obj.Float("alpha", alpha_u));
     *alpha_v = *alpha_u;
   }
   for (const char* name : {"alpha", "alpha_u", "alpha_v"}) {
-    const float a = name[5] == 'v' ? *alpha_v : *alpha_u;
+    // mask: "alpha_v"[5] is '_': compare the name (the old test read αu for alpha_v).
+    const float a = std::string_view(name) == "alpha_v" ? *alpha_v : *alpha_u;
     // Mitsuba clamps α to 1e-4 (with a warning for 0); so does ptlab (MakeMicrofacet).
     if (obj.Has(name) && !(a >= 0 && std::isfinite(a)))
       return obj.Error(name, std::string(name) + " = " + std::to_string(a) +
@@ -97,8 +103,15 @@ Status MitsubaIor(const MitsubaObject& obj, const char* name, float* ior) {
 
 StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
                                                const std::vector<std::string>& search_paths,
-                                               MaterialTables* materials) {
+                                               MaterialTables* materials,
+                                               const MicrofacetRoughnessTextures& textures) {
   const std::string& type = obj.type();
+  // mask: only roughconductor takes a textured roughness.
+  if (type != "roughconductor" &&
+      (textures.alpha_u != kNoTexture || textures.alpha_v != kNoTexture)) {
+    const char* name = obj.Has("alpha") ? "alpha" : "alpha_u";
+    return obj.Error(name, "unsupported: bsdf \"" + type + "\" with a textured " + name);
+  }
   if (type == "conductor") {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"material", "eta", "k", "specular_reflectance"}));
     Color3f eta, k, specular;
@@ -115,7 +128,10 @@ StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
     PTLAB_RETURN_IF_ERROR(Specular(obj, "specular_reflectance", &specular));
     float alpha_u, alpha_v;
     uint8_t flags;
-    PTLAB_RETURN_IF_ERROR(Roughness(obj, &alpha_u, &alpha_v, &flags));
+    PTLAB_RETURN_IF_ERROR(Roughness(obj, &alpha_u, &alpha_v, &flags, textures));
+    if (textures.alpha_u != kNoTexture || textures.alpha_v != kNoTexture)  // mask
+      return materials->AddTexturedRoughConductor(alpha_u, alpha_v, textures.alpha_u,
+                                                  textures.alpha_v, flags, eta, k, specular);
     return materials->AddRoughConductor(alpha_u, alpha_v, flags, eta, k, specular);
   }
   if (type == "roughdielectric") {

@@ -21,8 +21,16 @@ Status MitsubaIor(const MitsubaObject& obj, const char* name, float* ior);
 /// `alpha_v`; `sample_visible` (default true); int_ior / ext_ior as numbers or names (default
 /// bk7 / air); specular_reflectance / specular_transmittance as constant colours. Errors name
 /// the file, line and the accepted values.
+/// mask: the texture rows (TextureTable ids, kNoTexture when constant) of a roughconductor's
+/// `alpha` (both) or `alpha_u` / `alpha_v` given as textures; the caller resolves them. A
+/// textured roughness of another type stops with `unsupported`.
+struct MicrofacetRoughnessTextures {
+  uint32_t alpha_u = kNoTexture, alpha_v = kNoTexture;
+};
+
 StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
                                                const std::vector<std::string>& search_paths,
-                                               MaterialTables* materials);
+                                               MaterialTables* materials,
+                                               const MicrofacetRoughnessTextures& textures = {});
 
 }  // namespace ptlab::internal

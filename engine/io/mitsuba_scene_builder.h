@@ -59,6 +59,9 @@ class MitsubaSceneBuilder {
   // the mesh's triangles being scene rows first_triangle on.
   Status BindMeshAttribute(const MitsubaNode& shape, MaterialRef material, const MeshData& mesh,
                            uint32_t first_triangle);
+  // mask: one mesh_attribute texture of BindMeshAttribute (others are left alone).
+  Status BindMeshAttributeTexture(const MitsubaNode& shape, uint32_t id, const MeshData& mesh,
+                                  uint32_t first_triangle);
 
   // Instancing (mitsuba_instances.cpp): a <shape> of the scene, dispatched to ShapeGroup,
   // Instance or Shape; a shape group built once (its InstanceTable group); an instance.
@@ -71,6 +74,8 @@ class MitsubaSceneBuilder {
   StatusOr<MaterialRef> PerturbedBsdf(const MitsubaNode& node, const MitsubaObject& obj);
   // principled: principled and principledthin (engine/io/mitsuba_principled.cpp).
   StatusOr<MaterialRef> PrincipledBsdf(const MitsubaNode& node, const MitsubaObject& obj);
+  // mask: Mitsuba's `mask` (engine/io/mitsuba_mask_bsdf.cpp).
+  StatusOr<MaterialRef> MaskBsdf(const MitsubaNode& node, const MitsubaObject& obj);
 
   Status SceneEmitter(const MitsubaNode& node);
   Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);

@@ -5,6 +5,7 @@
 
 #include "engine/image/texture_image.h"
 #include "engine/io/mitsuba_scene_builder.h"
+#include "engine/scene/material_textures.h"  // mask
 
 namespace ptlab::internal {
 namespace {
@@ -122,10 +123,18 @@ StatusOr<uint32_t> MitsubaSceneBuilder::Texture(const MitsubaNode& node) {
 
 Status MitsubaSceneBuilder::BindMeshAttribute(const MitsubaNode& shape, MaterialRef material,
                                               const MeshData& mesh, uint32_t first_triangle) {
-  if (material.tag() != MaterialTag::kDiffuse || !scene_.materials.diffuse.textured())
-    return Status::Ok();
-  const uint32_t id = scene_.materials.diffuse.albedo_texture[material.index()];
-  if (id == kNoTexture) return Status::Ok();
+  // mask: every texture the material reads (a blend's weight, a mask's opacity, nested
+  // materials' textures), not only a diffuse albedo.
+  std::vector<uint32_t> ids;
+  MaterialTextures(scene_.materials, material, &ids);
+  for (const uint32_t id : ids)
+    PTLAB_RETURN_IF_ERROR(BindMeshAttributeTexture(shape, id, mesh, first_triangle));
+  return Status::Ok();
+}
+
+Status MitsubaSceneBuilder::BindMeshAttributeTexture(const MitsubaNode& shape, uint32_t id,
+                                                     const MeshData& mesh,
+                                                     uint32_t first_triangle) {
   TextureTable& t = scene_.textures;
   const TextureKind kind = t.Kind(id);
   if (kind != TextureKind::kFaceAttribute && kind != TextureKind::kVertexAttribute)

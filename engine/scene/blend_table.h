@@ -6,6 +6,7 @@
 
 #include "engine/core/aligned.h"
 #include "engine/scene/refs.h"
+#include "engine/scene/texture_tables.h"
 
 namespace ptlab {
 
@@ -14,9 +15,17 @@ namespace ptlab {
 struct BlendTable {
   AlignedVector<float> weight;
   AlignedVector<uint32_t> first, second;
+  // mask: the textured weight's texture-id column (docs/materials.md "Textured parameters"),
+  // empty while no row's weight is a texture.
+  AlignedVector<uint32_t> weight_texture;
   size_t size() const { return weight.size(); }
-  uint32_t Add(float w, MaterialRef a, MaterialRef b) {
+  bool textured() const { return !weight_texture.empty(); }
+  uint32_t Add(float w, MaterialRef a, MaterialRef b, uint32_t texture = kNoTexture) {
     weight.push_back(w), first.push_back(a.bits), second.push_back(b.bits);
+    if (texture != kNoTexture || textured()) {  // mask: a textured weight
+      weight_texture.resize(size() - 1, kNoTexture);
+      weight_texture.push_back(texture);
+    }
     return uint32_t(size() - 1);
   }
   MaterialRef First(size_t i) const { return MaterialRef{first[i]}; }

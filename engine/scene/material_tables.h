@@ -10,6 +10,7 @@
 #include "engine/scene/texture_tables.h"
 // matB: coated plastics, thin dielectric, blend, two-sided flags.
 #include "engine/scene/blend_table.h"
+#include "engine/scene/mask_table.h"  // mask
 #include "engine/scene/plastic_table.h"
 #include "engine/scene/thin_dielectric_table.h"
 #include "engine/scene/two_sided.h"
@@ -92,8 +93,12 @@ struct ConductorTable {
   AlignedVector<float> alpha, eta_r, eta_g, eta_b, k_r, k_g, k_b;
   AlignedVector<float> alpha_v, specular_r, specular_g, specular_b;
   AlignedVector<uint8_t> flags;
+  // mask: textured αu (`alpha`) and αv of Mitsuba-form rows, one texture-id column each (docs/
+  // materials.md "Textured parameters"); empty while no row's roughness is a texture.
+  AlignedVector<uint32_t> alpha_texture, alpha_v_texture;
   size_t size() const { return alpha.size(); }
   bool microfacet() const { return !alpha_v.empty(); }
+  bool textured() const { return !alpha_texture.empty(); }
 };
 
 /// Mitsuba `roughdielectric` (engine/bsdf/rough_dielectric.h): αu, αv, flags
@@ -127,6 +132,7 @@ struct MaterialTables {
   ShadingPerturbations perturbation;      // normal: normalmap / bumpmap rows
   // principled: one table per tag (the same columns; engine/scene/principled_table.h).
   PrincipledTable principled, principled_thin;
+  MaskTable mask;  // mask: Mitsuba's `mask` (engine/bsdf/mask.h)
 
   MaterialRef AddDiffuse(const Color3f& albedo) {
     diffuse.albedo_r.push_back(albedo.r), diffuse.albedo_g.push_back(albedo.g),
@@ -203,6 +209,8 @@ struct MaterialTables {
       t.alpha_v.push_back(alpha), t.flags.push_back(uint8_t{0});
       t.specular_r.push_back(1.0f), t.specular_g.push_back(1.0f), t.specular_b.push_back(1.0f);
     }
+    if (t.textured())  // mask
+      t.alpha_texture.push_back(kNoTexture), t.alpha_v_texture.push_back(kNoTexture);
     return MaterialRef::Make(MaterialTag::kConductor, uint32_t(t.size() - 1));
   }
   /// Mitsuba's roughconductor (switches the table to its Mitsuba form, see ConductorTable).
@@ -219,6 +227,18 @@ struct MaterialTables {
     const size_t i = ref.index();
     t.alpha_v[i] = alpha_v, t.flags[i] = microfacet_flags;
     t.specular_r[i] = specular.r, t.specular_g[i] = specular.g, t.specular_b[i] = specular.b;
+    return ref;
+  }
+  /// mask: a Mitsuba roughconductor whose αu and / or αv are textures (kNoTexture: the
+  /// constant alpha_u / alpha_v).
+  MaterialRef AddTexturedRoughConductor(float alpha_u, float alpha_v, uint32_t alpha_u_texture,
+                                        uint32_t alpha_v_texture, uint8_t microfacet_flags,
+                                        const Color3f& eta, const Color3f& k,
+                                        const Color3f& specular) {
+    auto& t = conductor;
+    const MaterialRef ref = AddRoughConductor(alpha_u, alpha_v, microfacet_flags, eta, k, specular);
+    t.alpha_texture.resize(t.size(), kNoTexture), t.alpha_v_texture.resize(t.size(), kNoTexture);
+    t.alpha_texture[ref.index()] = alpha_u_texture, t.alpha_v_texture[ref.index()] = alpha_v_texture;
     return ref;
   }
   /// Mitsuba's roughdielectric.
@@ -249,8 +269,14 @@ struct MaterialTables {
     return MaterialRef::Make(MaterialTag::kThinDielectric,
                              thin_dielectric.Add(eta, reflectance, transmittance));
   }
-  MaterialRef AddBlend(float weight, MaterialRef first, MaterialRef second) {
-    return MaterialRef::Make(MaterialTag::kBlend, blend.Add(weight, first, second));
+  MaterialRef AddBlend(float weight, MaterialRef first, MaterialRef second,
+                       uint32_t weight_texture = kNoTexture) {  // mask: a textured weight
+    return MaterialRef::Make(MaterialTag::kBlend,
+                             blend.Add(weight, first, second, weight_texture));
+  }
+  // mask: a `mask` row over `nested`: a constant opacity, or texture `opacity_texture`.
+  MaterialRef AddMask(float opacity, MaterialRef nested, uint32_t opacity_texture = kNoTexture) {
+    return MaterialRef::Make(MaterialTag::kMask, mask.Add(opacity, nested, opacity_texture));
   }
   // principled: a `principled` row (thin = false) or a `principledthin` row.
   MaterialRef AddPrincipled(const PrincipledRow& row, bool thin = false) {

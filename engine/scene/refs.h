@@ -14,6 +14,8 @@ enum class MaterialTag : uint8_t {
   kRoughPlastic = 4,
   // matA: Mitsuba's roughdielectric (6 is unused: `conductor` is a mirror row).
   kRoughDielectric = 5,
+  // mask: Mitsuba's `mask` (a nested material with an opacity, else pass-through).
+  kMask = 6,
   // matB: Mitsuba's coated plastics (plastic, roughplastic), thindielectric, blendbsdf.
   kPlastic = 7,
   kThinDielectric = 8,

@@ -19,7 +19,7 @@ static_assert(sizeof(MeshTable) == 7 * kColumn);
 static_assert(sizeof(MaterialTables) ==
               (4 + 3 + 9 + 7 + 6 + /* matA */ 6 + 5 + 11 + /* matB */ 11 + 7 + 3 +
                kMaterialTagCount + /* normal */ 9 + kMaterialTagCount +
-               /* principled */ 2 * (3 + 1 + 2 * kPrincipledParamCount)) *
+               /* principled */ 2 * (3 + 1 + 2 * kPrincipledParamCount) + /* mask */ 3 + 1 + 2) *
               kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
 static_assert(sizeof(AreaLightTable) == 7 * kColumn);
@@ -89,6 +89,13 @@ size_t MatABytes(const MaterialTables& m) {
                       rd.transmittance_b);
 }
 
+// mask: the mask table and the textured-parameter columns of the blend and the conductor.
+size_t MaskBytes(const MaterialTables& m) {
+  return VectorsBytes(m.mask.opacity, m.mask.opacity_texture, m.mask.nested,
+                      m.blend.weight_texture, m.conductor.alpha_texture,
+                      m.conductor.alpha_v_texture);
+}
+
 size_t TableBytes(const MaterialTables& m) {
   const DielectricTable& d = m.dielectric;
   return VectorsBytes(m.diffuse.albedo_r, m.diffuse.albedo_g, m.diffuse.albedo_b,
@@ -100,7 +107,7 @@ size_t TableBytes(const MaterialTables& m) {
                       m.conductor.k_r, m.conductor.k_g, m.conductor.k_b) +
          VectorsBytes(m.rough_plastic.alpha, m.rough_plastic.int_ior, m.rough_plastic.ext_ior,
                       m.rough_plastic.kd_r, m.rough_plastic.kd_g, m.rough_plastic.kd_b) +
-         MatBTablesBytes(m) + MatABytes(m) + PrincipledTablesBytes(m) +
+         MatBTablesBytes(m) + MatABytes(m) + PrincipledTablesBytes(m) + MaskBytes(m) +
          PerturbationBytes(m.perturbation);  // normal
 }
 

@@ -48,4 +48,12 @@ inline float TexturedFloat(const AlignedVector<uint32_t>& texture, size_t i, flo
   return std::max(Luminance(EvalTexture(*site.textures, texture[i], site.at)), 0.0f);
 }
 
+// mask: a scalar parameter in [0, 1] (a mask's opacity, a blend's weight): TexturedFloat
+// clipped to [0, 1] as Mitsuba clips them (NaN → 1).
+inline float TexturedUnitFloat(const AlignedVector<uint32_t>& texture, size_t i, float constant,
+                               const TextureSite& site) {
+  const float v = TexturedFloat(texture, i, constant, site);
+  return v < 1.0f ? (v > 0.0f ? v : 0.0f) : 1.0f;
+}
+
 }  // namespace ptlab

@@ -32,9 +32,11 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
 /// kernels, evaluation only.
 inline void BlendChildrenEval(const MaterialTables& m, const MaterialRef* refs, size_t n,
                               DirectionArrays wo, DirectionArrays w, float* fr, float* fg,
-                              float* fb, float* pdf, ShadeScratch* scratch) {
+                              float* fb, float* pdf, ShadeScratch* scratch,
+                              const ShadeInputs::Textures& texture) {
   ShadeInputs in;
   in.wo = wo, in.wl = w;
+  in.texture = texture;  // mask: textured children
   ShadeOutputs out;
   out.f = {fr, fg, fb};
   out.pdf_l = pdf;
@@ -44,6 +46,28 @@ inline void BlendChildrenEval(const MaterialTables& m, const MaterialRef* refs, 
         ShadeBatchKernel(mt, t, index, count, bin, bout);
       },
       m, refs, n, in, out, scratch);
+}
+
+/// mask: TexturedUnitFloat of rows material_index[0, n) into out[0, n): the constant column,
+/// TexturedFloat8 for the textured rows, clipped to [0, 1] as the oracle clips (NaN → 1). A
+/// blend's weight, a mask's opacity.
+inline void TexturedUnitFloatRows8(const AlignedVector<float>& constant,
+                                   const AlignedVector<uint32_t>& texture,
+                                   const ShadeInputs::Textures& tex,
+                                   const uint32_t* material_index, size_t n, float* out) {
+  const bool textured = tex.textures != nullptr && !texture.empty();
+  ShadeIo io;
+  io.index = material_index;
+  if (textured) io.entry = tex.entry;
+  io.out[kFR] = out;
+  ForEachBlock(io, n, [&constant, &texture, &tex, textured](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    V8 v = Gather(d, constant, b.index, i);
+    if (textured) TexturedFloat8(d, tex, texture, b, i, &v);
+    const V8 one = hn::Set(d, 1.0f);
+    Store(d, hn::IfThenElse(hn::Lt(v, one), hn::IfThenElseZero(hn::Gt(v, hn::Zero(d)), v), one),
+          b.out[kFR], i);
+  });
 }
 
 /// BlendEval / BlendPdf / BlendSample for rows of BlendTable.
@@ -74,16 +98,20 @@ inline void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, 
   first.resize(n), second.resize(n), weight.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const uint32_t row = material_index[i];
-    first[i] = t.First(row), second[i] = t.Second(row), weight[i] = t.weight[row];
+    first[i] = t.First(row), second[i] = t.Second(row);
   }
+  TexturedUnitFloatRows8(t.weight, t.weight_texture, in.texture, material_index, n,
+                         weight.data());  // mask: BlendWeight
   // Columns: f rgb and pdf of the first child, then of the second.
   std::vector<float>& c = st.c;
   c.resize(8 * n);
   float* const f0[4] = {c.data(), c.data() + n, c.data() + 2 * n, c.data() + 3 * n};
   float* const f1[4] = {c.data() + 4 * n, c.data() + 5 * n, c.data() + 6 * n, c.data() + 7 * n};
   const auto mix = [&](DirectionArrays w, float* fr, float* fg, float* fb, float* pdf) {
-    BlendChildrenEval(m, first.data(), n, in.wo, w, f0[0], f0[1], f0[2], f0[3], &scratch);
-    BlendChildrenEval(m, second.data(), n, in.wo, w, f1[0], f1[1], f1[2], f1[3], &scratch);
+    BlendChildrenEval(m, first.data(), n, in.wo, w, f0[0], f0[1], f0[2], f0[3], &scratch,
+                      in.texture);
+    BlendChildrenEval(m, second.data(), n, in.wo, w, f1[0], f1[1], f1[2], f1[3], &scratch,
+                      in.texture);
     for (size_t i = 0; i < n; ++i) {
       const float wt = weight[i], wf = 1.0f - wt;
       fr[i] = f0[0][i] * wf + f1[0][i] * wt;
@@ -108,6 +136,7 @@ inline void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, 
   ShadeInputs child_in;
   child_in.wo = in.wo, child_in.u_lobe = u_child.data(), child_in.u_x = in.u_x,
   child_in.u_y = in.u_y;
+  child_in.texture = in.texture;  // mask: textured children
   ShadeOutputs child_out = out;
   child_out.f = {}, child_out.pdf_l = nullptr;
   child_out.delta = delta.data();

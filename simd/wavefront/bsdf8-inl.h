@@ -398,13 +398,18 @@ HWY_INLINE V8 CosinePdf(D8 d, V8 oz, V8 iz) {
 /// Lanes): the rows whose id in `texture` (a texture-id column, gathered by b.index) is not
 /// kNoTexture get their texture at the shading point its[b.entry[row]] (uv, p, prim gathered),
 /// each channel clamped to ≥ 0 as std::max(c, 0) does; the others keep (r, g, b).
+/// mask: with `raw`, the channels are not clamped and *textured (when non-null) receives the
+/// rows that have a texture (TexturedFloat8 takes the luminance of the raw colour, as the
+/// oracle's TexturedFloat does).
 HWY_INLINE void TexturedColor8(D8 d, const ShadeInputs::Textures& tex,
                                const AlignedVector<uint32_t>& texture, const ShadeIo& b, size_t i,
-                               V8* r, V8* g, V8* b_out) {
+                               V8* r, V8* g, V8* b_out, bool raw = false,
+                               M8* textured = nullptr) {
   const hn::RebindToSigned<D8> di;
   const auto id = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(texture.data()),
                                   hn::LoadU(di, reinterpret_cast<const int32_t*>(b.index + i)));
   const M8 has = hn::RebindMask(d, hn::Ne(id, hn::Set(di, int32_t(kNoTexture))));
+  if (textured != nullptr) *textured = has;
   if (hn::AllFalse(d, has)) return;
   // The shading points' fields, SurfaceInteraction as 4-byte words.
   constexpr int32_t kWords = int32_t(sizeof(SurfaceInteraction) / 4);
@@ -423,6 +428,11 @@ HWY_INLINE void TexturedColor8(D8 d, const ShadeInputs::Textures& tex,
   V8 tr, tg, tb;
   EvalTexture8(*tex.textures, id, u, v, px, py, pz, prim, has, &tr, &tg, &tb);
   const V8 zero = hn::Zero(d);
+  if (raw) {
+    *r = hn::IfThenElse(has, tr, *r), *g = hn::IfThenElse(has, tg, *g);
+    *b_out = hn::IfThenElse(has, tb, *b_out);
+    return;
+  }
   *r = hn::IfThenElse(has, hn::IfThenZeroElse(hn::Lt(tr, zero), tr), *r);
   *g = hn::IfThenElse(has, hn::IfThenZeroElse(hn::Lt(tg, zero), tg), *g);
   *b_out = hn::IfThenElse(has, hn::IfThenZeroElse(hn::Lt(tb, zero), tb), *b_out);
@@ -434,10 +444,10 @@ HWY_INLINE void TexturedColor8(D8 d, const ShadeInputs::Textures& tex,
 HWY_INLINE void TexturedFloat8(D8 d, const ShadeInputs::Textures& tex,
                                const AlignedVector<uint32_t>& texture, const ShadeIo& b, size_t i,
                                V8* value) {
-  const V8 none = hn::Set(d, -1.0f);
-  V8 r = none, g = none, bl = none;
-  TexturedColor8(d, tex, texture, b, i, &r, &g, &bl);
-  const M8 has = hn::Ge(r, hn::Zero(d));  // textured rows' channels are ≥ 0 after the clamp
+  // mask: the luminance of the raw colour (channels may be < 0), as the oracle's TexturedFloat.
+  V8 r = hn::Zero(d), g = r, bl = r;
+  M8 has;
+  TexturedColor8(d, tex, texture, b, i, &r, &g, &bl, /*raw=*/true, &has);
   const V8 lum = hn::Add(hn::Add(hn::Mul(hn::Set(d, 0.212671f), r), hn::Mul(hn::Set(d, 0.715160f), g)),
                          hn::Mul(hn::Set(d, 0.072169f), bl));
   *value = hn::IfThenElse(has, hn::Max(lum, hn::Zero(d)), *value);
@@ -725,6 +735,8 @@ HWY_AFTER_NAMESPACE();
 #include "simd/wavefront/rough_dielectric8-inl.h"
 // principled: principled and principledthin (through the oracle for now).
 #include "simd/wavefront/principled8-inl.h"
+// mask: Mitsuba's `mask`.
+#include "simd/wavefront/mask8-inl.h"
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
 namespace HWY_NAMESPACE {
@@ -760,7 +772,8 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
     case MaterialTag::kDielectric:
       return ShadeDielectric(m.dielectric, io, n, eval, sample);
     case MaterialTag::kConductor:
-      if (m.conductor.microfacet()) return ShadeRoughConductor(m.conductor, io, n, eval, sample);
+      if (m.conductor.microfacet())
+        return ShadeRoughConductor(m.conductor, in.texture, io, n, eval, sample);  // mask: tex
       return ShadeConductor(m.conductor, io, n, eval, sample);
     case MaterialTag::kRoughDielectric:  // matA
       return ShadeRoughDielectric(m.rough_dielectric, io, n, eval, sample);
@@ -776,6 +789,8 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
     case MaterialTag::kPrincipled:  // principled
     case MaterialTag::kPrincipledThin:
       return ShadePrincipledRows(m, tag, material_index, n, in, out);
+    case MaterialTag::kMask:  // mask
+      return ShadeMask(m, material_index, n, in, out);
   }
 }
 

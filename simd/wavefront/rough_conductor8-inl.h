@@ -70,13 +70,21 @@ HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 ox, V
 
 /// RoughConductorEval / RoughConductorPdf / RoughConductorSample for a ConductorTable in its
 /// Mitsuba form (ConductorTable::microfacet()).
-inline void ShadeRoughConductor(const ConductorTable& t, const ShadeIo& io, size_t n, bool eval,
-                                bool sample) {
-  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+/// mask: `tex` for the textured αu, αv (TexturedFloat8, then clamped as MakeMicrofacet does).
+inline void ShadeRoughConductor(const ConductorTable& t, const ShadeInputs::Textures& tex,
+                                const ShadeIo& io, size_t n, bool eval, bool sample) {
+  const bool textured = tex.textures != nullptr && t.textured();
+  ForEachBlock(io, n, [&t, &tex, textured, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     RoughConductorLanes c;
     c.dist = GatherDist(d, t.alpha, t.alpha_v, t.flags, b.index, i);
+    if (textured) {  // mask
+      V8 au = Gather(d, t.alpha, b.index, i), av = Gather(d, t.alpha_v, b.index, i);
+      TexturedFloat8(d, tex, t.alpha_texture, b, i, &au);
+      TexturedFloat8(d, tex, t.alpha_v_texture, b, i, &av);
+      c.dist.au = mf8::ClampAlpha(d, au), c.dist.av = mf8::ClampAlpha(d, av);
+    }
     c.eta_r = Gather(d, t.eta_r, b.index, i), c.eta_g = Gather(d, t.eta_g, b.index, i);
     c.eta_b = Gather(d, t.eta_b, b.index, i);
     c.k_r = Gather(d, t.k_r, b.index, i), c.k_g = Gather(d, t.k_g, b.index, i);

@@ -42,6 +42,8 @@ inline void ShadeTwoSided(const MaterialTables& m, MaterialTag tag, const uint8_
       if (eval) wl_z[j] = flip[j] ? -in.wl.z[at + j] : in.wl.z[at + j];
     }
     ShadeInputs cin;
+    cin.texture = in.texture;  // mask: the chunk's shading points (textured rows)
+    if (in.texture.entry != nullptr) cin.texture.entry = in.texture.entry + at;
     cin.wo = {in.wo.x + at, in.wo.y + at, wo_z};
     if (eval) cin.wl = {in.wl.x + at, in.wl.y + at, wl_z};
     if (sample) cin.u_lobe = in.u_lobe + at, cin.u_x = in.u_x + at, cin.u_y = in.u_y + at;

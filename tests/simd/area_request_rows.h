@@ -101,6 +101,8 @@ inline uint32_t MaterialRows(const MaterialTables& m, MaterialTag tag) {
       return uint32_t(m.thin_dielectric.size());
     case MaterialTag::kBlend:
       return uint32_t(m.blend.size());
+    case MaterialTag::kMask:  // mask: its own test (mask8_test.cpp)
+      return uint32_t(m.mask.size());
     case MaterialTag::kRoughDielectric:  // matA
       return uint32_t(m.rough_dielectric.size());
     case MaterialTag::kPrincipled:  // principled

@@ -60,6 +60,8 @@ const char* MaterialName(MaterialTag tag) {
       return "principled";
     case MaterialTag::kPrincipledThin:
       return "principledthin";
+    case MaterialTag::kMask:  // mask
+      return "mask";
   }
   return "?";
 }

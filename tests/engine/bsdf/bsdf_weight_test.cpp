@@ -41,6 +41,15 @@ std::vector<Model> NonDeltaModels() {
   Color3f au_eta, au_k;
   LookupConductorPreset("Au", &au_eta, &au_k);
   add("diffuse", 1, [](MaterialTables& m) { return m.AddDiffuse({0.8f, 0.5f, 0.2f}); });
+  // mask: a mask of opacity 1 never passes through (its pass-through samples, a delta lobe, are
+  // checked in mask_test.cpp): its Eval / Pdf are the nested model's times the opacity.
+  add("mask_o1_diffuse", 1, [](MaterialTables& m) {
+    return m.AddMask(1.0f, m.AddDiffuse({0.8f, 0.5f, 0.2f}));
+  });
+  add("mask_o1_rough_conductor", 0.1f, [&](MaterialTables& m) {
+    return m.AddMask(1.0f, m.AddRoughConductor(0.1f, 0.3f, kMicrofacetSampleVisible, au_eta, au_k,
+                                               {1, 1, 1}));
+  });
   for (float a : {1e-4f, 0.01f, 0.1f, 0.5f, 1.0f}) {
     const std::string s = std::to_string(a);
     add("conductor_nori_a" + s, a, [&](MaterialTables& m) { return m.AddConductor(a, au_eta, au_k); });

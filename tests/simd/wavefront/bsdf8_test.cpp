@@ -373,6 +373,8 @@ size_t RowCount(const MaterialTables& m, MaterialTag tag) {
       return m.thin_dielectric.size();
     case MaterialTag::kBlend:
       return m.blend.size();
+    case MaterialTag::kMask:  // mask: its own test (mask8_test.cpp)
+      return m.mask.size();
     case MaterialTag::kRoughDielectric:  // matA
       return m.rough_dielectric.size();
     case MaterialTag::kPrincipled:  // principled
@@ -450,7 +452,7 @@ ShadeData MakeShadeData(const MaterialTables& m, MaterialTag tag, size_t random_
 void CheckShadeContract(const MaterialTables& m, MaterialTag tag, const ShadeData& s,
                         const ShadeResult& r0, const ShadeResult& r1, const char* target) {
   const char* names[] = {"diffuse", "mirror",  "dielectric",     "conductor", "rough plastic",
-                         "rough dielectric", "tag 6", "plastic", "thin dielectric", "blend"};
+                         "rough dielectric", "mask", "plastic", "thin dielectric", "blend"};
   const std::string name = names[static_cast<int>(tag)];
   Contract f{name + " f(wo,wl)", 2e-5, 1e-30}, pl{name + " pdf(wo,wl)", 2e-5, 1e-30};
   const bool delta = IsDeltaMaterial(tag);
