@@ -118,7 +118,7 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
       const MitsubaProperty* p = obj.Get(name);
       if (p == nullptr || p->type != MitsubaProperty::Type::kObject || p->object->tag != "texture")
         continue;
-      StatusOr<uint32_t> texture = Texture(*p->object);
+      StatusOr<uint32_t> texture = ScalarTexture(*p->object);
       if (!texture.ok()) return texture.status();
       const std::string_view n = name;
       if (n != "alpha_v") rough.alpha_u = *texture;
@@ -177,7 +177,7 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::WrapperBsdf(const MitsubaNode& node,
     float weight = 0.5f;
     uint32_t weight_texture = kNoTexture;  // mask: a textured weight
     if (p != nullptr && p->type == MitsubaProperty::Type::kObject && p->object->tag == "texture") {
-      StatusOr<uint32_t> texture = Texture(*p->object);
+      StatusOr<uint32_t> texture = ScalarTexture(*p->object);
       if (!texture.ok()) return texture.status();
       weight_texture = *texture;
     } else {

@@ -15,7 +15,7 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::MaskBsdf(const MitsubaNode& node,
   uint32_t texture = kNoTexture;
   const MitsubaProperty* p = obj.Get("opacity");
   if (p != nullptr && p->type == MitsubaProperty::Type::kObject && p->object->tag == "texture") {
-    StatusOr<uint32_t> t = Texture(*p->object);
+    StatusOr<uint32_t> t = ScalarTexture(*p->object);
     if (!t.ok()) return t.status();
     texture = *t;
   } else {

@@ -55,6 +55,9 @@ class MitsubaSceneBuilder {
   StatusOr<MaterialRef> Bsdf(const MitsubaNode& node);
   // A <texture> as a row of scene_.textures (mitsuba_textures.cpp), read once per element.
   StatusOr<uint32_t> Texture(const MitsubaNode& node);
+  // The same texture read as a scalar parameter (Mitsuba's eval_1): its row, or for a
+  // checkerboard a copy with the two colours swapped (see mitsuba_textures.cpp).
+  StatusOr<uint32_t> ScalarTexture(const MitsubaNode& node);
   // Fills the mesh_attribute texture that `material` reads (if any) from `mesh`'s attribute,
   // the mesh's triangles being scene rows first_triangle on.
   Status BindMeshAttribute(const MitsubaNode& shape, MaterialRef material, const MeshData& mesh,
@@ -94,7 +97,8 @@ class MitsubaSceneBuilder {
   const MitsubaNode* hide_emitters_ = nullptr;        // an integrator with hide_emitters
   std::map<const MitsubaNode*, MaterialRef> bsdfs_;   // one row per <bsdf> element
   std::map<std::string, MeshData> meshes_;            // one read per mesh file
-  std::map<const MitsubaNode*, uint32_t> textures_;   // one row per <texture> element
+  std::map<const MitsubaNode*, uint32_t> textures_;
+  std::map<const MitsubaNode*, uint32_t> scalar_textures_;  // ScalarTexture   // one row per <texture> element
   // mesh_attribute rows: the attribute's name and the <texture> element.
   std::map<uint32_t, std::pair<std::string, const MitsubaNode*>> attribute_names_;
   // Shape groups by element: their group row, group-space spheres and triangle bounds.

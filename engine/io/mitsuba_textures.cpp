@@ -19,6 +19,37 @@ void SetToUv(TextureTable* t, uint32_t id, const Transform& to_uv) {
 
 }  // namespace
 
+namespace {
+
+// Mitsuba's checkerboard gives a scalar parameter (Texture::eval_1) color0 where the two
+// half-period tests differ, i.e. on the squares where its colour evaluation (eval) gives color1.
+// A scalar parameter therefore reads a copy of the row with the two colours swapped, so that
+// TexturedFloat (the luminance of EvalTexture) is Mitsuba's eval_1. Other kinds: the row itself.
+uint32_t ScalarTextureRow(TextureTable* t, uint32_t id) {
+  if (t->Kind(id) != TextureKind::kCheckerboard) return id;
+  const uint32_t row = t->AddRow(TextureKind::kCheckerboard, 1, 1, 6);
+  t->filter[row] = t->filter[id], t->wrap[row] = t->wrap[id];
+  t->m00[row] = t->m00[id], t->m01[row] = t->m01[id], t->m02[row] = t->m02[id];
+  t->m10[row] = t->m10[id], t->m11[row] = t->m11[id], t->m12[row] = t->m12[id];
+  const size_t from = t->offset[id], to = t->offset[row];
+  for (int k = 0; k < 3; ++k) {
+    t->data[to + k] = t->data[from + 3 + k];
+    t->data[to + 3 + k] = t->data[from + k];
+  }
+  return row;
+}
+
+}  // namespace
+
+StatusOr<uint32_t> MitsubaSceneBuilder::ScalarTexture(const MitsubaNode& node) {
+  if (const auto it = scalar_textures_.find(&node); it != scalar_textures_.end()) return it->second;
+  StatusOr<uint32_t> texture = Texture(node);
+  if (!texture.ok()) return texture.status();
+  const uint32_t row = ScalarTextureRow(&scene_.textures, *texture);
+  scalar_textures_[&node] = row;
+  return row;
+}
+
 StatusOr<uint32_t> MitsubaSceneBuilder::Texture(const MitsubaNode& node) {
   if (const auto it = textures_.find(&node); it != textures_.end()) return it->second;
   StatusOr<MitsubaObject> read = Read(node);

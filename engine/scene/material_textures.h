@@ -11,7 +11,7 @@ namespace ptlab {
 
 /// Appends to *ids (once each) the texture rows that `ref` reads: the diffuse albedo, a
 /// blend's weight and its children's, a mask's opacity and its nested material's, a rough
-/// conductor's αu and αv. Tags without textured parameters add nothing.
+/// conductor's αu and αv, a principled row's parameters. Tags without textured parameters add nothing.
 inline void MaterialTextures(const MaterialTables& m, MaterialRef ref, std::vector<uint32_t>* ids) {
   const auto add = [ids](const AlignedVector<uint32_t>& column, uint32_t row) {
     if (row >= column.size() || column[row] == kNoTexture) return;
@@ -32,6 +32,14 @@ inline void MaterialTextures(const MaterialTables& m, MaterialRef ref, std::vect
     case MaterialTag::kMask:
       add(m.mask.opacity_texture, i);
       return MaterialTextures(m, m.mask.Nested(i), ids);
+    case MaterialTag::kPrincipled:
+    case MaterialTag::kPrincipledThin: {
+      const PrincipledTable& t =
+          ref.tag() == MaterialTag::kPrincipled ? m.principled : m.principled_thin;
+      add(t.base_color_texture, i);
+      for (const AlignedVector<uint32_t>& column : t.texture) add(column, i);
+      return;
+    }
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
     case MaterialTag::kRoughPlastic:
