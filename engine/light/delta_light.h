@@ -64,7 +64,8 @@ inline bool SampleDeltaLight(const Scene& scene, EmitterRef e, const Vec3f& p,
       out->position = t.position[i];
       const Vec3f d = out->position - p;
       const float dist2 = Dot(d, d);
-      if (!(dist2 > 0) || !ProjectorRadianceAt(t, scene.textures, i, p, &out->radiance)) return false;
+      if (!(dist2 > 0) || !ProjectorRadianceAt(t, scene.textures, i, p, &out->radiance))
+        return false;
       out->wi = d / std::sqrt(dist2);
       out->infinite = false;
       return true;
