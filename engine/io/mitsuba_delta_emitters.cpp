@@ -4,19 +4,26 @@
 
 #include "engine/io/mitsuba_scene_builder.h"
 #include "engine/io/xml_properties.h"
+#include "engine/texture/texture_mean.h"
 
 namespace ptlab::internal {
 
 // Mitsuba 3's spot (src/emitters/spot.cpp): intensity I along its local +z, full up to
 // beam_width, falling linearly in angle to 0 at cutoff_angle (degrees; beam_width defaults to
-// 3/4 of cutoff_angle, cutoff_angle to 20). A projected texture is not supported yet.
+// 3/4 of cutoff_angle, cutoff_angle to 20), times its projected `texture` if it has one.
 Status MitsubaSceneBuilder::SpotEmitter(const MitsubaObject& obj) {
   PTLAB_RETURN_IF_ERROR(obj.Expect(
       {"intensity", "cutoff_angle", "beam_width", "texture", "to_world", "sampling_weight"}));
   PTLAB_RETURN_IF_ERROR(obj.SamplingWeight());
-  if (const MitsubaProperty* texture = obj.Get("texture"))
-    return texture->object ? Unsupported(*texture->object, "as the texture of a spot emitter")
-                           : obj.Error("texture", "unsupported: emitter \"spot\" with a texture");
+  uint32_t texture = kNoTexture;
+  if (const MitsubaProperty* p = obj.Get("texture")) {
+    if (p->type != MitsubaProperty::Type::kObject)
+      return obj.Error("texture", "the texture of a spot must be a spatially varying <texture> "
+                                  "(bitmap or checkerboard), as in Mitsuba 3");
+    StatusOr<uint32_t> row = EmitterTexture(*p, "as the texture of a spot emitter");
+    if (!row.ok()) return row.status();
+    texture = *row;
+  }
   Color3f intensity{1, 1, 1};
   PTLAB_RETURN_IF_ERROR(obj.Color("intensity", SpectrumUse::kEmission, &intensity));
   PTLAB_RETURN_IF_ERROR(CheckEmission(obj, "intensity", intensity));
@@ -49,28 +56,46 @@ Status MitsubaSceneBuilder::SpotEmitter(const MitsubaObject& obj) {
   t.cos_beam.push_back(ramp ? std::cos(beam) : t.cos_half_angle.back());
   t.cutoff.push_back(cutoff);
   t.inv_transition.push_back(ramp ? 1.0f / (cutoff - beam) : 0.0f);
+  // The texture columns exist once a spot has a texture (SpotLightTable).
+  if (texture != kNoTexture || !t.texture.empty()) {
+    t.texture.resize(t.size(), kNoTexture);
+    t.texture_frame.resize(t.size());
+    t.texture.back() = texture;
+    t.texture_frame.back() = frame;
+  }
   return Status::Ok();
 }
 
 // Mitsuba 3's projector (src/emitters/projector.cpp): a pinhole at to_world's origin looking
 // along its +z, its frustum the perspective camera's for the image's aspect (fov, fov_axis or
 // focal_length as a sensor's), projecting the irradiance image times `scale`. The image is a
-// constant colour today (aspect 1, as Mitsuba's constant texture has resolution 1 × 1); a
-// bitmap is unsupported until textures land (ProjectorIrradiance is where its lookup goes).
+// constant colour (aspect 1, as Mitsuba's constant texture has resolution 1 × 1) or a
+// bitmap / checkerboard texture (aspect = the bitmap's width / height; ProjectorIrradiance).
 Status MitsubaSceneBuilder::ProjectorEmitter(const MitsubaObject& obj) {
   PTLAB_RETURN_IF_ERROR(obj.Expect(
       {"irradiance", "scale", "to_world", "fov", "fov_axis", "focal_length", "sampling_weight"}));
   PTLAB_RETURN_IF_ERROR(obj.SamplingWeight());
   PTLAB_RETURN_IF_ERROR(obj.Require("irradiance"));
   Color3f irradiance;
-  PTLAB_RETURN_IF_ERROR(obj.Color("irradiance", SpectrumUse::kEmission, &irradiance));
-  PTLAB_RETURN_IF_ERROR(CheckEmission(obj, "irradiance", irradiance));
+  uint32_t texture = kNoTexture;
+  double aspect = 1.0;  // a constant image: 1 × 1 pixels, as Mitsuba's constant texture
+  if (const MitsubaProperty* p = obj.Get("irradiance");
+      p->type == MitsubaProperty::Type::kObject && p->object->tag == "texture") {
+    StatusOr<uint32_t> row = EmitterTexture(*p, "as property 'irradiance' of a projector");
+    if (!row.ok()) return row.status();
+    texture = *row;
+    // The image's mean: the selection power (ProjectorTable::irradiance).
+    irradiance = TextureMean(scene_.textures, texture);
+    aspect = double(scene_.textures.width[texture]) / double(scene_.textures.height[texture]);
+  } else {
+    PTLAB_RETURN_IF_ERROR(obj.Color("irradiance", SpectrumUse::kEmission, &irradiance));
+    PTLAB_RETURN_IF_ERROR(CheckEmission(obj, "irradiance", irradiance));
+  }
   float scale = 1.0f;
   PTLAB_RETURN_IF_ERROR(obj.Float("scale", &scale));
   if (!(scale >= 0 && scale <= 1e20f))
     return obj.Error("scale",
                      "scale = " + FormatNumber(scale) + " is out of range; expected [0, 1e20]");
-  const double aspect = 1.0;  // a constant image: 1 × 1 pixels
   float fov_x = 0;
   PTLAB_RETURN_IF_ERROR(MitsubaHorizontalFov(obj, aspect, &fov_x));
   Transform to_world;
@@ -86,6 +111,10 @@ Status MitsubaSceneBuilder::ProjectorEmitter(const MitsubaObject& obj) {
   t.tan_half_y.push_back(float(tan_x / aspect));
   t.scale.push_back(scale);
   t.irradiance.push_back(irradiance);
+  if (texture != kNoTexture || !t.texture.empty()) {
+    t.texture.resize(t.size(), kNoTexture);
+    t.texture.back() = texture;
+  }
   return Status::Ok();
 }
 

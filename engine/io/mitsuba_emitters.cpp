@@ -9,6 +9,7 @@
 #include "engine/light/distant_disk.h"
 #include "engine/light/environment_map.h"
 #include "engine/scene/scene_limits.h"
+#include "engine/texture/texture_mean.h"
 
 namespace ptlab::internal {
 
@@ -28,7 +29,8 @@ bool IsUnsupportedEmitter(const std::string& type) {
 
 }  // namespace
 
-Status MitsubaSceneBuilder::AreaEmitter(const MitsubaNode& node, Color3f* radiance) {
+Status MitsubaSceneBuilder::AreaEmitter(const MitsubaNode& node, Color3f* radiance,
+                                        uint32_t* texture) {
   StatusOr<MitsubaObject> obj = Read(node);
   if (!obj.ok()) return obj.status();
   if (obj->type() != "area") {
@@ -38,6 +40,16 @@ Status MitsubaSceneBuilder::AreaEmitter(const MitsubaNode& node, Color3f* radian
   PTLAB_RETURN_IF_ERROR(obj->Expect({"radiance", "sampling_weight"}));
   PTLAB_RETURN_IF_ERROR(obj->SamplingWeight());
   PTLAB_RETURN_IF_ERROR(obj->Require("radiance"));
+  *texture = kNoTexture;
+  if (const MitsubaProperty* p = obj->Get("radiance");
+      p->type == MitsubaProperty::Type::kObject && p->object->tag == "texture") {
+    StatusOr<uint32_t> row = EmitterTexture(*p, "as property 'radiance' of an area emitter");
+    if (!row.ok()) return row.status();
+    *texture = *row;
+    // The texture's mean: the selection power (AreaLightTable::radiance).
+    *radiance = TextureMean(scene_.textures, *texture);
+    return Status::Ok();
+  }
   PTLAB_RETURN_IF_ERROR(obj->Color("radiance", SpectrumUse::kEmission, radiance));
   return CheckEmission(*obj, "radiance", *radiance);
 }

@@ -403,6 +403,31 @@ Status MitsubaSceneBuilder::Integrator(const MitsubaNode& node) {
     desc.light_samples = emitter;
     if (emitter > 1) multi_sample_direct_ = &node;
     PTLAB_RETURN_IF_ERROR(obj->Boolean("hide_emitters", &hide));
+  } else if (type == "ptracer") {
+    // Mitsuba 3's particle tracer: ptlab's ptracer (docs/bdpt.md). max_depth counts as for
+    // path; samples_per_pass only batches Mitsuba's work (the image's expectation is the same).
+    PTLAB_RETURN_IF_ERROR(
+        obj->Expect({"max_depth", "rr_depth", "hide_emitters", "samples_per_pass"}));
+    int max_depth = -1, rr_depth = 5, per_pass = -1;
+    PTLAB_RETURN_IF_ERROR(obj->Integer("max_depth", &max_depth));
+    PTLAB_RETURN_IF_ERROR(obj->Integer("rr_depth", &rr_depth));
+    PTLAB_RETURN_IF_ERROR(obj->Integer("samples_per_pass", &per_pass));
+    if (max_depth < -1) return obj->Error("max_depth", "max_depth must be >= 0, or -1 (unbounded)");
+    if (max_depth == 0)
+      return obj->Error("max_depth",
+                        "unsupported: integrator \"ptracer\" with max_depth 0 (an "
+                        "all-black image)");
+    if (rr_depth < 1) return obj->Error("rr_depth", "rr_depth must be >= 1");
+    if (per_pass == 0 || per_pass < -1)
+      return obj->Error("samples_per_pass", "samples_per_pass must be >= 1, or -1 (automatic)");
+    desc.type = IntegratorDesc::Type::kPtracer;
+    desc.max_depth = max_depth < 0 ? -1 : max_depth - 1;
+    PTLAB_RETURN_IF_ERROR(obj->OnlyDefault("hide_emitters", false));
+    if (obj->Has("rr_depth"))
+      scene_.load_warnings.push_back(obj->node().where +
+                                     ": rr_depth is accepted but ptlab applies its own Russian "
+                                     "roulette (from the fourth vertex); the expected image is "
+                                     "the same");
   } else {
     return Unsupported(node);
   }

@@ -81,11 +81,15 @@ class MitsubaSceneBuilder {
   StatusOr<MaterialRef> MaskBsdf(const MitsubaNode& node, const MitsubaObject& obj);
 
   Status SceneEmitter(const MitsubaNode& node);
-  Status AreaEmitter(const MitsubaNode& node, Color3f* radiance);
+  // An area emitter's radiance: constant, or a texture row (*texture; else kNoTexture).
+  Status AreaEmitter(const MitsubaNode& node, Color3f* radiance, uint32_t* texture);
   Status Rotation(const MitsubaObject& obj, const Transform& to_world, Frame* frame) const;
   // mitsuba_delta_emitters.cpp: Mitsuba's spot and projector.
   Status SpotEmitter(const MitsubaObject& obj);
   Status ProjectorEmitter(const MitsubaObject& obj);
+  // mitsuba_emitter_textures.cpp: the texture row of an emitter's textured property (a
+  // bitmap or checkerboard <texture>); `what` names the use in the unsupported message.
+  StatusOr<uint32_t> EmitterTexture(const MitsubaProperty& property, const std::string& what);
 
   const MitsubaDocument& doc_;
   const LoadOptions& options_;

@@ -133,7 +133,8 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     material = *m;
   }
   Color3f radiance;
-  if (emitter) PTLAB_RETURN_IF_ERROR(AreaEmitter(*emitter, &radiance));
+  uint32_t emitter_texture = kNoTexture;
+  if (emitter) PTLAB_RETURN_IF_ERROR(AreaEmitter(*emitter, &radiance, &emitter_texture));
   if (!bsdf) material = scene_.materials.AddDiffuse({0.5f, 0.5f, 0.5f});  // Mitsuba's default
 
   MeshData mesh;
@@ -217,7 +218,15 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
             std::abs(v.z) <= kMaxWorldCoordinate))
         return node.Error("a world-space vertex of " + DescribeMitsuba(node) +
                           " is not finite or beyond the coordinate limit");
-  if (emitter) AttachAreaLight(&scene_, row, radiance);
+  if (emitter) {
+    AttachAreaLight(&scene_, row, radiance);
+    // The texture column exists once an area light has a texture (AreaLightTable).
+    AreaLightTable& lights = scene_.area_lights;
+    if (emitter_texture != kNoTexture || !lights.texture.empty()) {
+      lights.texture.resize(lights.size(), kNoTexture);
+      lights.texture.back() = emitter_texture;
+    }
+  }
   return Status::Ok();
 }
 

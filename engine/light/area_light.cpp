@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/render/interaction.h"
 #include "engine/sampling/guide_table.h"
 #include "engine/sampling/spherical_triangle.h"
 
@@ -99,6 +100,9 @@ AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f&
     // The triangle is picked with probability area_tri / area_light.
     const float d = Dot(s.n, s.p - ref);
     s.pdf = d < 0 ? st.pdf * TriangleArea(t, tri) / lights.area[light] : 0.0f;
+    if (lights.Textured(light))
+      s.radiance = AreaLightRadianceAt(
+          scene, light, TexturePoint{SurfaceUvAt(scene, tri, st.b1, st.b2), s.p, tri});
     return s;
   }
   const Vec2f b = SampleUniformTriangle(u);
@@ -106,6 +110,9 @@ AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f&
   s.n = ShadingNormalAt(scene, tri, b.x, b.y);
   s.ng = Length(ng) > 0 ? Normalize(ng) : s.n;
   s.pdf = AreaToSolidAngle(1.0f / lights.area[light], s.p, s.n, ref);
+  if (lights.Textured(light))
+    s.radiance = AreaLightRadianceAt(scene, light,
+                                     TexturePoint{SurfaceUvAt(scene, tri, b.x, b.y), s.p, tri});
   return s;
 }
 

@@ -8,6 +8,7 @@
 #include "engine/core/vec.h"
 #include "engine/scene/scene.h"
 #include "engine/sampling/warp.h"
+#include "engine/texture/texture.h"
 
 namespace ptlab {
 
@@ -49,13 +50,16 @@ struct AreaLightBatchInputs {
   const float *u_x = nullptr, *u_y = nullptr;
 };
 
-/// What a batch writes per row: AreaLightSample's p, n, ng and pdf (the radiance is the
-/// light's, AreaLightTable::radiance). Every row is written; pdf 0 = no valid sample.
+/// What a batch writes per row: AreaLightSample's p, n, ng and pdf; its radiance only into
+/// le_r, le_g, le_b when they are given (a scene with textured area lights: the radiance is
+/// then the point's; otherwise it is the light's, AreaLightTable::radiance). Every row is
+/// written; pdf 0 = no valid sample.
 struct AreaLightBatchOutputs {
   float *p_x = nullptr, *p_y = nullptr, *p_z = nullptr;
   float *n_x = nullptr, *n_y = nullptr, *n_z = nullptr;
   float *ng_x = nullptr, *ng_y = nullptr, *ng_z = nullptr;
   float* pdf = nullptr;
+  float *le_r = nullptr, *le_g = nullptr, *le_b = nullptr;
 };
 
 /// SampleAreaLight for n rows: the oracle of simd::SampleAreaLightBatch (simd/wavefront/area_light8.h),
@@ -69,6 +73,8 @@ inline void SetAreaLightRow(const AreaLightBatchOutputs& out, size_t i, const Ar
   out.n_x[i] = s.n.x, out.n_y[i] = s.n.y, out.n_z[i] = s.n.z;
   out.ng_x[i] = s.ng.x, out.ng_y[i] = s.ng.y, out.ng_z[i] = s.ng.z;
   out.pdf[i] = s.pdf;
+  if (out.le_r != nullptr)
+    out.le_r[i] = s.radiance.r, out.le_g[i] = s.radiance.g, out.le_b[i] = s.radiance.b;
 }
 
 /// Row i of a batch's inputs as SampleAreaLight's reference point and numbers.
@@ -81,6 +87,15 @@ inline Vec2f AreaLightRowU(const AreaLightBatchInputs& in, size_t i) { return {i
 /// triangle tri of the light, whose shading normal there is n; 0 when p faces away from ref.
 float AreaLightPdf(const Scene& scene, uint32_t light, uint32_t tri, const Vec3f& p,
                    const Vec3f& n, const Vec3f& ref, TriangleSampling mode);
+
+/// Radiance of area light `light` at a point of it (surface uv, position p, triangle prim),
+/// either side: its constant radiance, or its texture at uv (Mitsuba's area emitter with a
+/// textured radiance). Every evaluation of an area light's radiance goes through here.
+inline Color3f AreaLightRadianceAt(const Scene& scene, uint32_t light, const TexturePoint& at) {
+  const AreaLightTable& lights = scene.area_lights;
+  if (!lights.Textured(light)) return lights.radiance[light];
+  return EvalTexture(scene.textures, lights.texture[light], at);
+}
 
 /// Radiance leaving a light point with normal n towards direction w (unit, pointing away from
 /// the light): one-sided, zero behind the surface.

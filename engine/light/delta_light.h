@@ -7,6 +7,7 @@
 
 #include "engine/core/vec.h"
 #include "engine/light/projector.h"
+#include "engine/light/spot_light.h"
 #include "engine/scene/refs.h"
 #include "engine/scene/scene.h"
 
@@ -55,23 +56,16 @@ inline bool SampleDeltaLight(const Scene& scene, EmitterRef e, const Vec3f& p,
         out->radiance = intensity * (1.0f / dist2);
         return true;
       }
-      // The spot's intensity at angle θ off its axis: I cos(θ)^exponent inside the cone, times
-      // Mitsuba's linear ramp outside the full beam (SpotLightTable).
-      const SpotLightTable& t = scene.spot_lights;
-      const float cos_theta = -Dot(out->wi, t.axis[i]);
-      if (!(cos_theta > t.cos_half_angle[i])) return false;
-      float falloff = std::pow(cos_theta, t.exponent[i]);
-      if (cos_theta < t.cos_beam[i])
-        falloff *= std::max((t.cutoff[i] - std::acos(cos_theta)) * t.inv_transition[i], 0.0f);
-      out->radiance = t.intensity[i] * (falloff / dist2);
-      return true;
+      out->radiance = SpotIntensity(scene, i, -out->wi) * (1.0f / dist2);
+      return !IsBlack(out->radiance);
     }
     case EmitterTag::kProjector: {
       const ProjectorTable& t = scene.projectors;
       out->position = t.position[i];
       const Vec3f d = out->position - p;
       const float dist2 = Dot(d, d);
-      if (!(dist2 > 0) || !ProjectorRadianceAt(t, i, p, &out->radiance)) return false;
+      if (!(dist2 > 0) || !ProjectorRadianceAt(t, scene.textures, i, p, &out->radiance))
+        return false;
       out->wi = d / std::sqrt(dist2);
       out->infinite = false;
       return true;

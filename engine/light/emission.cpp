@@ -8,6 +8,9 @@
 #include "engine/core/frame.h"
 #include "engine/light/area_light.h"
 #include "engine/light/infinite_light.h"
+#include "engine/light/projector.h"
+#include "engine/light/spot_light.h"
+#include "engine/render/interaction.h"
 #include "engine/sampling/warp.h"
 #include "engine/scene/world_bounds.h"
 
@@ -29,6 +32,13 @@ float DiskPdf(const SceneSphere& sphere) {
   return 1.0f / (kPi * sphere.radius * sphere.radius);
 }
 
+// The projector's frustum direction w (world, unit) in its frame: false outside.
+bool ProjectorLocal(const ProjectorTable& t, uint32_t i, const Vec3f& w, Vec3f* local) {
+  *local = t.to_world[i].ToLocal(w);
+  return local->z > 0 && std::abs(local->x) <= local->z * t.tan_half_x[i] &&
+         std::abs(local->y) <= local->z * t.tan_half_y[i];
+}
+
 }  // namespace
 
 SceneSphere BoundingSphereOf(const Scene& scene) {
@@ -44,10 +54,17 @@ SceneSphere BoundingSphereOf(const Scene& scene) {
 Color3f DeltaLightIntensity(const Scene& scene, EmitterRef e, const Vec3f& w) {
   const uint32_t i = e.index();
   if (e.tag() == EmitterTag::kPoint) return scene.point_lights.power[i] * (0.25f * kInvPi);
-  if (e.tag() != EmitterTag::kSpot) return {};
-  const float cos_theta = Dot(w, scene.spot_lights.axis[i]);
-  if (!(cos_theta > scene.spot_lights.cos_half_angle[i])) return {};
-  return scene.spot_lights.intensity[i] * std::pow(cos_theta, scene.spot_lights.exponent[i]);
+  if (e.tag() == EmitterTag::kSpot) return SpotIntensity(scene, i, w);
+  if (e.tag() != EmitterTag::kProjector) return {};
+  // ProjectorRadianceAt's E π scale / (z² cos θ) is I / r² with I = E π scale / cos³ θ.
+  const ProjectorTable& t = scene.projectors;
+  Vec3f local;
+  if (!ProjectorLocal(t, i, w, &local)) return {};
+  const float inv_z = 1.0f / local.z;
+  const Vec2f uv{0.5f - 0.5f * local.x * inv_z / t.tan_half_x[i],
+                 0.5f - 0.5f * local.y * inv_z / t.tan_half_y[i]};
+  return ProjectorIrradiance(t, scene.textures, i, uv) *
+         (kPi * t.scale[i] * inv_z * inv_z * inv_z);
 }
 
 bool SampleEmission(const Scene& scene, const SceneSphere& sphere, EmitterRef e,
@@ -70,7 +87,9 @@ bool SampleEmission(const Scene& scene, const SceneSphere& sphere, EmitterRef e,
       const Vec3f local = SampleCosineHemisphere(u_dir);
       if (!(local.z > 0)) return false;
       out->w = Frame(out->n).ToWorld(local);
-      out->radiance = lights.radiance[i];
+      out->radiance =
+          AreaLightRadianceAt(scene, i, TexturePoint{SurfaceUvAt(scene, pick.tri, b.x, b.y),
+                                                     out->p, pick.tri});
       out->pdf_pos = 1.0f / lights.area[i];
       out->pdf_dir = local.z * kInvPi;
       return true;
@@ -118,8 +137,22 @@ bool SampleEmission(const Scene& scene, const SceneSphere& sphere, EmitterRef e,
       out->infinite = true;
       return !IsBlack(out->radiance);
     }
-    case EmitterTag::kProjector:  // not sampled yet: bdpt and ptracer refuse such scenes
-      return false;
+    case EmitterTag::kProjector: {
+      // A point uniform on the image window at z = 1, (±tan_half_x, ±tan_half_y): density
+      // 1 / (4 tan_half_x tan_half_y) there, 1 / (4 tan_half_x tan_half_y cos³ θ) in solid angle.
+      const ProjectorTable& t = scene.projectors;
+      out->p = t.position[i];
+      out->n = t.to_world[i].n;
+      out->delta_position = true;
+      out->pdf_pos = 1.0f;
+      const Vec3f local{(2.0f * u_dir.x - 1.0f) * t.tan_half_x[i],
+                        (2.0f * u_dir.y - 1.0f) * t.tan_half_y[i], 1.0f};
+      out->w = t.to_world[i].ToWorld(Normalize(local));
+      float pdf_pos;
+      EmissionPdf(scene, sphere, e, out->n, out->w, &pdf_pos, &out->pdf_dir);
+      out->radiance = DeltaLightIntensity(scene, e, out->w);
+      return out->pdf_dir > 0 && !IsBlack(out->radiance);
+    }
   }
   return false;
 }
@@ -155,8 +188,15 @@ void EmissionPdf(const Scene& scene, const SceneSphere& sphere, EmitterRef e, co
       *pdf_pos = DiskPdf(sphere);
       *pdf_dir = InfiniteLightPdf(scene, e, -w);
       return;
-    case EmitterTag::kProjector:
+    case EmitterTag::kProjector: {
+      const ProjectorTable& t = scene.projectors;
+      Vec3f local;
+      *pdf_pos = 1.0f;
+      if (!ProjectorLocal(t, i, w, &local)) return;
+      const float cos3 = local.z * local.z * local.z;  // w is unit: z = cos θ
+      *pdf_dir = 1.0f / (4.0f * t.tan_half_x[i] * t.tan_half_y[i] * cos3);
       return;
+    }
   }
 }
 

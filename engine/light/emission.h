@@ -27,6 +27,9 @@ SceneSphere BoundingSphereOf(const Scene& scene);
 /// - point and spot light: p = the light's position, `radiance` = the intensity I(w) (W/sr),
 ///   pdf_pos = 1 (a Dirac in position: delta_position), pdf_dir uniform over the sphere
 ///   (point) or over the spot's cone;
+/// - projector: p = its position, w through a point uniform on its image window at z = 1,
+///   `radiance` = the intensity π·scale·E(uv)/cos³θ (DeltaLightIntensity), pdf_pos = 1,
+///   pdf_dir = 1/(4 tan_half_x tan_half_y cos³θ);
 /// - environment map and distant disk: w = -(direction sampled from the emitter's own
 ///   distribution), p on the scene disk (SceneSphere) perpendicular to w, `radiance` = L(-w),
 ///   pdf_pos = 1/(π r²) (area of the disk), pdf_dir = the emitter's solid-angle density of -w;
@@ -62,8 +65,8 @@ constexpr bool StartsAtInfinity(EmitterRef e) {
                        e.tag() == EmitterTag::kDirectional);
 }
 
-/// Radiant intensity (W/sr) of a point or spot light towards unit direction w (leaving it);
-/// black for other emitters or outside a spot's cone.
+/// Radiant intensity (W/sr) of a point light, spot light or projector towards unit direction w
+/// (leaving it); black for other emitters, outside a spot's cone or a projector's frustum.
 Color3f DeltaLightIntensity(const Scene& scene, EmitterRef e, const Vec3f& w);
 
 }  // namespace ptlab

@@ -42,7 +42,11 @@ inline Vec3f SpawnOrigin(const SurfaceInteraction& its, const Vec3f& w) {
 /// Radiance emitted by the surface at its toward direction w (unit, away from the surface).
 inline Color3f Emitted(const Scene& scene, const SurfaceInteraction& its, const Vec3f& w) {
   if (!its.emitter.valid() || its.emitter.tag() != EmitterTag::kArea) return {};
-  return AreaLightRadiance(scene.area_lights.radiance[its.emitter.index()], its.frame.n, w);
+  const uint32_t light = its.emitter.index();
+  if (!scene.area_lights.Textured(light))
+    return AreaLightRadiance(scene.area_lights.radiance[light], its.frame.n, w);
+  if (!(Dot(its.frame.n, w) > 0)) return {};
+  return AreaLightRadianceAt(scene, light, TexturePoint{its.uv, its.p, its.prim});
 }
 
 /// Solid-angle density with which emitter sampling (an emitter chosen by the scene's light

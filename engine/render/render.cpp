@@ -101,13 +101,6 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
                      " does not run with adaptive sampling or under mpirun yet";
       return result;
     }
-    // Light subpaths start on every emitter kind but the projector (its emission sampling is
-    // not written yet): a scene with one would render without its light.
-    if (scene.projectors.size() > 0) {
-      result.error = std::string(IntegratorTypeName(scene.integrator.type)) +
-                     " does not sample projector emitters yet; render with path or direct";
-      return result;
-    }
     bidirectional_setup.emplace(scene);
     light_pass.emplace(filter, width, height);
     light_total.emplace(filter, width, height);

@@ -9,6 +9,7 @@
 #include "engine/core/frame.h"
 #include "engine/core/vec.h"
 #include "engine/scene/refs.h"
+#include "engine/scene/texture_tables.h"
 
 namespace ptlab {
 
@@ -25,8 +26,15 @@ struct AreaLightTable {
   /// light from guide_offset[i]: O(1) expected triangle choice, same result as the full search.
   std::vector<uint32_t> guide_offset;
   AlignedVector<uint32_t> triangle_guide;
+  /// Mitsuba's textured `radiance` (AreaLightRadianceAt, engine/light/area_light.h): empty
+  /// when no area light of the scene is textured, else one entry per row (kNoTexture: the
+  /// constant `radiance`). A textured row emits its texture at the point's surface uv; its
+  /// `radiance` holds the texture's mean (the selection power). Points are still sampled
+  /// uniformly by area.
+  std::vector<uint32_t> texture;
 
   size_t size() const { return radiance.size(); }
+  bool Textured(size_t i) const { return !texture.empty() && texture[i] != kNoTexture; }
 };
 
 /// How an environment map's emitter samples directions (XML string `sampling`).
@@ -116,6 +124,12 @@ struct SpotLightTable {
   std::vector<Color3f> intensity;
   std::vector<float> cos_half_angle, exponent;
   std::vector<float> cos_beam, cutoff, inv_transition;
+  /// Mitsuba's projected `texture` (SpotIntensity, engine/light/spot_light.h): empty when no
+  /// spot of the scene has one, else one entry per row (kNoTexture: none). A textured row's
+  /// intensity is multiplied by the texture at uv = 0.5 + 0.5 (x, y) / (z tan cutoff), (x, y,
+  /// z) the direction in the light's frame `texture_frame` (rotation; n = axis).
+  std::vector<uint32_t> texture;
+  std::vector<Frame> texture_frame;
 
   size_t size() const { return position.size(); }
 };
@@ -130,7 +144,10 @@ struct ProjectorTable {
   std::vector<Vec3f> position;
   std::vector<Frame> to_world;
   std::vector<float> tan_half_x, tan_half_y, scale;
-  std::vector<Color3f> irradiance;  // the constant image (a texture: see ProjectorIrradiance)
+  std::vector<Color3f> irradiance;  // the constant image; a textured row: the image's mean
+  /// The image as a texture row (ProjectorIrradiance): empty when no projector of the scene
+  /// has a textured image, else one entry per row (kNoTexture: the constant `irradiance`).
+  std::vector<uint32_t> texture;
 
   size_t size() const { return position.size(); }
 };

@@ -22,13 +22,13 @@ static_assert(sizeof(MaterialTables) ==
                /* principled */ 2 * (3 + 1 + 2 * kPrincipledParamCount) + /* mask */ 3 + 1 + 2) *
               kColumn);
 static_assert(sizeof(TextureTable) == 13 * kColumn);
-static_assert(sizeof(AreaLightTable) == 7 * kColumn);
+static_assert(sizeof(AreaLightTable) == 8 * kColumn);
 static_assert(sizeof(EnvironmentMapTable) == 14 * kColumn);
 static_assert(sizeof(DistantDiskTable) == 4 * kColumn);
 static_assert(sizeof(PointLightTable) == 2 * kColumn);
 static_assert(sizeof(DirectionalLightTable) == 2 * kColumn);
-static_assert(sizeof(SpotLightTable) == 8 * kColumn);
-static_assert(sizeof(ProjectorTable) == 6 * kColumn);
+static_assert(sizeof(SpotLightTable) == 10 * kColumn);
+static_assert(sizeof(ProjectorTable) == 7 * kColumn);
 static_assert(sizeof(EmitterSelectionTable) == 11 * kColumn);
 static_assert(sizeof(InstanceTable) == 5 * kColumn);  // counted with the meshes
 
@@ -116,7 +116,7 @@ size_t EmitterTablesBytes(const Scene& s) {
   const EnvironmentMapTable& e = s.environment_maps;
   const EmitterSelectionTable& sel = s.emitter_selection;
   return VectorsBytes(a.radiance, a.mesh, a.area, a.cdf_offset, a.triangle_cdf, a.guide_offset,
-                      a.triangle_guide) +
+                      a.triangle_guide, a.texture) +
          VectorsBytes(e.width, e.height, e.pixel_offset, e.marginal_offset, e.conditional_offset,
                       e.sampling, e.rows, e.to_world, e.luminance_integral, e.texels, e.marginal_cdf,
                       e.conditional_cdf, e.marginal_guide, e.conditional_guide) +
@@ -126,12 +126,14 @@ size_t EmitterTablesBytes(const Scene& s) {
          VectorsBytes(s.directional_lights.direction, s.directional_lights.radiance) +
          VectorsBytes(s.spot_lights.position, s.spot_lights.axis, s.spot_lights.intensity,
                       s.spot_lights.cos_half_angle, s.spot_lights.exponent) +
-         VectorsBytes(s.spot_lights.cos_beam, s.spot_lights.cutoff, s.spot_lights.inv_transition) +
+         VectorsBytes(s.spot_lights.cos_beam, s.spot_lights.cutoff, s.spot_lights.inv_transition,
+                      s.spot_lights.texture, s.spot_lights.texture_frame) +
          VectorsBytes(s.emitters, sel.power, sel.pmf, sel.cdf, sel.guide, sel.slot_area,
                       sel.slot_environment, sel.slot_disk, sel.slot_point, sel.slot_directional,
                       sel.slot_spot, sel.slot_projector) +
          VectorsBytes(s.projectors.position, s.projectors.to_world, s.projectors.tan_half_x,
-                      s.projectors.tan_half_y, s.projectors.scale, s.projectors.irradiance);
+                      s.projectors.tan_half_y, s.projectors.scale, s.projectors.irradiance,
+                      s.projectors.texture);
 }
 
 }  // namespace

@@ -32,12 +32,17 @@ struct AreaRequestInputs {
   const float *n_x = nullptr, *n_y = nullptr, *n_z = nullptr;
   const float *ng_x = nullptr, *ng_y = nullptr, *ng_z = nullptr;
   const float* pdf = nullptr;
+  /// The sample's radiance (AreaLightBatchOutputs' le columns) when the scene has textured
+  /// area lights; null: the light's, AreaLightTable::radiance.
+  const float *le_r = nullptr, *le_g = nullptr, *le_b = nullptr;
 
   /// The inputs of rows [i, n): the columns from row i on, the same shading points.
   AreaRequestInputs From(size_t i) const {
+    const bool le = le_r != nullptr;
     return {its,      entry + i, ref_x + i,    ref_y + i, ref_z + i, wo_x + i, wo_y + i,
             wo_z + i, light + i, pick_pmf + i, p_x + i,   p_y + i,   p_z + i,  n_x + i,
-            n_y + i,  n_z + i,   ng_x + i,     ng_y + i,  ng_z + i,  pdf + i};
+            n_y + i,  n_z + i,   ng_x + i,     ng_y + i,  ng_z + i,  pdf + i,
+            le ? le_r + i : nullptr, le ? le_g + i : nullptr, le ? le_b + i : nullptr};
   }
 };
 

@@ -337,6 +337,9 @@ class alignas(kColumnAlignment) Wavefront {
     PTLAB_SOA_COLUMNS(PTLAB_WAVE_EMITTER_COLUMNS)
     uint32_t begin[kMaterialGroups] = {}, next[kMaterialGroups] = {};
     size_t rows = 0;
+    /// The light samples' radiance (AreaLightBatchOutputs' le columns): sized, as the columns
+    /// above, only in a scene with textured area lights; empty otherwise.
+    AlignedVector<float> le_r, le_g, le_b;
 
     size_t size() const { return rows; }
     /// Empties the columns and makes room for up to `capacity` rows (sized, not pushed: the

@@ -17,19 +17,26 @@ void Wavefront::SampleAreaLights() {
   EmitterColumns& a = area_;
   const size_t n = a.size();
   if (n == 0) return;
+  // Textured area lights: each sample's radiance is its point's, carried in the le columns.
+  const bool textured = !scene_->area_lights.texture.empty();
+  if (textured && a.le_r.size() < a.light.size())
+    a.le_r.resize(a.light.size()), a.le_g.resize(a.light.size()), a.le_b.resize(a.light.size());
   for (int t = 0; t < kMaterialTagCount; ++t) {
     const size_t b = a.begin[t], count = a.next[t] - b;
     if (count == 0) continue;
     const EmitterColumns::Pointers c = a.At(b);
+    float* const le_r = textured ? a.le_r.data() + b : nullptr;
+    float* const le_g = textured ? a.le_g.data() + b : nullptr;
+    float* const le_b = textured ? a.le_b.data() + b : nullptr;
     const AreaLightBatchInputs in{c.light, c.ref_x, c.ref_y, c.ref_z, c.u_x, c.u_y};
-    const AreaLightBatchOutputs out{c.p_x, c.p_y,  c.p_z,  c.n_x,  c.n_y,
-                                    c.n_z, c.ng_x, c.ng_y, c.ng_z, c.pdf};
+    const AreaLightBatchOutputs out{c.p_x,  c.p_y,  c.p_z,  c.n_x, c.n_y, c.n_z, c.ng_x,
+                                    c.ng_y, c.ng_z, c.pdf,  le_r,  le_g,  le_b};
     kernels_->area_light(kernels_->accel, *scene_, scene_->integrator.triangle_sampling, count, in,
                          out);
-    const AreaRequestInputs request_in{its_.data(), c.entry, c.ref_x, c.ref_y, c.ref_z,
-                                       c.wo_x,      c.wo_y,  c.wo_z,  c.light, c.pick_pmf,
-                                       c.p_x,       c.p_y,   c.p_z,   c.n_x,   c.n_y,
-                                       c.n_z,       c.ng_x,  c.ng_y,  c.ng_z,  c.pdf};
+    const AreaRequestInputs request_in{its_.data(), c.entry, c.ref_x, c.ref_y,  c.ref_z, c.wo_x,
+                                       c.wo_y,      c.wo_z,  c.light, c.pick_pmf, c.p_x, c.p_y,
+                                       c.p_z,       c.n_x,   c.n_y,   c.n_z,    c.ng_x,  c.ng_y,
+                                       c.ng_z,      c.pdf,   le_r,    le_g,     le_b};
     const AreaRequestOutputs request_out{c.traced, c.o_x, c.o_y, c.o_z, c.d_x,
                                          c.d_y,    c.d_z, c.r,   c.g,   c.b};
     kernels_->area_request(*scene_, static_cast<MaterialTag>(t), rules_.mis, count, request_in,

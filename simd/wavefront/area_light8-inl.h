@@ -18,6 +18,7 @@
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
 #include "simd/light_pdf8-inl.h"
+#include "simd/wavefront/area_radiance8-inl.h"
 #include "simd/transpose4-inl.h"
 #include "simd/triangle_point8-inl.h"
 
@@ -207,6 +208,8 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, const TriangleRow
           for (float* col : {out.p_x, out.p_y, out.p_z, out.n_x, out.n_y, out.n_z, out.ng_x,
                              out.ng_y, out.ng_z, out.pdf})
             hn::StoreU(zero, d, col + i);
+          if (out.le_r != nullptr)
+            for (float* col : {out.le_r, out.le_g, out.le_b}) hn::StoreU(zero, d, col + i);
           continue;
         }
         const auto tri = hn::Load(di, l.tri);
@@ -248,6 +251,17 @@ HWY_INLINE void SampleAreaLightBatchKernel(const Scene& scene, const TriangleRow
         hn::StoreU(hn::IfThenElseZero(valid, ngy), d, out.ng_y + i);
         hn::StoreU(hn::IfThenElseZero(valid, ngz), d, out.ng_z + i);
         hn::StoreU(hn::IfThenElseZero(hn::And(valid, solid), pdf), d, out.pdf + i);
+        if (out.le_r != nullptr) {
+          // The sample's radiance (textured area lights): the light's texture at the point's
+          // surface uv, or its constant radiance; 0 in lanes of zero-area lights.
+          auto u = zero, v = zero, le_r = zero, le_g = zero, le_b = zero;
+          SurfaceUv8(scene, tri, b1, b2, valid, &u, &v);
+          const auto light = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.light + i));
+          AreaLightRadiance8(scene, light, u, v, px, py, pz, tri, valid, &le_r, &le_g, &le_b);
+          hn::StoreU(le_r, d, out.le_r + i);
+          hn::StoreU(le_g, d, out.le_g + i);
+          hn::StoreU(le_b, d, out.le_b + i);
+        }
       }
     }
   }

@@ -17,7 +17,9 @@ namespace ptlab::simd {
 /// pdf run as vectors over the triangles' rows and vertex normal rows of `tri_rows`
 /// (BuildTriangleRows of `scene`), loaded and transposed. kSolidAngle batches, and the rows
 /// after the last full vector, take the scalar SampleAreaLight row by row (Arvo's construction
-/// stays scalar).
+/// stays scalar). With out.le_r given (textured area lights), each lane's radiance too: the
+/// surface uv interpolated from the mesh's vertex uvs and the light's texture there
+/// (EvalTexture8; area_radiance8-inl.h), or the light's constant radiance.
 /// Oracle: ptlab::SampleAreaLightBatch. Contract: every output bit-identical to the oracle's
 /// on every target (the oracle's float operations in its order; FMA contraction is off, and
 /// Highway's Sqrt and Div are correctly rounded). tests/simd/wavefront/area_light8_test.cpp.

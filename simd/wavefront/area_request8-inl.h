@@ -156,14 +156,22 @@ HWY_INLINE void AreaRequestFinish(const Scene& scene, bool mis, bool power,
   const V8 z = hn::Load(d, c.cos_z + j);
   const V8 abs_cos = hn::IfThenElse(hn::Lt(z, zero), hn::Neg(z), z);  // AbsCosTheta, -0 kept
   const V8 scale = hn::Div(hn::Mul(abs_cos, weight), pdf_light);
-  const float* radiance = reinterpret_cast<const float*>(scene.area_lights.radiance.data());
-  const auto light = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.light + i));
-  const auto light_row = hn::Mul(light, hn::Set(di, 3));
-  const V8 cr = hn::Mul(hn::Mul(fr, hn::GatherIndex(d, radiance, light_row)), scale);
-  const V8 cg =
-      hn::Mul(hn::Mul(fg, hn::GatherIndex(d, radiance, hn::Add(light_row, hn::Set(di, 1)))), scale);
-  const V8 cb =
-      hn::Mul(hn::Mul(fb, hn::GatherIndex(d, radiance, hn::Add(light_row, hn::Set(di, 2)))), scale);
+  // Le: the sample's own radiance (le columns: textured area lights), else the light's.
+  V8 le_r, le_g, le_b;
+  if (in.le_r != nullptr) {
+    le_r = hn::LoadU(d, in.le_r + i), le_g = hn::LoadU(d, in.le_g + i);
+    le_b = hn::LoadU(d, in.le_b + i);
+  } else {
+    const float* radiance = reinterpret_cast<const float*>(scene.area_lights.radiance.data());
+    const auto light = hn::LoadU(di, reinterpret_cast<const int32_t*>(in.light + i));
+    const auto light_row = hn::Mul(light, hn::Set(di, 3));
+    le_r = hn::GatherIndex(d, radiance, light_row);
+    le_g = hn::GatherIndex(d, radiance, hn::Add(light_row, hn::Set(di, 1)));
+    le_b = hn::GatherIndex(d, radiance, hn::Add(light_row, hn::Set(di, 2)));
+  }
+  const V8 cr = hn::Mul(hn::Mul(fr, le_r), scale);
+  const V8 cg = hn::Mul(hn::Mul(fg, le_g), scale);
+  const V8 cb = hn::Mul(hn::Mul(fb, le_b), scale);
   const M8 black = hn::And(hn::Eq(fr, zero), hn::And(hn::Eq(fg, zero), hn::Eq(fb, zero)));
   const M8 traced =
       hn::AndNot(black, hn::And(hn::Gt(hn::Load(d, c.valid + j), zero), AllFinite3(d, cr, cg, cb)));

@@ -15,6 +15,7 @@
 #include "hwy/highway.h"
 #include "simd/light_pdf8-inl.h"
 #include "simd/shading_point8-inl.h"
+#include "simd/wavefront/area_radiance8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -30,6 +31,9 @@ static_assert(kRayPacketFloats == 64 &&
               offsetof(RayPacket8, dir_z) == offsetof(RayPacket8, dir_x) + 64);
 inline constexpr int32_t kInteractionEmitter =
     int32_t(offsetof(SurfaceInteraction, emitter) / sizeof(float));
+inline constexpr int32_t kInteractionUv = int32_t(offsetof(SurfaceInteraction, uv) / sizeof(float));
+inline constexpr int32_t kInteractionPrim =
+    int32_t(offsetof(SurfaceInteraction, prim) / sizeof(float));
 static_assert(sizeof(EmitterRef) == sizeof(uint32_t) && sizeof(Color3f) == 3 * sizeof(float) &&
               sizeof(Vec3f) == 3 * sizeof(float));
 
@@ -55,6 +59,7 @@ inline void AddAreaEmissionsKernel(const Scene& scene, const EmissionBatchRules&
   const float* const throughput = as_f(paths.throughput);
   float* const L = reinterpret_cast<float*>(paths.L);
   const bool power = scene.integrator.power_heuristic;
+  const bool textured = !lights.texture.empty();
   const size_t emitters = scene.emitters.size();
   const bool uniform = scene.integrator.light_selection == LightSelection::kUniform;
   const EmitterSelectionTable& selection = scene.emitter_selection;
@@ -90,11 +95,21 @@ inline void AddAreaEmissionsKernel(const Scene& scene, const EmissionBatchRules&
     const auto cos_w = hn::Add(hn::Add(hn::Mul(nx, wx), hn::Mul(ny, wy)), hn::Mul(nz, wz));
     const auto emits = hn::And(hn::RebindMask(d, area_i), hn::Gt(cos_w, zero));
     const auto light_row = hn::Mul(light, three_i);
-    const auto le_r = hn::IfThenElseZero(emits, hn::GatherIndex(d, radiance, light_row));
-    const auto le_g =
-        hn::IfThenElseZero(emits, hn::GatherIndex(d, radiance, hn::Add(light_row, one_i)));
-    const auto le_b =
-        hn::IfThenElseZero(emits, hn::GatherIndex(d, radiance, hn::Add(light_row, two_i)));
+    auto le_r = hn::IfThenElseZero(emits, hn::GatherIndex(d, radiance, light_row));
+    auto le_g = hn::IfThenElseZero(emits, hn::GatherIndex(d, radiance, hn::Add(light_row, one_i)));
+    auto le_b = hn::IfThenElseZero(emits, hn::GatherIndex(d, radiance, hn::Add(light_row, two_i)));
+    if (textured) {
+      // AreaLightRadianceAt at the hit's uv, p and prim (Emitted): the texture where the light
+      // has one.
+      const auto u = InteractionField(d, in.its, first, kInteractionUv);
+      const auto v = InteractionField(d, in.its, first, kInteractionUv + 1);
+      const auto px = InteractionField(d, in.its, first, kInteractionP);
+      const auto py = InteractionField(d, in.its, first, kInteractionP + 1);
+      const auto pz = InteractionField(d, in.its, first, kInteractionP + 2);
+      const auto prim =
+          hn::GatherIndex(di, as_i(in.its), hn::Add(first, hn::Set(di, kInteractionPrim)));
+      AreaLightRadiance8(scene, light, u, v, px, py, pz, prim, emits, &le_r, &le_g, &le_b);
+    }
     // IsBlack(Le): nothing is added.
     const auto add =
         hn::Not(hn::And(hn::Eq(le_r, zero), hn::And(hn::Eq(le_g, zero), hn::Eq(le_b, zero))));

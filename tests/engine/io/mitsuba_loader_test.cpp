@@ -352,8 +352,20 @@ TEST_F(MitsubaLoader, Integrators) {
       Scene("<integrator type=\"path\"><integer name=\"rr_depth\" value=\"3\"/></integrator>"));
   ASSERT_TRUE(s.ok());
   EXPECT_EQ(s->load_warnings.size(), 1u);
-  EXPECT_EQ(Error(Scene("<integrator type=\"ptracer\"/>")),
-            Path("scene.xml") + ":3:1: unsupported: integrator \"ptracer\"");
+  EXPECT_EQ(Error(Scene("<integrator type=\"volpath\"/>")),
+            Path("scene.xml") + ":3:1: unsupported: integrator \"volpath\"");
+  // ptracer: ptlab's particle tracer, max_depth counted as for path; hide_emitters only false.
+  s = Load(Scene("<integrator type=\"ptracer\"><integer name=\"max_depth\" value=\"4\"/>"
+                 "<integer name=\"samples_per_pass\" value=\"16\"/></integrator>"));
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  EXPECT_EQ(s->integrator.type, IntegratorDesc::Type::kPtracer);
+  EXPECT_EQ(s->integrator.max_depth, 3);
+  EXPECT_FALSE(Load(Scene("<integrator type=\"ptracer\"><integer name=\"max_depth\" "
+                          "value=\"0\"/></integrator>"))
+                   .ok());
+  EXPECT_FALSE(Load(Scene("<integrator type=\"ptracer\"><boolean name=\"hide_emitters\" "
+                          "value=\"true\"/></integrator>"))
+                   .ok());
   // hide_emitters: kept for the integrators; refused with area emitters (Mitsuba's versions
   // differ there).
   s = Load(Scene("<integrator type=\"path\">\n  <boolean name=\"hide_emitters\" "
@@ -515,11 +527,15 @@ TEST_F(MitsubaLoader, Emitters) {
   ASSERT_EQ(s->area_lights.size(), 1u);
   EXPECT_FLOAT_EQ(s->area_lights.radiance[0].g, 5.0f);  // a float is grey
   EXPECT_EQ(s->emitters.size(), 5u);
-  // spot and projector (their light: tests/engine/light/delta_light_test.cpp); textures on
-  // them are not supported yet.
+  // spot and projector (their light: tests/engine/light/delta_light_test.cpp). A spot's
+  // texture must be a spatially varying <texture> (bitmap or checkerboard), as in Mitsuba 3.
   EXPECT_NE(Error(Scene("\n\n<emitter type=\"spot\">\n<texture name=\"texture\" "
-                        "type=\"bitmap\"/></emitter>"))
-                .find(":6:1: unsupported: texture \"bitmap\""),
+                        "type=\"mesh_attribute\"><string name=\"name\" value=\"vertex_color\"/>"
+                        "</texture></emitter>"))
+                .find(":6:1: unsupported: texture \"mesh_attribute\""),
+            std::string::npos);
+  EXPECT_NE(Error(Scene("<emitter type=\"spot\"><rgb name=\"texture\" value=\"1\"/></emitter>"))
+                .find("must be a spatially varying <texture>"),
             std::string::npos);
   EXPECT_NE(Error(Scene("<emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"10\"/>"
                         "<float name=\"beam_width\" value=\"12\"/></emitter>"))
@@ -533,7 +549,7 @@ TEST_F(MitsubaLoader, Emitters) {
             std::string::npos);
   EXPECT_NE(Error(Scene("<emitter type=\"projector\">\n<texture name=\"irradiance\" "
                         "type=\"bitmap\"/></emitter>"))
-                .find("unsupported"),
+                .find("missing the required property 'filename'"),
             std::string::npos);
   EXPECT_NE(Error(Scene("<emitter type=\"projector\"><rgb name=\"irradiance\" value=\"1\"/>"
                         "<float name=\"fov\" value=\"180\"/></emitter>"))

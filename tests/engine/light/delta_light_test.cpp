@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/io/mitsuba_loader.h"
+#include "engine/light/emission.h"
 #include "engine/light/light_selection.h"
 
 namespace ptlab {
@@ -152,9 +153,131 @@ TEST(DeltaLight, ProjectorImageUvFollowsTheCameraFilm) {
   EXPECT_NEAR(scene.projectors.tan_half_x[0], t, 1e-6f);
   EXPECT_NEAR(scene.projectors.tan_half_y[0], t, 1e-6f);
   Color3f c;
-  EXPECT_TRUE(ProjectorRadianceAt(scene.projectors, 0, {0.99f * t, 0.99f * t, 1}, &c));
-  EXPECT_FALSE(ProjectorRadianceAt(scene.projectors, 0, {1.01f * t, 0, 1}, &c));
-  EXPECT_FALSE(ProjectorRadianceAt(scene.projectors, 0, {0, -1.01f * t, 1}, &c));
+  EXPECT_TRUE(
+      ProjectorRadianceAt(scene.projectors, scene.textures, 0, {0.99f * t, 0.99f * t, 1}, &c));
+  EXPECT_FALSE(ProjectorRadianceAt(scene.projectors, scene.textures, 0, {1.01f * t, 0, 1}, &c));
+  EXPECT_FALSE(ProjectorRadianceAt(scene.projectors, scene.textures, 0, {0, -1.01f * t, 1}, &c));
+}
+
+// A textured spot multiplies its intensity by the texture at uv = 0.5 + 0.5 (x, y) / (z tan
+// cutoff) in its own frame (Mitsuba 3's spot). A checkerboard scaled ×2 in uv changes colour at
+// u = 0.75, i.e. x / (z tan cutoff) = 0.5, and at u = 0.5 (x = 0): the lookup's scale and its
+// orientation (local x = lookat's left = world +y here, local y = world +z) are both seen.
+TEST(DeltaLight, TexturedSpotProjectsItsTextureInItsFrame) {
+  const Scene scene = LoadScene(
+      "<emitter type=\"spot\"><rgb name=\"intensity\" value=\"2\"/>"
+      "<float name=\"cutoff_angle\" value=\"30\"/><float name=\"beam_width\" value=\"30\"/>"
+      "<texture name=\"texture\" type=\"checkerboard\"><rgb name=\"color0\" value=\"1, 0, 0\"/>"
+      "<rgb name=\"color1\" value=\"0, 0, 1\"/><transform name=\"to_uv\"><scale value=\"2\"/>"
+      "</transform></texture>"
+      "<transform name=\"to_world\"><lookat origin=\"1, 2, 3\" target=\"5, 2, 3\" up=\"0, 0, 1\"/>"
+      "</transform></emitter>");
+  ASSERT_EQ(scene.spot_lights.texture.size(), 1u);
+  const EmitterRef e = scene.emitters[0];
+  const double tan_c = std::tan(30 * kPiD / 180);
+  struct Case {
+    double tx, ty;  // x / (z tan cutoff), y / (z tan cutoff)
+    bool color0;    // (frac 2u > ½) == (frac 2v > ½)
+  };
+  // ty = 0.1: v = 0.55, frac 2v = 0.1 (not > ½).
+  for (const Case c : {Case{0.4, 0.1, true}, Case{0.6, 0.1, false}, Case{-0.4, 0.1, false},
+                       Case{-0.6, 0.1, true}, Case{0.1, 0.6, false}, Case{0.1, -0.4, false}}) {
+    const double z = 2.0;
+    const Vec3f p{1 + float(z), 2 + float(c.tx * z * tan_c), 3 + float(c.ty * z * tan_c)};
+    DeltaLightSample s;
+    ASSERT_TRUE(SampleDeltaLight(scene, e, p, &s)) << c.tx << " " << c.ty;
+    const Vec3f d = p - Vec3f{1, 2, 3};
+    const float dist2 = Dot(d, d);
+    EXPECT_NEAR(s.radiance.r * dist2, c.color0 ? 2.0f : 0.0f, 1e-4f) << c.tx << " " << c.ty;
+    EXPECT_NEAR(s.radiance.b * dist2, c.color0 ? 0.0f : 2.0f, 1e-4f) << c.tx << " " << c.ty;
+    // The light subpaths' intensity is the same function.
+    const Color3f intensity = DeltaLightIntensity(scene, e, -s.wi);
+    EXPECT_NEAR(intensity.r, s.radiance.r * dist2, 1e-4f);
+    EXPECT_NEAR(intensity.b, s.radiance.b * dist2, 1e-4f);
+  }
+}
+
+// A textured projector shows its image at uv = (0.5 - x / (2 z tan), 0.5 - y / (2 z tan)) in
+// its frame: looking down -z with up +y, its local x is world -x, so the checkerboard's colour0
+// quadrants (u > ½) == (v > ½) are world x > 0, y < 0 and x < 0, y > 0. Its selection power
+// uses the image's mean.
+TEST(DeltaLight, TexturedProjectorShowsItsImage) {
+  const Scene scene = LoadScene(
+      "<emitter type=\"projector\"><float name=\"fov\" value=\"90\"/>"
+      "<float name=\"scale\" value=\"2\"/><texture name=\"irradiance\" type=\"checkerboard\">"
+      "<rgb name=\"color0\" value=\"1, 0, 0\"/><rgb name=\"color1\" value=\"0, 0, 3\"/>"
+      "</texture><transform name=\"to_world\"><lookat origin=\"0, 0, 1\" target=\"0, 0, 0\" "
+      "up=\"0, 1, 0\"/></transform></emitter>");
+  ASSERT_EQ(scene.projectors.texture.size(), 1u);
+  const EmitterRef e = scene.emitters[0];
+  for (const float x : {-0.6f, 0.3f}) {
+    for (const float y : {-0.2f, 0.7f}) {
+      DeltaLightSample s;
+      ASSERT_TRUE(SampleDeltaLight(scene, e, {x, y, 0}, &s));
+      const bool color0 = (x > 0) == (y < 0);
+      const double irradiance_r = double(s.radiance.r) * double(s.wi.z);
+      const double irradiance_b = double(s.radiance.b) * double(s.wi.z);
+      EXPECT_NEAR(irradiance_r, color0 ? kPiD * 2 : 0.0, 1e-4) << x << " " << y;
+      EXPECT_NEAR(irradiance_b, color0 ? 0.0 : kPiD * 2 * 3, 3e-4) << x << " " << y;
+    }
+  }
+  const double mean_luminance = 0.5 * (0.212671 * 1 + 0.072169 * 3);
+  EXPECT_NEAR(scene.emitter_selection.power[0], kPiD * 2 * mean_luminance * 4, 1e-4);
+}
+
+// Light subpaths from a projector (SampleEmission / EmissionPdf): the intensity a sampled
+// direction carries is what SampleDeltaLight sends a point along it (I / r²), its density is
+// EmissionPdf's, and E[1 / pdf] over the samples is the frustum's solid angle
+// 4 atan(tx ty / sqrt(1 + tx² + ty²)).
+TEST(DeltaLight, ProjectorEmissionSamplingCoversItsFrustum) {
+  const Scene scene = LoadScene(
+      "<emitter type=\"projector\"><float name=\"fov\" value=\"70\"/>"
+      "<float name=\"scale\" value=\"2\"/><texture name=\"irradiance\" type=\"checkerboard\">"
+      "<rgb name=\"color0\" value=\"1, 0.5, 0.25\"/><rgb name=\"color1\" value=\"0.2, 1, 1\"/>"
+      "</texture><transform name=\"to_world\"><lookat origin=\"1, 2, 3\" target=\"2, 0, 1\" "
+      "up=\"0, 0, 1\"/></transform></emitter>");
+  const EmitterRef e = scene.emitters[0];
+  const SceneSphere sphere = BoundingSphereOf(scene);
+  const double tx = scene.projectors.tan_half_x[0], ty = scene.projectors.tan_half_y[0];
+  const double solid_angle = 4.0 * std::atan(tx * ty / std::sqrt(1.0 + tx * tx + ty * ty));
+  double sum = 0;
+  const int n = 64;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      EmissionSample es;
+      const Vec2f u{(float(i) + 0.5f) / n, (float(j) + 0.5f) / n};
+      ASSERT_TRUE(SampleEmission(scene, sphere, e, {0.5f, 0.5f}, u, &es));
+      EXPECT_TRUE(es.delta_position);
+      float pdf_pos, pdf_dir;
+      EmissionPdf(scene, sphere, e, es.n, es.w, &pdf_pos, &pdf_dir);
+      EXPECT_NEAR(pdf_dir, es.pdf_dir, 1e-5f * es.pdf_dir);
+      sum += 1.0 / double(es.pdf_dir);
+      DeltaLightSample s;
+      const Vec3f p = es.p + es.w * 2.0f;
+      ASSERT_TRUE(SampleDeltaLight(scene, e, p, &s)) << i << " " << j;
+      EXPECT_NEAR(s.radiance.r * 4.0f, es.radiance.r, 2e-4f * es.radiance.r) << i << " " << j;
+      EXPECT_NEAR(s.radiance.g * 4.0f, es.radiance.g, 2e-4f * es.radiance.g) << i << " " << j;
+    }
+  }
+  EXPECT_NEAR(sum / (n * n), solid_angle, 1e-3 * solid_angle);
+  // Outside the frustum: no density, no light.
+  float pdf_pos, pdf_dir;
+  const Vec3f behind = -scene.projectors.to_world[0].n;
+  EmissionPdf(scene, sphere, e, behind, behind, &pdf_pos, &pdf_dir);
+  EXPECT_EQ(pdf_dir, 0.0f);
+  EXPECT_TRUE(IsBlack(DeltaLightIntensity(scene, e, behind)));
+}
+
+// An emitter reads a texture at its own uv, never at a mesh's triangle: a mesh_attribute
+// texture is refused.
+TEST(DeltaLight, EmitterRefusesMeshAttributeTexture) {
+  const std::string xml =
+      "<scene version=\"3.0.0\"><emitter type=\"spot\"><texture name=\"texture\" "
+      "type=\"mesh_attribute\"><string name=\"name\" value=\"vertex_color\"/></texture>"
+      "</emitter></scene>";
+  StatusOr<Scene> s = LoadMitsubaSceneFromString(xml, ".", "delta.xml", LoadOptions{});
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.status().message().find("unsupported"), std::string::npos) << s.status().message();
 }
 
 }  // namespace

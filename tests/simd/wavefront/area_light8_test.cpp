@@ -35,14 +35,35 @@ struct Rows {
   }
 };
 
+// The outputs; with `le`, the radiance columns too (textured area lights).
 struct Outputs {
-  explicit Outputs(size_t n) : col(10, std::vector<float>(n)) {}
+  Outputs(size_t n, bool le = false) : col(le ? 13 : 10, std::vector<float>(n)) {}
   std::vector<std::vector<float>> col;
   AreaLightBatchOutputs Out() {
+    const bool le = col.size() == 13;
     return {col[0].data(), col[1].data(), col[2].data(), col[3].data(), col[4].data(),
-            col[5].data(), col[6].data(), col[7].data(), col[8].data(), col[9].data()};
+            col[5].data(), col[6].data(), col[7].data(), col[8].data(), col[9].data(),
+            le ? col[10].data() : nullptr, le ? col[11].data() : nullptr,
+            le ? col[12].data() : nullptr};
   }
 };
+
+// Textures on the scene's lights, every other light (from light 0) textured: a bitmap of
+// random texels (5 × 3, repeat, bilinear), one of 1 × 1 (clamp, nearest), a checkerboard
+// scaled in uv; the others keep their constant radiance.
+void AddLightTextures(Scene* scene, Pcg32& rng) {
+  TextureTable& t = scene->textures;
+  const uint32_t bitmap = t.AddRow(TextureKind::kBitmap, 5, 3, 45);
+  const uint32_t tiny = t.AddRow(TextureKind::kBitmap, 1, 1, 3);
+  t.filter[tiny] = uint8_t(TextureFilter::kNearest), t.wrap[tiny] = uint8_t(TextureWrap::kClamp);
+  const uint32_t checker = t.AddRow(TextureKind::kCheckerboard, 1, 1, 6);
+  t.m00[checker] = 3.0f, t.m11[checker] = -2.0f, t.m02[checker] = 0.25f;
+  for (float& x : t.data) x = 4.0f * rng.NextFloat();
+  const uint32_t rows[] = {bitmap, tiny, checker};
+  AreaLightTable& l = scene->area_lights;
+  l.texture.assign(l.size(), kNoTexture);
+  for (size_t i = 0; i < l.size(); i += 2) l.texture[i] = rows[(i / 2) % 3];
+}
 
 // The hard cases of the scene's lights: a zero-area light (a copy of light 0 with area 0) and
 // one degenerate triangle (its third vertex moved onto the second) in a light of several.
@@ -109,8 +130,11 @@ Rows MakeRows(const Scene& scene, size_t random, Pcg32& rng) {
   return r;
 }
 
-// `lights`: the scene's lights are copied up to that many first (0: as loaded).
-void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0) {
+// `lights`: the scene's lights are copied up to that many first (0: as loaded). `textured`:
+// textures on every other light (AddLightTextures) unless the scene has its own, and the
+// radiance columns compared too.
+void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0, bool textured = false,
+                              size_t random_rows = 1000003) {
   PTLAB_REQUIRE_DATA(path);
   StatusOr<Scene> loaded = LoadSceneFile(path);
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
@@ -119,11 +143,15 @@ void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0) {
   AddLightCopies(&scene, lights);
   AddHardLights(&scene);
   Pcg32 rng(7, 11);
-  Rows rows = MakeRows(scene, 1000003, rng);
+  if (textured && scene.area_lights.texture.empty()) AddLightTextures(&scene, rng);
+  if (!scene.area_lights.texture.empty())
+    scene.area_lights.texture.resize(scene.area_lights.size(), kNoTexture);
+  Rows rows = MakeRows(scene, random_rows, rng);
   for (const TriangleSampling mode : {TriangleSampling::kArea, TriangleSampling::kSolidAngle}) {
     SCOPED_TRACE(mode == TriangleSampling::kArea ? "area" : "solid angle");
-    const size_t n = mode == TriangleSampling::kArea ? rows.size() : 100003;
-    Outputs want(n);
+    const size_t n =
+        mode == TriangleSampling::kArea ? rows.size() : std::min<size_t>(rows.size(), 100003);
+    Outputs want(n, textured);
     SampleAreaLightBatch(scene, mode, n, rows.In(), want.Out());
     // A sampled point as the reference point (the distance is 0): 1 row in 1000.
     if (mode == TriangleSampling::kArea) {
@@ -142,10 +170,10 @@ void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0) {
       // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
       for (size_t cut = 0; cut < 8; ++cut) {
         const size_t m = n - cut;
-        Outputs got(m);
+        Outputs got(m, textured);
         simd::SampleAreaLightBatch(scene, tri_rows, mode, m, rows.In(), got.Out());
         size_t differ = 0, nonfinite = 0, first = m;
-        for (size_t c = 0; c < 10; ++c) {
+        for (size_t c = 0; c < got.col.size(); ++c) {
           for (size_t i = 0; i < m; ++i) {
             const float g = got.col[c][i];
             nonfinite += !std::isfinite(g);
@@ -181,6 +209,17 @@ TEST(Emitter8, AreaLightBatchMatchesOracleWithManyLights) {
 
 TEST(Emitter8, AreaLightBatchMatchesOracleOnTable) {
   ExpectBatchMatchesOracle(kSharedData + "nori/epfl/scenes/pa5/table/table_mis.xml");
+}
+
+// Textured area lights: the radiance columns, the texture at the point's surface uv. On cbox
+// (meshes without uvs: uv = the barycentrics) with hand-made textures on every other light,
+// and on Mitsuba's various_emitters scene (its own bitmap on a rectangle and OBJ meshes with
+// uvs, beside an untextured light).
+TEST(Emitter8, AreaLightBatchMatchesOracleWithTextures) {
+  ExpectBatchMatchesOracle(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml", 0, true, 100003);
+  ExpectBatchMatchesOracle(
+      kSharedData + "mitsuba3/tests/scenes/various_emitters/test_various_emitters_ptracer.xml", 0,
+      true, 100003);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "engine/bsdf/bsdf.h"
 #include "engine/core/rng.h"
@@ -140,6 +141,41 @@ TEST(AreaRequest8, ShortBatchesMatchOracle) {
       EXPECT_EQ(got.col[8][n], -7.0f) << "wrote past n";
     }
   });
+}
+
+// The samples' own radiance (le columns, textured area lights) instead of the light's: random
+// per-row values, among them 0, tiny and huge, on every material tag and tail length.
+TEST(AreaRequest8, PerSampleRadianceMatchesOracle) {
+  StatusOr<Scene> loaded = LoadSceneFile(std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml");
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  Scene& scene = *loaded;
+  test::AddRequestMaterials(&scene);
+  Pcg32 rng(6, 21);
+  static const float kOdd[] = {0.0f, 1e-30f, 1e20f, 3.5f};
+  for (int t = 0; t < kMaterialTagCount; ++t) {
+    const MaterialTag tag = static_cast<MaterialTag>(t);
+    if (test::MaterialRows(scene.materials, tag) == 0) continue;
+    SCOPED_TRACE("tag " + std::to_string(t));
+    test::AreaRequestRows rows = test::MakeAreaRequestRows(scene, tag, 20000, true, rng);
+    const size_t n = rows.size();
+    std::vector<float> le[3];
+    for (auto& col : le) {
+      col.resize(n);
+      for (float& x : col) x = rng.NextUint() % 5 == 0 ? kOdd[rng.NextUint() % 4] : rng.NextFloat();
+    }
+    AreaRequestInputs in = rows.In();
+    in.le_r = le[0].data(), in.le_g = le[1].data(), in.le_b = le[2].data();
+    test::AreaRequestColumns want(n);
+    AreaEmitterRequestBatch(scene, tag, true, n, in, want.Out());
+    test::ForEachTarget(simd::AreaRequest8TargetName, [&](const char*) {
+      for (size_t cut = 0; cut < 8; ++cut) {
+        const size_t m = n - cut;
+        test::AreaRequestColumns got(m);
+        simd::AreaEmitterRequestBatch(scene, tag, true, m, in, got.Out());
+        ExpectWithinContract(want, got, m);
+      }
+    });
+  }
 }
 
 const std::string kSharedData = test_data::Dir();
