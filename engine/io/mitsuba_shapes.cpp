@@ -91,14 +91,16 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"center", "radius", "to_world", "flip_normals"}));
   } else if (type == "cylinder") {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"radius", "p0", "p1", "to_world", "flip_normals"}));
-  } else if (type == "sdfgrid" || type == "shapegroup" || type == "instance" ||
+  } else if (type == "sdfgrid") {
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"filename", "normals", "to_world"}));
+  } else if (type == "shapegroup" || type == "instance" ||
              type == "ellipsoids" || type == "ellipsoidsmesh" || type == "bsplinecurve" ||
              type == "linearcurve" || type == "merge") {
     return Unsupported(node);
   } else {
     return node.Error("unknown shape type '" + type +
-                      "'; expected obj, ply, serialized, rectangle, cube, disk, cylinder or "
-                      "sphere");
+                      "'; expected obj, ply, serialized, rectangle, cube, disk, cylinder, "
+                      "sphere or sdfgrid");
   }
   // Mitsuba flips v of OBJ files by default and of PLY files only when asked; a serialized file
   // stores v flipped already, which LoadSerialized undoes (it returns the OBJ convention), so
@@ -136,6 +138,10 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
   if (emitter) PTLAB_RETURN_IF_ERROR(AreaEmitter(*emitter, &radiance));
   if (!bsdf) material = scene_.materials.AddDiffuse({0.5f, 0.5f, 0.5f});  // Mitsuba's default
 
+  if (type == "sdfgrid") {
+    if (emitter) return Unsupported(node, "an emitting sdfgrid (Mitsuba's cannot emit either)");
+    return SdfGridShape(obj, to_world, material);
+  }
   MeshData mesh;
   std::string name = type;
   if (type == "sphere") {

@@ -5,7 +5,9 @@
 #include <bit>
 #include <cmath>
 
+#include "engine/bvh/sdf_grid_intersect.h"
 #include "engine/bvh/sphere_intersect.h"
+#include "engine/render/sdf_grid_normal.h"
 #include "engine/light/area_light.h"
 
 namespace ptlab {
@@ -26,6 +28,22 @@ SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const H
   its.frame = Frame(n);
   if (with_uv) its.uv = SphereUv(n);
   its.material = s.material[i];
+  return its;
+}
+
+// An sdfgrid hit: p = o + t d (t is the cubic's root to double precision, rounded), the
+// normals of SdfGridNormals, uv (0, 0) as Mitsuba's sdfgrid (it has no parameterization).
+SurfaceInteraction SdfGridInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+  const uint32_t i = SdfGridHitRow(hit.prim);
+  SurfaceInteraction its;
+  its.p = ray.At(hit.t);
+  Vec3f ng, ns;
+  SdfGridNormals(scene.sdf_grids, i, its.p, &ng, &ns);
+  its.prim = hit.prim;
+  its.ng = ng;
+  its.frame = Frame(ns);
+  its.uv = {0.0f, 0.0f};
+  its.material = scene.sdf_grids.material[i];
   return its;
 }
 
@@ -74,6 +92,7 @@ SurfaceInteraction InstanceInteraction(const Scene& scene, const Hit& hit, bool 
 SurfaceInteraction MakeInteractionWith(const Scene& scene, const Ray& ray, const Hit& hit,
                                        bool with_uv) {
   if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv);
+  if (IsSdfGridHit(hit.prim)) return SdfGridInteraction(scene, ray, hit);
   if (IsInstancedHit(hit.prim, scene.triangles.size()))
     return InstanceInteraction(scene, hit, with_uv);
   return TriangleInteraction(scene, hit.prim, hit, with_uv);
