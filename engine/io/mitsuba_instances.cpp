@@ -65,10 +65,11 @@ StatusOr<uint32_t> MitsubaSceneBuilder::ShapeGroup(const MitsubaNode& node) {
   // The group's spheres leave the world's table: each instance adds its own.
   SphereTable& world = scene_.spheres;
   for (size_t i = first_sphere; i < world.size(); ++i)
-    shapes.spheres.Append(world.Center(i), world.radius[i], world.material[i]);
+    shapes.spheres.Append(world.Center(i), world.radius[i], world.material[i], world.uv_frame[i]);
   for (auto* column : {&world.center_x, &world.center_y, &world.center_z, &world.radius})
     column->resize(first_sphere);
   world.material.resize(first_sphere);
+  world.uv_frame.resize(first_sphere);
   // Likewise its sdfgrids (in group space until an instance places them).
   for (size_t i = first_grid; i < scene_.sdf_grids.size(); ++i)
     shapes.sdf_grids.AppendPlaced(scene_.sdf_grids, i, scene_.sdf_grids.to_world[i],
@@ -128,10 +129,16 @@ Status MitsubaSceneBuilder::Instance(const MitsubaNode& node) {
     if (!IsSimilarity(to_world.matrix(), &scale))
       return Unsupported(node, "an instance of a group with a sphere under a non-uniform scale "
                                "or shear");
+    // The uv frame: the group sphere's after the instance's (its inverse linear part · scale).
+    const Matrix4& inv = to_world.inverse_matrix();
+    SphereUvFrame placed;
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) placed[3 * row + col] = inv.m[row][col] * scale;
     for (size_t i = 0; i < shapes.spheres.size(); ++i) {
       if (scene_.spheres.size() + 1 >= kMaxSpheres) return node.Error("too many spheres");
       scene_.spheres.Append(to_world.ApplyPoint(shapes.spheres.Center(i)),
-                            shapes.spheres.radius[i] * scale, shapes.spheres.material[i]);
+                            shapes.spheres.radius[i] * scale, shapes.spheres.material[i],
+                            ComposeSphereUvFrames(shapes.spheres.uv_frame[i], placed));
     }
   }
   for (size_t i = 0; i < shapes.sdf_grids.size(); ++i) {

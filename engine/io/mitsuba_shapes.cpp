@@ -167,7 +167,12 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
           std::fabs(c.z) + r <= kMaxWorldCoordinate))
       return node.Error("the sphere reaches beyond the world's coordinate limit");
     if (scene_.spheres.size() + 1 >= kMaxSpheres) return node.Error("too many spheres");
-    scene_.spheres.Append(c, r, material);
+    // The uv frame: to_world's inverse linear part times its scale (a rotation, maybe a mirror).
+    const Matrix4& inv = to_world.inverse_matrix();
+    SphereUvFrame frame;
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) frame[3 * row + col] = inv.m[row][col] * scale;
+    scene_.spheres.Append(c, r, material, frame);
     return Status::Ok();
   }
   if (mesh_file) {
@@ -205,7 +210,7 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     mesh = MakeMitsubaCylinder(kMitsubaDiskSegments);
   } else {
     mesh = type == "rectangle" ? MakeRectangle()
-           : type == "cube"    ? MakeCube()
+           : type == "cube"    ? MakeMitsubaCube()
                                : MakeMitsubaDisk(kMitsubaDiskSegments);
   }
   if (flip_normals) {

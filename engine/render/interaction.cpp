@@ -26,7 +26,12 @@ SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const H
   its.prim = hit.prim;
   its.ng = n;
   its.frame = Frame(n);
-  if (with_uv) its.uv = SphereUv(n);
+  if (with_uv) {
+    // In the sphere's own frame (Mitsuba's to_object), then SphereUv.
+    const SphereUvFrame& q = s.uv_frame[i];
+    its.uv = SphereUv({q[0] * n.x + q[1] * n.y + q[2] * n.z, q[3] * n.x + q[4] * n.y + q[5] * n.z,
+                       q[6] * n.x + q[7] * n.y + q[8] * n.z});
+  }
   its.material = s.material[i];
   return its;
 }

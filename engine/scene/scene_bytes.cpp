@@ -12,7 +12,7 @@ namespace {
 // sizes remind whoever adds one of.
 constexpr size_t kColumn = sizeof(std::vector<float>);
 static_assert(sizeof(TriangleTable) == 9 * kColumn);
-static_assert(sizeof(SphereTable) == 5 * kColumn);
+static_assert(sizeof(SphereTable) == 6 * kColumn);
 static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
 static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
@@ -117,7 +117,7 @@ size_t TableBytes(const TriangleTable& t) {
 }
 
 size_t TableBytes(const SphereTable& t) {
-  return VectorsBytes(t.center_x, t.center_y, t.center_z, t.radius, t.material);
+  return VectorsBytes(t.center_x, t.center_y, t.center_z, t.radius, t.material, t.uv_frame);
 }
 
 SceneBytes SceneTableBytes(const Scene& scene) {
