@@ -96,6 +96,7 @@ struct Bvh8 {
   uint32_t depth = 0;  // nodes on the longest root-to-leaf path
   float extent = 0.0f;  // largest side of the triangles' bounding box
   SphereTable spheres;  // the Bvh's spheres, tested beside the tree by every ray
+  SdfGridTable sdf_grids;  // the Bvh's sdfgrids, likewise (lane by lane, the oracle's code)
   /// Instancing: the Bvh's instance level (copied) and one BVH8 per shape group, collapsed
   /// from the Bvh's group trees. Empty without instances.
   InstanceLevel instances;

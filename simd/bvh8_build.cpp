@@ -262,6 +262,7 @@ class Collapser {
 Bvh8 BuildBvh8(const Bvh& bvh, const Bvh8BuildOptions& options) {
   Bvh8 out;
   out.spheres = bvh.spheres;
+  out.sdf_grids = bvh.sdf_grids;
   out.instances = bvh.instances;
   for (const Bvh& g : bvh.groups) out.groups.push_back(BuildBvh8(g, options));
   if (bvh.empty()) return out;

@@ -9,6 +9,7 @@
 #include "engine/core/ray.h"
 #include "engine/core/vec.h"
 #include "engine/scene/geometry_tables.h"
+#include "engine/scene/sdf_grid_table.h"
 #include "engine/scene/sphere_table.h"
 
 namespace ptlab {
@@ -70,6 +71,7 @@ struct Bvh {
   TriangleTable leaf_triangles;     // positions in leaf order
   AlignedVector<uint32_t> prim_id;  // leaf order -> scene TriangleTable row
   SphereTable spheres;              // copy of the scene's spheres (rows = sphere hit ids)
+  SdfGridTable sdf_grids;           // copy of the scene's sdfgrids (BuildSceneBvh), beside too
   /// Instancing (BuildSceneBvh): the instance tree and one BVH per shape group, over the
   /// group's triangles in group space (prim_id = the triangle's index within its group).
   InstanceLevel instances;

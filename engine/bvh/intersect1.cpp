@@ -7,6 +7,7 @@
 
 #include "engine/bvh/bvh_walk.h"
 #include "engine/bvh/instance_level.h"
+#include "engine/bvh/sdf_grid_intersect.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/bvh/watertight_triangle.h"
 
@@ -105,6 +106,13 @@ bool Intersect1(const Bvh& bvh, const Ray& ray, Hit* hit) {
     hit->prim = prim;
     found = true;
   }
+  // Sdfgrids after the spheres, strictly nearer only; nothing to do in a scene without any.
+  if (bvh.sdf_grids.size() != 0 && IntersectSdfGrids1(bvh.sdf_grids, ray, &t_max, &prim)) {
+    hit->t = t_max;
+    hit->b1 = hit->b2 = 0.0f;
+    hit->prim = prim;
+    found = true;
+  }
   // Instances last (their ids lie between the triangle rows and the spheres').
   if (bvh.instances.empty()) return found;
   return IntersectInstances(bvh.instances, ray, found, hit, IntersectGroup1, bvh.groups.data());
@@ -113,6 +121,7 @@ bool Intersect1(const Bvh& bvh, const Ray& ray, Hit* hit) {
 bool Occluded1(const Bvh& bvh, const Ray& ray) {
   if (!(ray.t_min < ray.t_max)) return false;
   if (OccludedTriangles1(bvh, ray) || OccludedSpheres1(bvh.spheres, ray)) return true;
+  if (bvh.sdf_grids.size() != 0 && OccludedSdfGrids1(bvh.sdf_grids, ray)) return true;
   return !bvh.instances.empty() &&
          OccludedInstances(bvh.instances, ray, OccludedGroup1, bvh.groups.data());
 }

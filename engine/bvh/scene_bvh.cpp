@@ -19,7 +19,11 @@ void AppendRow(const TriangleTable& from, uint32_t row, TriangleTable* to) {
 
 Bvh BuildSceneBvh(const Scene& scene) {
   const InstanceTable& in = scene.instances;
-  if (in.groups() == 0) return BuildBvh(scene.triangles, scene.spheres);
+  if (in.groups() == 0) {
+    Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
+    bvh.sdf_grids = scene.sdf_grids;
+    return bvh;
+  }
   const TriangleTable& all = scene.triangles;
   const uint32_t rows = uint32_t(all.size());
   PTLAB_CHECK(uint64_t{rows} + in.instanced_prims() < uint64_t{kSphereHitBit});
@@ -32,6 +36,7 @@ Bvh BuildSceneBvh(const Scene& scene) {
   for (uint32_t r = 0; r < rows; ++r)
     if (!grouped[r]) AppendRow(all, r, &top), top_rows.push_back(r);
   Bvh bvh = BuildBvh(top, scene.spheres);
+  bvh.sdf_grids = scene.sdf_grids;
   for (uint32_t& p : bvh.prim_id) p = top_rows[p];
   std::vector<GroupBounds> bounds;
   for (size_t g = 0; g < in.groups(); ++g) {

@@ -13,7 +13,10 @@ namespace ptlab {
 /// Hit::prim of a hit on sphere row i is kSphereHitBit | i; triangle rows stay below 2^28.
 inline constexpr uint32_t kSphereHitBit = 0x80000000u;
 inline constexpr uint32_t kMaxSpheres = 1u << 28;
-constexpr bool IsSphereHit(uint32_t prim) { return prim != kNoHit && (prim & kSphereHitBit); }
+/// (Bit 30 set as well is an sdfgrid hit: engine/bvh/sdf_grid_intersect.h.)
+constexpr bool IsSphereHit(uint32_t prim) {
+  return prim != kNoHit && (prim & kSphereHitBit) && !(prim & 0x40000000u);
+}
 constexpr uint32_t SphereHitRow(uint32_t prim) { return prim & ~kSphereHitBit; }
 
 /// c = |o − centre|² − r², in double: o − centre is exact there, so a ray origin pushed a few

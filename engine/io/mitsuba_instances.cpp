@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "engine/bvh/sdf_grid_intersect.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/core/similarity.h"
 #include "engine/io/mitsuba_scene_builder.h"
@@ -42,6 +43,7 @@ StatusOr<uint32_t> MitsubaSceneBuilder::ShapeGroup(const MitsubaNode& node) {
   PTLAB_RETURN_IF_ERROR(read->Expect({}));
   const uint32_t first_row = uint32_t(scene_.triangles.size());
   const size_t first_sphere = scene_.spheres.size();
+  const size_t first_grid = scene_.sdf_grids.size();
   for (const MitsubaNode* child : read->children()) {
     if (child->tag != "shape")
       return child->Error("<" + child->tag + "> is not allowed inside " + DescribeMitsuba(node) +
@@ -63,16 +65,28 @@ StatusOr<uint32_t> MitsubaSceneBuilder::ShapeGroup(const MitsubaNode& node) {
   // The group's spheres leave the world's table: each instance adds its own.
   SphereTable& world = scene_.spheres;
   for (size_t i = first_sphere; i < world.size(); ++i)
-    shapes.spheres.Append(world.Center(i), world.radius[i], world.material[i]);
+    shapes.spheres.Append(world.Center(i), world.radius[i], world.material[i], world.uv_frame[i]);
   for (auto* column : {&world.center_x, &world.center_y, &world.center_z, &world.radius})
     column->resize(first_sphere);
   world.material.resize(first_sphere);
+  world.uv_frame.resize(first_sphere);
+  // Likewise its sdfgrids (in group space until an instance places them).
+  for (size_t i = first_grid; i < scene_.sdf_grids.size(); ++i)
+    shapes.sdf_grids.AppendPlaced(scene_.sdf_grids, i, scene_.sdf_grids.to_world[i],
+                                  scene_.sdf_grids.material[i]);
+  scene_.sdf_grids.Truncate(first_grid);
   shapes.lo = {INFINITY, INFINITY, INFINITY};
   shapes.hi = -shapes.lo;
   const TriangleTable& tri = scene_.triangles;
   for (uint32_t t = first_row; t < tri.size(); ++t)
     for (const Vec3f& v : {tri.V0(t), tri.V1(t), tri.V2(t)})
       shapes.lo = Min(shapes.lo, v), shapes.hi = Max(shapes.hi, v);
+  for (size_t i = 0; i < shapes.sdf_grids.size(); ++i)
+    for (int c = 0; c < 8; ++c) {
+      const Vec3f v = shapes.sdf_grids.to_world[i].ApplyPoint(
+          {float(c & 1), float((c >> 1) & 1), float((c >> 2) & 1)});
+      shapes.lo = Min(shapes.lo, v), shapes.hi = Max(shapes.hi, v);
+    }
   const uint32_t group = shapes.group;
   shape_groups_.emplace(&node, std::move(shapes));
   return group;
@@ -115,11 +129,22 @@ Status MitsubaSceneBuilder::Instance(const MitsubaNode& node) {
     if (!IsSimilarity(to_world.matrix(), &scale))
       return Unsupported(node, "an instance of a group with a sphere under a non-uniform scale "
                                "or shear");
+    // The uv frame: the group sphere's after the instance's (its inverse linear part · scale).
+    const Matrix4& inv = to_world.inverse_matrix();
+    SphereUvFrame placed;
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) placed[3 * row + col] = inv.m[row][col] * scale;
     for (size_t i = 0; i < shapes.spheres.size(); ++i) {
       if (scene_.spheres.size() + 1 >= kMaxSpheres) return node.Error("too many spheres");
       scene_.spheres.Append(to_world.ApplyPoint(shapes.spheres.Center(i)),
-                            shapes.spheres.radius[i] * scale, shapes.spheres.material[i]);
+                            shapes.spheres.radius[i] * scale, shapes.spheres.material[i],
+                            ComposeSphereUvFrames(shapes.spheres.uv_frame[i], placed));
     }
+  }
+  for (size_t i = 0; i < shapes.sdf_grids.size(); ++i) {
+    if (scene_.sdf_grids.size() + 1 >= kMaxSdfGrids) return node.Error("too many sdfgrids");
+    scene_.sdf_grids.AppendPlaced(shapes.sdf_grids, i, to_world * shapes.sdf_grids.to_world[i],
+                                  shapes.sdf_grids.material[i]);
   }
   scene_.instances.AddInstance(*group, to_world);
   if (scene_.instances.instanced_prims() >= kMaxInstancedTriangles)

@@ -63,4 +63,39 @@ MeshData MakeMitsubaCylinder(int segments) {
   return mesh;
 }
 
+MeshData MakeMitsubaCube() {
+  struct Face {
+    Vec3f n, o, u, v;
+  };
+  static constexpr Face kFaces[6] = {
+      {{0, -1, 0}, {-1, -1, -1}, {0, 0, 1}, {1, 0, 0}},
+      {{0, 1, 0}, {1, 1, 1}, {-1, 0, 0}, {0, 0, -1}},
+      {{1, 0, 0}, {1, -1, 1}, {0, 1, 0}, {0, 0, -1}},
+      {{0, 0, 1}, {-1, -1, 1}, {0, 1, 0}, {1, 0, 0}},
+      {{-1, 0, 0}, {-1, -1, -1}, {0, 1, 0}, {0, 0, 1}},
+      {{0, 0, -1}, {-1, 1, -1}, {0, -1, 0}, {1, 0, 0}},
+  };
+  MeshData mesh;
+  for (const Face& f : kFaces) {
+    const uint32_t base = uint32_t(mesh.positions.size());
+    const Vec2f uvs[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (const Vec2f& uv : uvs) {
+      mesh.positions.push_back(f.o + f.u * (2 * uv.x) + f.v * (2 * uv.y));
+      mesh.normals.push_back(f.n);
+      mesh.uvs.push_back(uv);
+    }
+    // Wound so that the geometric normal is the face's (outward).
+    const Vec3f p0 = mesh.positions[base], p1 = mesh.positions[base + 1],
+                p2 = mesh.positions[base + 2];
+    if (Dot(Cross(p1 - p0, p2 - p0), f.n) > 0) {
+      AddTriangle(&mesh, base, base + 1, base + 2);
+      AddTriangle(&mesh, base, base + 2, base + 3);
+    } else {
+      AddTriangle(&mesh, base, base + 2, base + 1);
+      AddTriangle(&mesh, base, base + 3, base + 2);
+    }
+  }
+  return mesh;
+}
+
 }  // namespace ptlab

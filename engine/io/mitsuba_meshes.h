@@ -17,4 +17,12 @@ MeshData MakeMitsubaDisk(int segments);
 /// The area is 2π·sin(π/n)/(π/n) (n = segments): 1.6e-6 below 2π for n = 1024.
 MeshData MakeMitsubaCylinder(int segments);
 
+/// Mitsuba's cube [-1, 1]³: six faces of 4 vertices (face normals, flat) and 2 triangles, each
+/// face's uv spanning [0, 1]² in Mitsuba's orientation: uv (0, 0) at the corner o and u, v
+/// growing along the axes U, V (per face n: o; U, V) — −y: (−1,−1,−1); +z, +x. +y: (1,1,1);
+/// −x, −z. +x: (1,−1,1); +y, −z. +z: (−1,−1,1); +y, +x. −x: (−1,−1,−1); +y, +z. −z: (−1,1,−1);
+/// −y, +x. (Read off Mitsuba 3's cube.cpp vertex table; a checkerboard with an odd number of
+/// checks per face shows any flip.)
+MeshData MakeMitsubaCube();
+
 }  // namespace ptlab

@@ -109,9 +109,12 @@ class MitsubaSceneBuilder {
   struct GroupShapes {
     uint32_t group = 0;
     SphereTable spheres;
+    SdfGridTable sdf_grids;  // in group space; each instance places its own rows
     Vec3f lo, hi;
   };
   std::map<const MitsubaNode*, GroupShapes> shape_groups_;
+  /// <shape type="sdfgrid"> (engine/io/mitsuba_sdf_grid.cpp): one row of scene_.sdf_grids.
+  Status SdfGridShape(const MitsubaObject& obj, const Transform& to_world, MaterialRef material);
 };
 
 }  // namespace ptlab::internal

@@ -91,14 +91,16 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"center", "radius", "to_world", "flip_normals"}));
   } else if (type == "cylinder") {
     PTLAB_RETURN_IF_ERROR(obj.Expect({"radius", "p0", "p1", "to_world", "flip_normals"}));
-  } else if (type == "sdfgrid" || type == "shapegroup" || type == "instance" ||
+  } else if (type == "sdfgrid") {
+    PTLAB_RETURN_IF_ERROR(obj.Expect({"filename", "normals", "to_world"}));
+  } else if (type == "shapegroup" || type == "instance" ||
              type == "ellipsoids" || type == "ellipsoidsmesh" || type == "bsplinecurve" ||
              type == "linearcurve" || type == "merge") {
     return Unsupported(node);
   } else {
     return node.Error("unknown shape type '" + type +
-                      "'; expected obj, ply, serialized, rectangle, cube, disk, cylinder or "
-                      "sphere");
+                      "'; expected obj, ply, serialized, rectangle, cube, disk, cylinder, "
+                      "sphere or sdfgrid");
   }
   // Mitsuba flips v of OBJ files by default and of PLY files only when asked; a serialized file
   // stores v flipped already, which LoadSerialized undoes (it returns the OBJ convention), so
@@ -137,6 +139,10 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
   if (emitter) PTLAB_RETURN_IF_ERROR(AreaEmitter(*emitter, &radiance, &emitter_texture));
   if (!bsdf) material = scene_.materials.AddDiffuse({0.5f, 0.5f, 0.5f});  // Mitsuba's default
 
+  if (type == "sdfgrid") {
+    if (emitter) return Unsupported(node, "an emitting sdfgrid (Mitsuba's cannot emit either)");
+    return SdfGridShape(obj, to_world, material);
+  }
   MeshData mesh;
   std::string name = type;
   if (type == "sphere") {
@@ -162,7 +168,12 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
           std::fabs(c.z) + r <= kMaxWorldCoordinate))
       return node.Error("the sphere reaches beyond the world's coordinate limit");
     if (scene_.spheres.size() + 1 >= kMaxSpheres) return node.Error("too many spheres");
-    scene_.spheres.Append(c, r, material);
+    // The uv frame: to_world's inverse linear part times its scale (a rotation, maybe a mirror).
+    const Matrix4& inv = to_world.inverse_matrix();
+    SphereUvFrame frame;
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) frame[3 * row + col] = inv.m[row][col] * scale;
+    scene_.spheres.Append(c, r, material, frame);
     return Status::Ok();
   }
   if (mesh_file) {
@@ -200,7 +211,7 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     mesh = MakeMitsubaCylinder(kMitsubaDiskSegments);
   } else {
     mesh = type == "rectangle" ? MakeRectangle()
-           : type == "cube"    ? MakeCube()
+           : type == "cube"    ? MakeMitsubaCube()
                                : MakeMitsubaDisk(kMitsubaDiskSegments);
   }
   if (flip_normals) {

@@ -5,7 +5,9 @@
 #include <bit>
 #include <cmath>
 
+#include "engine/bvh/sdf_grid_intersect.h"
 #include "engine/bvh/sphere_intersect.h"
+#include "engine/render/sdf_grid_normal.h"
 #include "engine/light/area_light.h"
 
 namespace ptlab {
@@ -24,8 +26,29 @@ SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const H
   its.prim = hit.prim;
   its.ng = n;
   its.frame = Frame(n);
-  if (with_uv) its.uv = SphereUv(n);
+  if (with_uv) {
+    // In the sphere's own frame (Mitsuba's to_object), then SphereUv.
+    const SphereUvFrame& q = s.uv_frame[i];
+    its.uv = SphereUv({q[0] * n.x + q[1] * n.y + q[2] * n.z, q[3] * n.x + q[4] * n.y + q[5] * n.z,
+                       q[6] * n.x + q[7] * n.y + q[8] * n.z});
+  }
   its.material = s.material[i];
+  return its;
+}
+
+// An sdfgrid hit: p = o + t d (t is the cubic's root to double precision, rounded), the
+// normals of SdfGridNormals, uv (0, 0) as Mitsuba's sdfgrid (it has no parameterization).
+SurfaceInteraction SdfGridInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+  const uint32_t i = SdfGridHitRow(hit.prim);
+  SurfaceInteraction its;
+  its.p = ray.At(hit.t);
+  Vec3f ng, ns;
+  SdfGridNormals(scene.sdf_grids, i, its.p, &ng, &ns);
+  its.prim = hit.prim;
+  its.ng = ng;
+  its.frame = Frame(ns);
+  its.uv = {0.0f, 0.0f};
+  its.material = scene.sdf_grids.material[i];
   return its;
 }
 
@@ -74,6 +97,7 @@ SurfaceInteraction InstanceInteraction(const Scene& scene, const Hit& hit, bool 
 SurfaceInteraction MakeInteractionWith(const Scene& scene, const Ray& ray, const Hit& hit,
                                        bool with_uv) {
   if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv);
+  if (IsSdfGridHit(hit.prim)) return SdfGridInteraction(scene, ray, hit);
   if (IsInstancedHit(hit.prim, scene.triangles.size()))
     return InstanceInteraction(scene, hit, with_uv);
   return TriangleInteraction(scene, hit.prim, hit, with_uv);

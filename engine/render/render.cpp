@@ -61,6 +61,7 @@ double ProcessCpuSeconds() {
 RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& options) {
   // A Bvh built without the scene's spheres (BuildBvh(triangles) alone) would drop them.
   PTLAB_CHECK(bvh.spheres.size() == scene.spheres.size());
+  PTLAB_CHECK(bvh.sdf_grids.size() == scene.sdf_grids.size());  // BuildSceneBvh copies them
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const double cpu_start = ProcessCpuSeconds();

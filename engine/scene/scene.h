@@ -12,6 +12,7 @@
 #include "engine/scene/geometry_tables.h"
 #include "engine/scene/instance_table.h"
 #include "engine/scene/material_tables.h"
+#include "engine/scene/sdf_grid_table.h"
 #include "engine/scene/sphere_table.h"
 #include "engine/scene/texture_tables.h"
 
@@ -89,6 +90,7 @@ struct Scene {
   VertexTable vertices;
   MeshTable meshes;
   SphereTable spheres;  // analytic spheres, beside the triangles (BuildBvh takes both)
+  SdfGridTable sdf_grids;  // signed-distance grids, beside the triangles as the spheres
   InstanceTable instances;  // shape groups (rows of triangles) placed by instances
   MaterialTables materials;
   TextureTable textures;  // empty unless a material parameter is textured (engine/texture/)

@@ -12,7 +12,7 @@ namespace {
 // sizes remind whoever adds one of.
 constexpr size_t kColumn = sizeof(std::vector<float>);
 static_assert(sizeof(TriangleTable) == 9 * kColumn);
-static_assert(sizeof(SphereTable) == 5 * kColumn);
+static_assert(sizeof(SphereTable) == 6 * kColumn);
 static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
 static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
@@ -138,18 +138,23 @@ size_t EmitterTablesBytes(const Scene& s) {
 
 }  // namespace
 
+size_t TableBytes(const SdfGridTable& t) {
+  static_assert(sizeof(SdfGridTable) == 8 * kColumn);
+  return VectorsBytes(t.nx, t.ny, t.nz, t.offset, t.to_world, t.material, t.normals, t.values);
+}
+
 size_t TableBytes(const TriangleTable& t) {
   return VectorsBytes(t.v0_x, t.v0_y, t.v0_z, t.v1_x, t.v1_y, t.v1_z, t.v2_x, t.v2_y, t.v2_z);
 }
 
 size_t TableBytes(const SphereTable& t) {
-  return VectorsBytes(t.center_x, t.center_y, t.center_z, t.radius, t.material);
+  return VectorsBytes(t.center_x, t.center_y, t.center_z, t.radius, t.material, t.uv_frame);
 }
 
 SceneBytes SceneTableBytes(const Scene& scene) {
   SceneBytes b;
   b.triangles = TableBytes(scene.triangles);
-  b.spheres = TableBytes(scene.spheres);
+  b.spheres = TableBytes(scene.spheres) + TableBytes(scene.sdf_grids);
   b.shading = TableBytes(scene.shading);
   b.vertices = TableBytes(scene.vertices);
   // Textures count with the materials they drive.

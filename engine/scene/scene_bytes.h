@@ -26,5 +26,7 @@ SceneBytes SceneTableBytes(const Scene& scene);
 /// Heap bytes of one table's columns.
 size_t TableBytes(const TriangleTable& t);
 size_t TableBytes(const SphereTable& t);
+/// Sdfgrids: counted with the spheres (traversal reads both).
+size_t TableBytes(const SdfGridTable& t);
 
 }  // namespace ptlab

@@ -38,6 +38,14 @@ bool WorldBounds(const Scene& scene, Vec3f* lo_out, Vec3f* hi_out) {
     expand(&lo, &hi, spheres.Center(i) + Vec3f{r, r, r});
     any = true;
   }
+  // An sdfgrid by its whole box [0, 1]^3 placed by its to_world.
+  for (size_t i = 0; i < scene.sdf_grids.size(); ++i) {
+    for (int c = 0; c < 8; ++c)
+      expand(&lo, &hi,
+             scene.sdf_grids.to_world[i].ApplyPoint(
+                 {float(c & 1), float((c >> 1) & 1), float((c >> 2) & 1)}));
+    any = true;
+  }
   for (size_t k = 0; k < instances.size(); ++k) {
     const uint32_t g = instances.group[k];
     const uint32_t first = instances.group_first_row[g], end = first + instances.group_row_count[g];

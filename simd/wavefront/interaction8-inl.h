@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "engine/bvh/sdf_grid_intersect.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/core/packet8.h"
 #include "engine/render/interaction.h"
@@ -153,9 +154,26 @@ inline void MakeInteractionRowsKernel(const Scene& scene, const TriangleRows& tr
         uint8_t bits[8] = {};
         hn::StoreMaskBits(di, sphere_i, bits);
         spheres |= Mask8(bits[0]) << i;
-        const auto si = hn::IfThenElseZero(sphere_i, hn::AndNot(sphere_bit, prim));
+        // Sdfgrid lanes (bit 30 too) take their material lane by lane; the spheres' gather.
+        const auto grid_bit = hn::Set(di, int32_t(kSdfGridHitBit));
+        const auto grid_i = hn::And(sphere_i, hn::Ne(hn::And(prim, grid_bit), zero_i));
+        const auto ball_i = hn::AndNot(grid_i, sphere_i);
+        const auto si = hn::IfThenElseZero(ball_i, hn::AndNot(sphere_bit, prim));
         material = hn::IfThenElse(
-            sphere_i, hn::GatherIndex(di, as_i(scene.spheres.material.data()), si), material);
+            ball_i, hn::GatherIndex(di, as_i(scene.spheres.material.data()), si), material);
+        if (!hn::AllFalse(di, grid_i)) {
+          alignas(32) int32_t prims[8], materials[8];
+          hn::Store(prim, di, prims);
+          hn::Store(material, di, materials);
+          uint8_t grid_bits[8] = {};
+          hn::StoreMaskBits(di, grid_i, grid_bits);
+          for (Mask8 todo = grid_bits[0]; todo != 0; todo &= todo - 1) {
+            const int j = std::countr_zero(todo);
+            materials[j] =
+                int32_t(scene.sdf_grids.material[SdfGridHitRow(uint32_t(prims[j]))].bits);
+          }
+          material = hn::Load(di, materials);
+        }
       }
       if (!hn::AllFalse(di, instanced_i)) {
         alignas(32) int32_t prims[8], materials[8];

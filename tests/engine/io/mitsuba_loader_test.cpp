@@ -429,8 +429,12 @@ TEST_F(MitsubaLoader, Shapes) {
                   "</transform></shape>")),
       Path("scene.xml") +
           ":3:1: unsupported: shape \"sphere\" (a sphere under a non-uniform scale or shear)");
+  EXPECT_EQ(Error(Scene("\n<shape type=\"bsplinecurve\"/>")),
+            Path("scene.xml") + ":4:1: unsupported: shape \"bsplinecurve\"");
+  // sdfgrid is read (tests/engine/io/mitsuba_sdf_grid_test.cpp); without a file it is an error.
   EXPECT_EQ(Error(Scene("\n<shape type=\"sdfgrid\"/>")),
-            Path("scene.xml") + ":4:1: unsupported: shape \"sdfgrid\"");
+            Path("scene.xml") +
+                ":4:1: <shape type=\"sdfgrid\"> is missing the required property 'filename'");
   EXPECT_NE(Error(Scene("<shape type=\"ply\"><string name=\"filename\" value=\"a.ply\"/></shape>"))
                 .find("a.ply"),
             std::string::npos);  // a missing mesh file is named
