@@ -128,6 +128,19 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
         AddMitsubaMicrofacetBsdf(obj, doc_.search_paths, &scene_.materials, rough);
     if (!added.ok()) return added.status();
     ref = *added;
+    // Mitsuba orients an anisotropic lobe by ∂p/∂u (its shading frame's tangent).
+    const MaterialTables& m = scene_.materials;
+    const uint32_t row = ref.index();
+    bool anisotropic = false;
+    if (ref.tag() == MaterialTag::kConductor && m.conductor.microfacet()) {
+      const ConductorTable& c = m.conductor;
+      anisotropic = c.alpha[row] != c.alpha_v[row] ||
+                    (c.textured() && (c.alpha_texture[row] != kNoTexture ||
+                                      c.alpha_v_texture[row] != kNoTexture));
+    } else if (ref.tag() == MaterialTag::kRoughDielectric) {
+      anisotropic = m.rough_dielectric.alpha_u[row] != m.rough_dielectric.alpha_v[row];
+    }
+    if (anisotropic) UvAlignedFrame(ref);
   } else if (type == "normalmap" || type == "bumpmap") {  // normal
     return PerturbedBsdf(node, obj);
   } else if (type == "principled" || type == "principledthin") {  // principled
@@ -190,7 +203,9 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::WrapperBsdf(const MitsubaNode& node,
     StatusOr<MaterialRef> b = Bsdf(*kids[1]);
     if (!b.ok()) return b.status();
     // normal: a blend's children are evaluated without their shading point's frame.
-    if (scene_.materials.perturbation.Of(*a) >= 0 || scene_.materials.perturbation.Of(*b) >= 0)
+    const ShadingPerturbations& perturbation = scene_.materials.perturbation;
+    if ((perturbation.Of(*a) >= 0 && !IsUvAlignedFrame(perturbation.Of(*a))) ||
+        (perturbation.Of(*b) >= 0 && !IsUvAlignedFrame(perturbation.Of(*b))))
       return Unsupported(node, "a normalmap or bumpmap inside a blendbsdf");
     ref = scene_.materials.AddBlend(weight, *a, *b, weight_texture);
   }

@@ -61,10 +61,23 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::PerturbedBsdf(const MitsubaNode& node
   StatusOr<MaterialRef> child = Bsdf(*nested);
   if (!child.ok()) return child.status();
   const PerturbationKind kind = normal ? PerturbationKind::kNormalMap : PerturbationKind::kBumpMap;
-  if (!scene_.materials.perturbation.Add(*child, kind, *texture, scale))
+  ShadingPerturbations& perturbation = scene_.materials.perturbation;
+  if (IsUvAlignedFrame(perturbation.Of(*child)))
+    perturbation.Replace(*child, kind, *texture, scale);  // the map brings the frame itself
+  else if (!perturbation.Add(*child, kind, *texture, scale))
     return Unsupported(node, "a normal or bump map around another one");
   bsdfs_[&node] = *child;
   return *child;
+}
+
+void MitsubaSceneBuilder::UvAlignedFrame(MaterialRef ref) {
+  if (uv_frame_texture_ == kNoTexture) {
+    TextureTable& t = scene_.textures;
+    uv_frame_texture_ = t.AddRow(TextureKind::kCheckerboard, 1, 1, 6);
+    float* c = &t.data[t.offset[uv_frame_texture_]];
+    c[0] = c[3] = 0.5f, c[1] = c[4] = 0.5f, c[2] = c[5] = 1.0f;  // normal 2c − 1 = (0, 0, 1)
+  }
+  scene_.materials.perturbation.Add(ref, PerturbationKind::kNormalMap, uv_frame_texture_, 1.0f);
 }
 
 }  // namespace ptlab::internal

@@ -75,6 +75,15 @@ class MitsubaSceneBuilder {
   StatusOr<MaterialRef> WrapperBsdf(const MitsubaNode& node, const MitsubaObject& obj);
   // normal: `normalmap` and `bumpmap` (engine/io/mitsuba_perturbed_bsdfs.cpp).
   StatusOr<MaterialRef> PerturbedBsdf(const MitsubaNode& node, const MitsubaObject& obj);
+  // Gives an anisotropic row Mitsuba's shading frame, whose tangent follows ∂p/∂u: an identity
+  // normal map (a constant texture of normal (0, 0, 1)); a later normalmap or bumpmap around
+  // the row replaces it (engine/io/mitsuba_perturbed_bsdfs.cpp).
+  void UvAlignedFrame(MaterialRef ref);
+  // True when `id` is the perturbation UvAlignedFrame added.
+  bool IsUvAlignedFrame(int64_t id) const {
+    return id >= 0 && uv_frame_texture_ != kNoTexture &&
+           scene_.materials.perturbation.texture[size_t(id)] == uv_frame_texture_;
+  }
   // principled: principled and principledthin (engine/io/mitsuba_principled.cpp).
   StatusOr<MaterialRef> PrincipledBsdf(const MitsubaNode& node, const MitsubaObject& obj);
   // mask: Mitsuba's `mask` (engine/io/mitsuba_mask_bsdf.cpp).
@@ -100,6 +109,7 @@ class MitsubaSceneBuilder {
   const MitsubaNode* multi_sample_direct_ = nullptr;  // a direct integrator, emitter_samples > 1
   const MitsubaNode* hide_emitters_ = nullptr;        // an integrator with hide_emitters
   std::map<const MitsubaNode*, MaterialRef> bsdfs_;   // one row per <bsdf> element
+  uint32_t uv_frame_texture_ = kNoTexture;             // UvAlignedFrame's constant normal
   std::map<std::string, MeshData> meshes_;            // one read per mesh file
   std::map<const MitsubaNode*, uint32_t> textures_;
   std::map<const MitsubaNode*, uint32_t> scalar_textures_;  // ScalarTexture   // one row per <texture> element

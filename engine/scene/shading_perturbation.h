@@ -41,6 +41,11 @@ struct ShadingPerturbations {
     c[ref.index()] = uint32_t(kind.size());
     return true;
   }
+  /// Replaces the perturbation of a perturbed row `ref` (its id stays).
+  void Replace(MaterialRef ref, PerturbationKind k, uint32_t texture_id, float s) {
+    const int64_t id = Of(ref);
+    kind[size_t(id)] = uint8_t(k), texture[size_t(id)] = texture_id, scale[size_t(id)] = s;
+  }
   /// The perturbation id of `ref`, or -1.
   int64_t Of(MaterialRef ref) const {
     const int t = static_cast<int>(ref.tag());

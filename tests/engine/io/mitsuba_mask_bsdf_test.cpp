@@ -65,7 +65,11 @@ TEST(MitsubaMaskBsdf, MaskBlendWeightAndRoughnessTexturesLoad) {
   EXPECT_NE(m.conductor.alpha_texture[0], kNoTexture);
   EXPECT_EQ(m.conductor.alpha_v_texture[0], kNoTexture);
   EXPECT_EQ(m.conductor.alpha_v[0], 0.2f);
-  EXPECT_EQ(s->textures.size(), 3u);
+  // Three checkerboards, each read as a scalar (a copy with the colours swapped, Mitsuba's
+  // eval_1), and the constant normal that gives the anisotropic conductor the uv-aligned frame.
+  EXPECT_EQ(s->textures.size(), 7u);
+  EXPECT_GE(m.perturbation.Of(MaterialRef::Make(MaterialTag::kConductor, 0)), 0);
+  EXPECT_LT(m.perturbation.Of(m.mask.Nested(1)), 0);  // an isotropic row keeps its frame
 }
 
 TEST(MitsubaMaskBsdf, ErrorsNameTheProblem) {
