@@ -1,5 +1,5 @@
 // Pixel reconstruction filters (Nori's box, tent and Gaussian), evaluated per axis through a
-// table precomputed over [0, radius].
+// table precomputed over [0, radius]: interpolated, or as Mitsuba's scalar variants a staircase.
 #pragma once
 
 #include <algorithm>
@@ -25,15 +25,33 @@ class PixelFilter {
       alpha_ = -1.0f / (2.0f * desc.stddev * desc.stddev);
       tail_ = std::exp(alpha_ * desc.radius * desc.radius);
     }
-    for (int i = 0; i <= kFilterTableSize; ++i)
-      table_[i] = EvalExact(desc.radius * float(i) / float(kFilterTableSize));
-    lookup_scale_ = desc.radius > 0 ? float(kFilterTableSize) / desc.radius : 0.0f;
+    if (desc.steps > 0 && desc.steps <= kFilterTableSize) {
+      // A staircase (FilterDesc::steps): step i holds the value at its inner end, the last
+      // entry is 0 (reached only at |x| = radius), and next_ = table_ so that Eval's
+      // interpolation adds nothing.
+      const int n = desc.steps;
+      for (int i = 0; i < n; ++i) table_[i] = EvalExact(desc.radius * float(i) / float(n));
+      table_[n] = 0.0f;
+      for (int i = 0; i <= n; ++i) next_[i] = table_[i];
+      last_ = n;
+      lookup_scale_ = desc.radius > 0 ? float(n) / desc.radius : 0.0f;
+    } else {
+      for (int i = 0; i <= kFilterTableSize; ++i)
+        table_[i] = EvalExact(desc.radius * float(i) / float(kFilterTableSize));
+      for (int i = 0; i < kFilterTableSize; ++i) next_[i] = table_[i + 1];
+      next_[kFilterTableSize] = table_[kFilterTableSize];
+      last_ = kFilterTableSize - 1;
+      lookup_scale_ = desc.radius > 0 ? float(kFilterTableSize) / desc.radius : 0.0f;
+    }
   }
   float radius() const { return desc_.radius; }
-  /// The table Eval interpolates: kFilterTableSize + 1 samples over [0, radius], and the scale
-  /// from |x| to a table position (kFilterTableSize / radius); for kernels that evaluate many
-  /// offsets at once with Eval's operations (simd/wavefront/splat8-inl.h).
+  /// What Eval reads, for kernels that evaluate many offsets at once with Eval's operations
+  /// (simd/wavefront/splat8-inl.h): the table (entries 0 ..= last_index()), the entry each one
+  /// interpolates towards (`next`: the following entry, or the same one for a staircase), and
+  /// the scale from |x| to a table position.
   const float* table() const { return table_; }
+  const float* next() const { return next_; }
+  int last_index() const { return last_; }
   float lookup_scale() const { return lookup_scale_; }
 
   /// The filter at offset x (pixels) from the table: what the film splats with.
@@ -41,9 +59,9 @@ class PixelFilter {
     const float ax = std::fabs(x);
     if (!(ax <= desc_.radius)) return 0.0f;
     const float t = ax * lookup_scale_;
-    const int i = std::min(int(t), kFilterTableSize - 1);
+    const int i = std::min(int(t), last_);
     const float frac = t - float(i);
-    return table_[i] + frac * (table_[i + 1] - table_[i]);
+    return table_[i] + frac * (next_[i] - table_[i]);
   }
 
   /// Nori's definitions: box 1; tent max(0, 1 - |x|/r); Gaussian exp(αx²) - exp(αr²),
@@ -63,7 +81,9 @@ class PixelFilter {
   FilterDesc desc_;
   float alpha_ = 0, tail_ = 0;
   float lookup_scale_ = 0;
+  int last_ = 0;
   float table_[kFilterTableSize + 1] = {};
+  float next_[kFilterTableSize + 1] = {};
 };
 
 }  // namespace ptlab

@@ -43,6 +43,11 @@ struct FilterDesc {
   Type type = Type::kGaussian;
   float radius = 2.0f;
   float stddev = 0.5f;
+  /// 0: the film interpolates the filter from a fine table (PixelFilter). n > 0: the filter is
+  /// a staircase of n steps over [0, radius], each step the value at its inner end: how Mitsuba
+  /// 3's scalar variants, which render its reference images, splat (its
+  /// ReconstructionFilter::eval_discretized, MI_FILTER_RESOLUTION = 31). Mitsuba scenes set 31.
+  uint16_t steps = 0;
 };
 
 /// The scene's sampler (Nori `<sampler type=... >`); scenes that name none get kDefaultSampler.

@@ -74,10 +74,10 @@ HWY_INLINE hn::Vec<D> EvalFilter(D d, const PixelFilter& filter, hn::Vec<D> x) {
   const auto inside = hn::Le(ax, hn::Set(d, filter.radius()));  // false for NaN, as Eval's !(<=)
   const auto t = hn::Mul(ax, hn::Set(d, filter.lookup_scale()));
   const auto i =
-      hn::Max(hn::Min(hn::ConvertTo(di, t), hn::Set(di, kFilterTableSize - 1)), hn::Zero(di));
+      hn::Max(hn::Min(hn::ConvertTo(di, t), hn::Set(di, filter.last_index())), hn::Zero(di));
   const auto frac = hn::Sub(t, hn::ConvertTo(d, i));
   const auto lo = hn::GatherIndex(d, filter.table(), i);
-  const auto hi = hn::GatherIndex(d, filter.table() + 1, i);
+  const auto hi = hn::GatherIndex(d, filter.next(), i);
   return hn::IfThenElseZero(inside, hn::Add(lo, hn::Mul(frac, hn::Sub(hi, lo))));
 }
 

@@ -66,6 +66,36 @@ TEST(PixelFilter, TableMatchesAnalyticFilter) {
   }
 }
 
+// FilterDesc::steps: Mitsuba 3's scalar staircase (ReconstructionFilter::eval_discretized): at
+// offset x the value at the inner end of x's step, floor(|x| · n / r) · r / n, and 0 at the
+// radius itself and beyond. Mitsuba's own numbers for its default Gaussian (stddev 0.5, 31
+// steps over radius 2): the first step is exp(0) - exp(-8), the step at x = 0.5 starts at
+// 7 · 2/31 = 0.4516.
+TEST(PixelFilter, StaircaseIsMitsubasDiscretization) {
+  for (const FilterDesc desc : {FilterDesc{FilterDesc::Type::kGaussian, 2.0f, 0.5f, 31},
+                                FilterDesc{FilterDesc::Type::kGaussian, 3.0f, 0.75f, 31},
+                                FilterDesc{FilterDesc::Type::kTent, 1.5f, 0, 31},
+                                FilterDesc{FilterDesc::Type::kTent, 1.0f, 0, 7}}) {
+    const PixelFilter f(desc);
+    const float r = desc.radius, n = float(desc.steps);
+    SCOPED_TRACE("type " + std::to_string(int(desc.type)) + " radius " + std::to_string(r) +
+                 " steps " + std::to_string(desc.steps));
+    constexpr int kSamples = 100000;
+    for (int k = 0; k <= kSamples; ++k) {
+      const float x = (r + 0.5f) * (2.0f * float(k) / kSamples - 1.0f);
+      const float ax = std::fabs(x);
+      const float t = ax * (n / r);  // the lookup's own float operations
+      const float expected =
+          ax > r ? 0.0f : (int(t) >= int(n) ? 0.0f : f.EvalExact(r * float(int(t)) / n));
+      ASSERT_EQ(f.Eval(x), expected) << x;
+    }
+    EXPECT_EQ(f.Eval(r), 0.0f);
+  }
+  const PixelFilter mitsuba(FilterDesc{FilterDesc::Type::kGaussian, 2.0f, 0.5f, 31});
+  EXPECT_FLOAT_EQ(mitsuba.Eval(0.01f), 1.0f - std::exp(-8.0f));
+  EXPECT_FLOAT_EQ(mitsuba.Eval(0.5f), std::exp(-2.0f * 0.4516129f * 0.4516129f) - std::exp(-8.0f));
+}
+
 TEST(FilmBlock, BoxFilterTouchesOnlyItsPixel) {
   const PixelFilter box(FilterDesc{FilterDesc::Type::kBox, 0.5f, 0});
   FilmBlock film(0, 0, 4, 4);

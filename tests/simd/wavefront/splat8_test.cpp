@@ -52,7 +52,9 @@ TEST(Splat8, MatchesOracleBitForBitOnEveryTarget) {
   const std::vector<FilterDesc> filters = {
       {T::kGaussian, 2.0f, 0.5f}, {T::kGaussian, 3.0f, 1.0f}, {T::kGaussian, 8.0f, 2.0f},
       {T::kGaussian, 0.5f, 0.25f}, {T::kTent, 1.0f, 0},       {T::kTent, 2.5f, 0},
-      {T::kBox, 0.5f, 0},          {T::kBox, 1.5f, 0},        {T::kBox, 0.0f, 0}};
+      {T::kBox, 0.5f, 0},          {T::kBox, 1.5f, 0},        {T::kBox, 0.0f, 0},
+      // Mitsuba's staircase (FilterDesc::steps), as Mitsuba scenes splat.
+      {T::kGaussian, 2.0f, 0.5f, 31}, {T::kTent, 1.0f, 0, 31}};
   Pcg32 rng(5, 11);
   for (const FilterDesc& desc : filters) {
     const PixelFilter filter(desc);
@@ -83,8 +85,9 @@ TEST(Splat8, MatchesOracleBitForBitOnEveryTarget) {
 TEST(Splat8, MatchesOracleInWaveOrderWithExtremeRadianceOnEveryTarget) {
   using T = FilterDesc::Type;
   const float radiance[] = {0.0f, 1e-41f, 1e-30f, 0.5f, 7.0f, 1e30f, 3e38f};
-  for (const FilterDesc& desc : {FilterDesc{T::kGaussian, 2.0f, 0.5f},
-                                 FilterDesc{T::kTent, 1.5f, 0}, FilterDesc{T::kBox, 0.5f, 0}}) {
+  for (const FilterDesc& desc :
+       {FilterDesc{T::kGaussian, 2.0f, 0.5f}, FilterDesc{T::kTent, 1.5f, 0},
+        FilterDesc{T::kBox, 0.5f, 0}, FilterDesc{T::kGaussian, 2.0f, 0.5f, 31}}) {
     const PixelFilter filter(desc);
     Pcg32 rng(17, 3);
     Columns c;
