@@ -38,6 +38,14 @@ using TileStats = TileSampleStats;
 
 uint32_t SamplesPerPass(uint32_t spp) { return std::min<uint32_t>(spp, 16); }
 
+uint32_t PassSamples(const RenderOptions& options) {
+  const uint32_t spp = std::max<uint32_t>(1, options.spp);
+  if (options.adaptive.batch > 0 && options.distribution == nullptr)
+    return std::min(options.adaptive.batch, spp);
+  if (options.pass_spp > 0) return std::min(options.pass_spp, spp);
+  return std::max<uint32_t>(1, SamplesPerPass(spp));
+}
+
 bool PixelConverged(const PixelMoments& m, float tolerance) {
   if (m.n < kAdaptiveMinSamples) return false;
   const double n = double(m.n), mean = m.sum / n;
@@ -115,8 +123,7 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
   // One wavefront per worker slot, kept over the tiles and passes that slot renders.
   std::vector<WavefrontWorkspace> workspaces(kernels != nullptr ? size_t(threads) : 0);
   const bool adaptive = options.adaptive.batch > 0 && options.distribution == nullptr;
-  const uint32_t per_pass = adaptive ? std::min(options.adaptive.batch, options.spp)
-                                     : std::max<uint32_t>(1, SamplesPerPass(options.spp));
+  const uint32_t per_pass = PassSamples(options);
   // Adaptive sampling: which pixels go on, and their moments (those of the completed passes
   // in `moments_done`: an interrupted pass leaves them as they were).
   std::vector<uint8_t> active;

@@ -96,6 +96,10 @@ struct RenderOptions {
   double time_budget = 0;
   /// Adaptive sampling (passes are then `batch` samples). Not with a distribution.
   AdaptiveSampling adaptive;
+  /// Samples per pixel of each pass (the last one may be shorter); 0: SamplesPerPass(spp).
+  /// The image does not depend on it (every sample has its own stream); what a pass is does:
+  /// on_pass, the time budget, the tile times. Ignored with adaptive sampling.
+  uint32_t pass_spp = 0;
   /// When set, the tiles of each pass are shared with other processes through it.
   const RenderDistribution* distribution = nullptr;
   /// Called from the coordinating thread after each tile completes.
@@ -152,5 +156,9 @@ RenderResult Render(const Scene& scene, const Bvh& bvh, const RenderOptions& opt
 
 /// Samples per pass for a render of spp samples (passes are the unit kept on interruption).
 uint32_t SamplesPerPass(uint32_t spp);
+
+/// The samples per pass of a render with these options (adaptive batch, pass_spp or
+/// SamplesPerPass), at least 1.
+uint32_t PassSamples(const RenderOptions& options);
 
 }  // namespace ptlab

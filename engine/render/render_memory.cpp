@@ -34,9 +34,7 @@ RenderMemoryEstimate EstimateRenderMemory(const Scene& scene, const RenderOption
   e.film = pixels * (16.0 + 16.0 * block_area + 12.0 + 4.0);
   const bool adaptive = options.adaptive.batch > 0 && options.distribution == nullptr;
   if (adaptive) e.adaptive = pixels * (2.0 * sizeof(PixelMoments) + 1.0 + 4.0);
-  const double per_pass =
-      adaptive ? std::min(options.adaptive.batch, options.spp)
-               : std::max<uint32_t>(1, SamplesPerPass(std::max<uint32_t>(1, options.spp)));
+  const double per_pass = PassSamples(options);
   const double tiles = std::ceil(w / 32.0) * std::ceil(h / 32.0);
   const double workers = std::min(double(std::max(1, options.threads)), tiles);
   const double paths = std::min(kTilePixels, pixels) * per_pass;

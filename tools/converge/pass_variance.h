@@ -22,6 +22,16 @@ namespace ptlab {
 /// exactly the estimated variance of the pixel.
 class PassVariance {
  public:
+  /// Samples per pass of a render whose variance this estimates: 16, or fewer so that there
+  /// are at least kMinPasses passes (spp / kMinPasses, at least 1): the estimate has K - 1
+  /// degrees of freedom, and a few (61 spp in 16-sample passes: 3) leave the Z test at the
+  /// mercy of the variance estimate's own noise.
+  static constexpr uint32_t kMinPasses = 32;
+  static uint32_t PassSamples(uint32_t spp) {
+    const uint32_t n = spp / kMinPasses;
+    return n < 1 ? 1 : (n > 16 ? 16 : n);
+  }
+
   PassVariance(int width, int height);
   /// Adds one completed pass: its tile blocks (any rectangles of the image, merged here).
   void AddPass(const std::vector<FilmBlock>& blocks);

@@ -144,7 +144,8 @@ void DefineCommandLine(CommandLine* cl, const std::string& version) {
                   "(pass,tile,seconds)");
   cmd->add_flag("--moments", cl->render.moments,
                 "Also write NAME_var.exr beside NAME.exr: each pixel's per-sample variance in "
-                "XYZ, estimated from the 16-sample passes, for imgdiff --ztest "
+                "XYZ, estimated from the passes (16 samples, fewer to make at least 32 passes), "
+                "for imgdiff --ztest "
                 "(docs/mitsuba-tests.md)");
 
   CLI::App* test_cmd = cl->test_cmd = app.add_subcommand(

@@ -497,6 +497,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   std::unique_ptr<PassVariance> moments;
   if (args.moments) {
     moments = std::make_unique<PassVariance>(scene.camera.width, scene.camera.height);
+    options.pass_spp = PassVariance::PassSamples(options.spp);
     options.on_pass = [&](const RenderPass& pass) { moments->AddPass(*pass.blocks); };
   }
 

@@ -47,6 +47,22 @@ TEST(PassVariance, MatchesTheFormulaByHand) {
   EXPECT_NEAR(RgbToXyz(pv.PerSampleVariance(72)).rgb[0], 2 * s2, 2e-4 * s2);
 }
 
+// Passes of 16 samples, or fewer so that there are at least 32 (31 degrees of freedom) where
+// the render has 32 samples or more; a single pass only at 1 spp.
+TEST(PassVariance, PassSamplesMakeAtLeast32Passes) {
+  EXPECT_EQ(PassVariance::PassSamples(868), 16u);  // Mitsuba's budget for 48 x 48: 55 passes
+  EXPECT_EQ(PassVariance::PassSamples(512), 16u);
+  EXPECT_EQ(PassVariance::PassSamples(511), 15u);
+  EXPECT_EQ(PassVariance::PassSamples(61), 1u);
+  EXPECT_EQ(PassVariance::PassSamples(64), 2u);
+  EXPECT_EQ(PassVariance::PassSamples(8), 1u);
+  EXPECT_EQ(PassVariance::PassSamples(1), 1u);
+  EXPECT_EQ(PassVariance::PassSamples(0), 1u);
+  for (uint32_t spp = 32; spp < 2000; ++spp)
+    EXPECT_GE((spp + PassVariance::PassSamples(spp) - 1) / PassVariance::PassSamples(spp), 32u)
+        << spp;
+}
+
 TEST(PassVariance, FewerThanTwoPassesGiveNaN) {
   PassVariance pv(2, 1);
   std::vector<FilmBlock> blocks(1, FilmBlock(0, 0, 2, 1));

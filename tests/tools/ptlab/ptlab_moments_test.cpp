@@ -70,7 +70,7 @@ TEST(PtlabMoments, OnePassWarnsAndAdaptiveIsRefused) {
   const fs::path dir = TempDir("ptlab_moments_bad");
   const std::string img = (dir / "img.exr").string();
   ASSERT_EQ(RunShell(kPtlab + " render " + kCbox + " -o " + img +
-                         " --width 8 --height 8 --spp 16 -q --moments",
+                         " --width 8 --height 8 --spp 1 -q --moments",
                      dir / "log"),
             0)
       << ReadFile(dir / "log");
