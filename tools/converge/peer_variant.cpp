@@ -161,6 +161,7 @@ StatusOr<PeerVariant> ParsePeerVariant(const std::string& spec) {
       v.sampler = value;
     } else if (key == "max_depth") {
       if (!ParseInt(value, -1, &v.max_depth)) return bad("an integer >= -1 (-1: unbounded)");
+      v.max_depth_given = true;
     } else if (key == "rr_depth") {
       if (!ParseInt(value, 1, &v.rr_depth)) return bad("an integer >= 1");
     } else {
@@ -229,6 +230,10 @@ Status RunPeer(const PeerVariant& variant, const PeerRunOptions& o,
   if (cam.projection != CameraDesc::Projection::kPerspective)
     return Status::Error("the mitsuba3 peer renders perspective and thin-lens cameras; this "
                          "scene's camera is orthographic");
+  // Mitsuba counts path vertices (2 = direct light), ptlab bounces (1 = direct light).
+  const int max_depth = variant.max_depth_given          ? variant.max_depth
+                        : scene.integrator.max_depth < 0 ? -1
+                                                         : scene.integrator.max_depth + 1;
   std::string to_world;
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
@@ -242,7 +247,7 @@ Status RunPeer(const PeerVariant& variant, const PeerRunOptions& o,
       "--far=" + Number(cam.far_clip), "--aperture=" + Number(cam.aperture_radius),
       "--focus=" + Number(cam.focus_distance), "--lookat=" + o.lookat,
       "--variant=" + variant.mitsuba_variant, "--sampler=" + variant.sampler,
-      "--max-depth=" + std::to_string(variant.max_depth),
+      "--max-depth=" + std::to_string(max_depth),
       "--rr-depth=" + std::to_string(variant.rr_depth),
       "--pass-spp=" + std::to_string(o.pass_spp), "--spp=" + std::to_string(o.spp),
       "--time=" + Number(o.time), "--seed=" + std::to_string(o.seed),

@@ -15,12 +15,15 @@ namespace ptlab {
 
 /// "renderer=mitsuba3[,variant=llvm_ad_rgb|scalar_rgb][,sampler=independent|multijitter|
 /// stratified|ldsampler|orthogonal][,max_depth=N][,rr_depth=N]" (Mitsuba's path integrator;
-/// max_depth -1 is unbounded, as Mitsuba's default; rr_depth >= 1, default 5).
+/// max_depth -1 is unbounded; without max_depth=, the scene's own depth as ptlab read it, in
+/// Mitsuba's count (ptlab's bounces + 1), so that both renderers render the same image;
+/// rr_depth >= 1, default 5).
 struct PeerVariant {
   std::string renderer = "mitsuba3";
   std::string mitsuba_variant = "llvm_ad_rgb";
   std::string sampler = "independent";
   int max_depth = -1;
+  bool max_depth_given = false;
   int rr_depth = 5;
 };
 
