@@ -45,6 +45,7 @@
 #include "simd/render_setup.h"
 #include "engine/render/bdpt.h"
 #include "engine/render/bdpt_strategies.h"
+#include "engine/render/strategy_figure.h"
 #include "tools/chi2/nori_tests.h"
 #include "tools/converge/pass_variance.h"
 #include "tools/common/exit_codes.h"
@@ -190,6 +191,9 @@ Status WriteStrategyImages(const std::string& dir, const Scene& scene, const Ren
   // Paths of up to 4 bounces one image each (Veach's figure shows up to 3); longer ones summed
   // into longer.exr, so the files still add up to the image.
   constexpr int kMaxBounces = 4;
+  // Veach's figure of them, DIR/figure.png (rows: bounces 0-4; columns: light vertices s).
+  const Image figure =
+      StrategyFigure(images, scene.camera.width, scene.camera.height, kMaxBounces);
   Image longer(scene.camera.width, scene.camera.height);
   size_t n_longer = 0;
   for (const StrategyImage& im : images) {
@@ -208,8 +212,11 @@ Status WriteStrategyImages(const std::string& dir, const Scene& scene, const Ren
     header.pop_back();
     if (!st.ok()) return st;
   }
-  std::fprintf(stderr, "wrote %zu strategy images to %s (paths of more than %d bounces: %zu "
-                       "strategies summed in longer.exr)\n",
+  if (const Status st = WritePng((std::filesystem::path(dir) / "figure.png").string(), figure);
+      !st.ok())
+    return st;
+  std::fprintf(stderr, "wrote %zu strategy images and figure.png to %s (paths of more than %d "
+                       "bounces: %zu strategies summed in longer.exr)\n",
                images.size(), dir.c_str(), kMaxBounces, n_longer);
   return Status::Ok();
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/image/image_io.h"
+#include "engine/render/strategy_figure.h"
 #include "tests/tools/command_test_util.h"
 
 using namespace ptlab::test_util;
@@ -34,6 +35,11 @@ TEST(PtlabIntegratorFlag, OverridesTheSceneAndWritesStrategyImages) {
     ASSERT_TRUE(part.ok()) << name << ": " << ReadFile(dir / "log");
     EXPECT_EQ(part->width, 32);
   }
+  // Veach's figure: 5 rows (0-4 bounces) and 6 columns of 32 x 24 tiles with their gaps.
+  StatusOr<Image> figure = ReadImage((dir / "st" / "figure.png").string());
+  ASSERT_TRUE(figure.ok()) << ReadFile(dir / "log");
+  EXPECT_EQ(figure->width, 6 * 32 + 5 * kStrategyFigureGap);
+  EXPECT_EQ(figure->height, 5 * 24 + 4 * kStrategyFigureGap);
   // Only for the bidirectional integrators.
   EXPECT_EQ(RunShell(kPtlab + " render " + kCbox + " -o " + (dir / "p.exr").string() +
                          " --spp 1 --width 32 --height 24 --integrator path_mis -q --strategies " +
