@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_target.h"
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
 #include "engine/render/interaction.h"

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "benchmarks/bench_target.h"
 #include "engine/core/rng.h"
 #include "engine/image/image.h"
 #include "engine/wavefront/environment.h"

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_target.h"
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/conductor_presets.h"
 #include "engine/bsdf/plastic_precompute.h"

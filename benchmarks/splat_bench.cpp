@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "benchmarks/bench_target.h"
 #include "engine/core/rng.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"

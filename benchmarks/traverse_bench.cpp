@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_target.h"
 #include "benchmarks/fractal_terrain.h"
 #include "engine/bvh/bvh.h"
 #include "engine/bvh/intersect1.h"

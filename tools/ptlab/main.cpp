@@ -41,6 +41,7 @@
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
+#include "simd/target_select.h"
 #include "simd/traverse8.h"
 #include "simd/render_setup.h"
 #include "engine/render/bdpt.h"
@@ -616,6 +617,11 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
 
 int main(int argc, char** argv) {
   const ptlab::mpi::Session mpi(&argc, &argv);
+  // PTLAB_TARGET=AVX2 (say) pins the SIMD kernels to that Highway target.
+  if (const ptlab::Status st = ptlab::simd::SelectTargetFromEnvironment(); !st.ok()) {
+    if (mpi.root()) std::fprintf(stderr, "error: %s\n", st.message().c_str());
+    return ptlab::kExitUsage;
+  }
   ptlab::CommandLine cl;
   CLI::App& app = cl.app;
   ptlab::DefineCommandLine(&cl, std::string("ptlab 0.1 (traversal: Highway ") +
