@@ -14,8 +14,8 @@ import sys
 
 HEADER = re.compile(r"^chi2: (\d+) tests, (\d+) samples, res (\d+), seed (\d+), alpha (\S+) "
                     r"\(alpha' = (\S+) per test\)")
-VERDICT = re.compile(r"^(PASS|FAIL|XFAIL|XPASS)\s+(\S+)\s+chi2=\S+\s+dof=\S+\s+p=(\S+)\s.*?"
-                     r"(?:coarse \d+x\d+: chi2=\S+ dof=\S+ p=(\S+))?(?:\s|$)")
+VERDICT = re.compile(r"^(PASS|FAIL|XFAIL|XPASS)\s+(\S+)\s+chi2=\S+\s+dof=\S+\s+p=(\S+)\s")
+COARSE = re.compile(r"coarse \d+x\d+: chi2=\S+ dof=\S+ p=(\S+)")
 POWER = re.compile(r"^\s+power: detects a (\S+) % error with 95 % probability \(worst of:(.*)\); "
                    r"a 2 % error with probability (\S+); (\S+) samples for 95 %")
 SHAPE = re.compile(r"(\S+) (\S+) %")
@@ -28,7 +28,9 @@ def parse(lines):
         if m := HEADER.match(line):
             header = m.groups()
         elif m := VERDICT.match(line):
-            verdict, name, p_fine, p_coarse = m.groups()
+            verdict, name, p_fine = m.groups()
+            coarse = COARSE.search(line)
+            p_coarse = coarse.group(1) if coarse else None
             rows.append({"verdict": verdict, "name": name, "p_fine": p_fine,
                          "p_coarse": p_coarse or "—", "power": None})
         elif m := POWER.match(line):

@@ -33,12 +33,15 @@ def main():
     assert run.returncode == 0, run.stdout + run.stderr
     power_line = next(l for l in run.stdout.splitlines() if "power: detects a" in l)
     eps = power_line.split("detects a ")[1].split(" %")[0]
+    tent_line = next(l for l in run.stdout.splitlines() if l.startswith("PASS   warp/tent "))
+    p_fine = tent_line.split(" p=")[1].split()[0]
+    p_coarse = tent_line.split("coarse 6x6: ")[1].split(" p=")[1].split()[0]
 
     table = run_table(run.stdout)
     assert table.returncode == 0, table.stderr
     rows = [l for l in table.stdout.splitlines() if l.startswith("| `")]
     assert len(rows) == 2, table.stdout
-    assert rows[0].startswith("| `warp/tent` | PASS |") and f"| {float(eps):g} % |" in rows[0], rows[0]
+    assert rows[0].startswith(f"| `warp/tent` | PASS | {p_fine} | {p_coarse} |") and f"| {float(eps):g} % |" in rows[0], rows[0]
     assert rows[1].startswith("| `broken/tent_pdf_scaled` | XFAIL |") and "— | — | — | —" in rows[1]
     summary = table.stdout.splitlines()[-1]
     assert summary.startswith(f"Real subjects: 1, ε₉₅ from {float(eps):g} % to {float(eps):g} %"), summary
