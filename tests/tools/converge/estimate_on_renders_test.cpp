@@ -12,6 +12,7 @@
 #include "tests/engine/render/packet_render_for_test.h"
 #include "tools/converge/convergence.h"
 #include "tools/imgdiff/imgdiff.h"
+#include "tests/test_data.h"
 
 namespace ptlab {
 namespace {
@@ -26,28 +27,44 @@ Image RenderAt(const Scene& scene, uint32_t spp, uint64_t seed) {
 
 // The merged image of two independent halves of 64 spp against a 4096-spp reference of the same
 // scene (whose own noise adds 128/4096 = 3 % to the measured relMSE: divided out), K = 8 seeds.
-// path_mis and direct_mis: the mean ratio within 4 standard errors (over seeds) of 1 and within
-// 10 %. path_mats (BSDF sampling alone: a pixel's samples are heavy-tailed, mostly dark with a
-// rare hit of the light) is a known exception: the rare sample raises the pixel's d² and its
-// own mean together, so d²/m² reads low — measured 0.798 ± 0.019; it must stay in [0.7, 1).
-// History (issue 44): with a 3x3 neighbourhood mean as the denominator the ratios were
-// 0.935 ± 0.012 (path_mis), 0.973 ± 0.024 (path_mats), 0.768 ± 0.056 (direct_mis): the
+// Smooth pixels (kSmooth: MIS or emitter sampling on cbox and Nori's table): the mean ratio
+// within 4 standard errors (over seeds) of 1 and within 10 %. Heavy-tailed pixels (kHeavyTailed)
+// are the known limit: a pixel whose samples are mostly dark with a rare bright one (a rare hit
+// of the light, a glint smaller than the pixel) has its d² and its own mean raised together by
+// that sample, or sees no variance at all when neither half draws it, so d²/m² reads low; the
+// mean ratio must lie in [0.7, 1). Such cases: path_mats on cbox (BSDF sampling alone; measured
+// 0.798 ± 0.019) and path_mis on Nori's veach_mis (the small bright lights' glints on the smooth
+// plates cover part of a pixel: the four pixels of largest true error, on the plates, hold 13 % of
+// it and the estimate sees under half of theirs; hiding the emitters seen directly moves neither
+// them nor the ratio much (0.760), nor does 96 px (0.785 ± 0.034)). History (issue 44): with a 3x3 neighbourhood mean as the denominator the cbox ratios
+// were 0.935 ± 0.012 (path_mis), 0.973 ± 0.024 (path_mats), 0.768 ± 0.056 (direct_mis): the
 // neighbourhood blurs every edge (the same halves over the reference's own values gave 0.999
 // and 1.036 for path_mis and direct_mis).
 TEST(StatConvergeEstimate, TracksTheTrueRelMseOnRenders) {
+  enum class Pixels { kSmooth, kHeavyTailed };
   struct Case {
     std::string scene;
     IntegratorDesc::Type type;
+    int width, height;
+    Pixels pixels;
   };
   using T = IntegratorDesc::Type;
+  using P = Pixels;
   const std::string cbox = std::string(PTLAB_SOURCE_DIR) + "/scenes/cbox.xml";
-  const Case cases[] = {{cbox, T::kPathMis}, {cbox, T::kPathMats}, {cbox, T::kDirectMis}};
+  const std::string table = test_data::Path("nori/epfl/scenes/pa5/table/table_mis.xml");
+  const std::string veach = test_data::Path("nori/epfl/scenes/pa5/veach_mi/veach_mis.xml");
+  PTLAB_REQUIRE_DATA(table);
+  PTLAB_REQUIRE_DATA(veach);
+  const Case cases[] = {
+      {cbox, T::kPathMis, 48, 48, P::kSmooth},       {cbox, T::kPathMats, 48, 48, P::kHeavyTailed},
+      {cbox, T::kDirectMis, 48, 48, P::kSmooth},     {table, T::kPathMis, 48, 36, P::kSmooth},
+      {table, T::kPathEms, 48, 36, P::kSmooth},      {veach, T::kPathMis, 48, 32, P::kHeavyTailed}};
   for (const Case& c : cases) {
     StatusOr<Scene> loaded = LoadScene(c.scene);
     ASSERT_TRUE(loaded.ok()) << loaded.status().message();
     Scene scene = *loaded;
     scene.integrator.type = c.type;
-    scene.camera.width = 48, scene.camera.height = 48;
+    scene.camera.width = c.width, scene.camera.height = c.height;
     const Image reference = RenderAt(scene, 4096, 1000);
     std::vector<double> ratios;
     for (uint64_t seed = 1; seed <= 8; ++seed) {
@@ -61,14 +78,15 @@ TEST(StatConvergeEstimate, TracksTheTrueRelMseOnRenders) {
     for (double r : ratios) mean += r / 8, lo = std::min(lo, r), hi = std::max(hi, r);
     for (double r : ratios) var += (r - mean) * (r - mean) / 7;
     const double se = std::sqrt(var / 8);
-    std::printf("%s %s: estimate/true over 8 seeds: mean %.3f +- %.3f (range %.3f-%.3f)\n",
-                c.scene.c_str(), IntegratorTypeName(c.type), mean, se, lo, hi);
-    if (c.type == T::kPathMats) {
-      EXPECT_GE(mean, 0.7);
-      EXPECT_LT(mean, 1.0);
+    const std::string name = c.scene + " " + IntegratorTypeName(c.type);
+    std::printf("%s %dx%d: estimate/true over 8 seeds: mean %.3f +- %.3f (range %.3f-%.3f)\n",
+                name.c_str(), c.width, c.height, mean, se, lo, hi);
+    if (c.pixels == P::kHeavyTailed) {
+      EXPECT_GE(mean, 0.7) << name;
+      EXPECT_LT(mean, 1.0) << name;
     } else {
-      EXPECT_LT(std::fabs(mean - 1), 4 * se) << IntegratorTypeName(c.type);
-      EXPECT_LT(std::fabs(mean - 1), 0.1) << IntegratorTypeName(c.type);
+      EXPECT_LT(std::fabs(mean - 1), 4 * se) << name;
+      EXPECT_LT(std::fabs(mean - 1), 0.1) << name;
     }
   }
 }
