@@ -1,6 +1,8 @@
 // RenderSetup: BVH -> BVH8 -> triangle rows -> kernel table, built once per scene.
 #include "simd/render_setup.h"
 
+#include <chrono>
+
 #include "engine/bvh/scene_bvh.h"
 #include "engine/core/check.h"
 #include "engine/core/memory.h"
@@ -14,13 +16,21 @@ KernelChoice ChooseKernels(bool scalar) {
 }
 
 RenderSetup::RenderSetup(const Scene& scene, KernelChoice choice) : choice_(choice) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  auto start = Clock::now();
   bvh_ = BuildSceneBvh(scene);
+  bvh_seconds_ = seconds_since(start);
   peak_after_bvh_ = PeakResidentBytes();
   oracle_ = OracleWavefrontKernels(bvh_);
   if (packets()) {
+    start = Clock::now();
     bvh8_ = simd::BuildBvh8(bvh_);
     rows_ = simd::BuildTriangleRows(scene);
     simd_ = simd::SimdWavefrontKernels(bvh8_, rows_);
+    bvh8_seconds_ = seconds_since(start);
   }
   peak_after_bvh8_ = PeakResidentBytes();
 }

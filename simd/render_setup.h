@@ -59,6 +59,9 @@ class RenderSetup {
   /// Peak resident bytes of the process after each build step (getrusage's peak only grows).
   uint64_t peak_after_bvh() const { return peak_after_bvh_; }
   uint64_t peak_after_bvh8() const { return peak_after_bvh8_; }
+  /// Wall seconds of the build steps: the BVH; the BVH8 and triangle rows (0 with kOracle).
+  double bvh_seconds() const { return bvh_seconds_; }
+  double bvh8_seconds() const { return bvh8_seconds_; }
 
  private:
   KernelChoice choice_;
@@ -67,6 +70,7 @@ class RenderSetup {
   simd::TriangleRows rows_;
   WavefrontKernels oracle_, simd_;
   uint64_t peak_after_bvh_ = 0, peak_after_bvh8_ = 0;
+  double bvh_seconds_ = 0, bvh8_seconds_ = 0;
 };
 
 /// Render(scene, setup.bvh(), options) with options.kernels = the setup's chosen table.

@@ -348,8 +348,9 @@ TEST(BdptStrategies, SumToTheBdptImage) {
   for (size_t k = 0; k < parts.size(); ++k) {
     double mass = 0;
     for (float v : parts[k].image.rgb) mass += v;
-    if (mass > 1e-3 * r.image.width * r.image.height)
+    if (mass > 1e-3 * r.image.width * r.image.height) {
       EXPECT_GT(mismatches(k), 0) << "s" << parts[k].s << "_t" << parts[k].t;
+    }
   }
 }
 

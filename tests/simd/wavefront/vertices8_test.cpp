@@ -228,7 +228,9 @@ void ExpectSameAsOracle(const Scene& scene, const VertexBatchRules& rules, const
   // The path state, every path (those not in the batch untouched by both; with Sobol' no
   // stream moves).
   EXPECT_TRUE(want.sampler == got.sampler);
-  if (rules.sobol) EXPECT_TRUE(got.sampler == wave.sampler);
+  if (rules.sobol) {
+    EXPECT_TRUE(got.sampler == wave.sampler);
+  }
   EXPECT_TRUE(SameBytes(want.throughput, got.throughput));
   EXPECT_TRUE(SameBytes(want.nee_throughput, got.nee_throughput));
   // What the batch draws and picks is finite: numbers in [0, 1), pick probabilities in (0, 1].

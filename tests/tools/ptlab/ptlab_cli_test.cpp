@@ -157,6 +157,35 @@ TEST(PtlabCli, StatsReportsStagesAndPackets) {
   EXPECT_NEAR(double(oracle.packets), double(s.packets), 1e-3 * double(s.packets));
 }
 
+// --stats: the load line (scene files, BVH, BVH8 and rows) adds up, and the oracle's kernels
+// build no BVH8.
+TEST(PtlabCli, StatsReportsLoadTimes) {
+  const fs::path dir = TempDir("cli_stats_load");
+  const std::string render = "render " + kScenes + "/cbox.xml -o " + (dir / "c.exr").string() +
+                             " --spp 1 --width 32 --height 24 -q --stats";
+  for (const char* flag : {"", " --scalar"}) {
+    ASSERT_EQ(RunPtlab(render + flag, dir / "log"), 0) << ReadFile(dir / "log");
+    const std::string log = ReadFile(dir / "log");
+    const size_t at = log.find("stats: load");
+    ASSERT_NE(at, std::string::npos) << log;
+    double total = -1, files = -1, bvh = -1, bvh8 = -1;
+    ASSERT_EQ(std::sscanf(log.c_str() + at,
+                          "stats: load %lf s: scene files %lf s (parse, meshes, textures), BVH "
+                          "%lf s, BVH8 and triangle rows %lf s",
+                          &total, &files, &bvh, &bvh8),
+              4)
+        << log;
+    EXPECT_GT(files, 0);
+    EXPECT_GE(bvh, 0);
+    EXPECT_NEAR(total, files + bvh + bvh8, 2e-3);  // each printed to 1 ms
+    if (std::string(flag).empty()) {
+      EXPECT_GE(bvh8, 0);
+    } else {
+      EXPECT_EQ(bvh8, 0);
+    }
+  }
+}
+
 // The memory line of --stats: MiB of the scene (and its parts), the BVHs, the triangle rows,
 // the wavefronts and the film; their sum; the peak RSS.
 struct MemoryLine {
