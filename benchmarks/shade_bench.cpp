@@ -324,10 +324,10 @@ BENCHMARK_TEMPLATE(BM_Shade8_Microfacet, true)->Name("BM_Shade8_Microfacet/simd"
 
 // principled: Mitsuba's principled BSDF per sample (eval + pdf at a light direction and a
 // sample), one table per case: range 0 an opaque dielectric/metal mix with clearcoat and sheen,
-// 1 a rough glass (specular transmission 1), 2 every parameter random; the directions and
-// numbers of the inputs above.
+// 1 a rough glass (specular transmission 1), 2 every parameter random, 3 principledthin with
+// every parameter random (diff_trans in [0, 2]); the directions and numbers of the inputs above.
 struct PrincipledInputs {
-  MaterialTables tables[3];
+  MaterialTables tables[4];
   std::vector<uint32_t> index;
   PrincipledInputs() {
     Pcg32 rng(8, 88);
@@ -344,6 +344,8 @@ struct PrincipledInputs {
       mixed.value[kPrincipledEta] = 1.2f + 0.6f * rng.NextFloat();
       tables[0].AddPrincipled(opaque), tables[1].AddPrincipled(glass);
       tables[2].AddPrincipled(mixed);
+      mixed.value[kPrincipledDiffTrans] = 2.0f * rng.NextFloat();
+      tables[3].AddPrincipled(mixed, /*thin=*/true);
     }
     for (size_t i = 0; i < kBatch; ++i) index.push_back(uint32_t(rng.NextFloat() * 64) % 64);
   }
@@ -354,16 +356,17 @@ void BM_Shade8_Principled(benchmark::State& state) {
   const Inputs& in = GetInputs();
   static const PrincipledInputs pr;
   const int c = int(state.range(0));
-  const char* labels[] = {"opaque", "glass", "random"};
+  const char* labels[] = {"opaque", "glass", "random", "thin_random"};
   state.SetLabel(labels[c]);
+  const MaterialTag tag = c < 3 ? MaterialTag::kPrincipled : MaterialTag::kPrincipledThin;
   Outputs out;
   const ShadeOutputs o = out.Shade();
   for (auto _ : state) {
     if (kSimd) {
-      simd::ShadeBatch(pr.tables[c], MaterialTag::kPrincipled, pr.index.data(), kBatch,
+      simd::ShadeBatch(pr.tables[c], tag, pr.index.data(), kBatch,
                        in.Shade(), o);
     } else {
-      ptlab::ShadeBatch(pr.tables[c], MaterialTag::kPrincipled, pr.index.data(), kBatch,
+      ptlab::ShadeBatch(pr.tables[c], tag, pr.index.data(), kBatch,
                         in.Shade(), o);
     }
     benchmark::DoNotOptimize(out.v[10].data());
@@ -374,8 +377,8 @@ void BM_Shade8_Principled(benchmark::State& state) {
 
 BENCHMARK_TEMPLATE(BM_Shade8_Principled, false)
     ->Name("BM_Shade8_Principled/scalar")
-    ->DenseRange(0, 2);
-BENCHMARK_TEMPLATE(BM_Shade8_Principled, true)->Name("BM_Shade8_Principled/simd")->DenseRange(0, 2);
+    ->DenseRange(0, 3);
+BENCHMARK_TEMPLATE(BM_Shade8_Principled, true)->Name("BM_Shade8_Principled/simd")->DenseRange(0, 3);
 
 }  // namespace
 }  // namespace ptlab

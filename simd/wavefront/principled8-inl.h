@@ -1,16 +1,16 @@
 // The principled and principledthin tags' batches in the SIMD shading stage (re-included once
-// per Highway target). principled has its 8-wide twin (ShadePrincipled: eval, pdf and sample
-// of every lobe, the lobes in principled_lobes8-inl.h, textured parameters gathered as
-// TexturedColor8 / TexturedFloat8); principledthin has none yet: its rows go through the scalar
-// oracle (engine/bsdf/principled_thin.h via ptlab::ShadeBatch), exactly the oracle's.
+// per Highway target): their 8-wide twins, ShadePrincipled and ShadePrincipledThin (eval, pdf
+// and sample of every lobe; the lobes in principled_lobes8-inl.h and principled_thin8-inl.h;
+// textured parameters gathered as TexturedColor8 / TexturedFloat8, then PrincipledAt's clamps).
 //
-// How close the twin is to the oracle (tests/simd/wavefront/principled8_test.cpp holds every
-// target to it): f and pdf(wo, wl) repeat the oracle's IEEE operations in its order, so they
-// differ only through hwy's Log in the clearcoat's GTR1 D (an ulp of log α², ≤ 2e-5
-// relative); a sample's lobe choice and direction go through hwy's Sin/Cos (the GGX visible
-// normal, the cosine warp, GTR1's azimuth) and Exp·Log for GTR1's std::pow, so wi moves by a
-// few 1e-7 (more where GTR1's 1 − α^(2(1 − u.y)) cancels, u.y → 1), and its pdf and weight by
-// what that moves (see the test's contract).
+// How close the twins are to the oracle (tests/simd/wavefront/principled8_test.cpp holds every
+// target to it): f and pdf(wo, wl) repeat the oracle's IEEE operations in its order, so
+// principledthin's are bit-identical and principled's differ only through hwy's Log in the
+// clearcoat's GTR1 D (an ulp of log α²; measured ≤ 2.3e-7 relative). A sample's direction
+// goes through hwy's Sin/Cos (the GGX visible normal, the cosine warp, GTR1's azimuth) and
+// Exp·Log for GTR1's std::pow: wi within 5e-5, more where those samplers cancel (u_x → 1,
+// u_y → 1, the concentric disk's rim), and the sample's pdf and weight are the oracle's at
+// that wi within 2e-5 relative.
 
 #if defined(PTLAB_SIMD_PRINCIPLED8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_PRINCIPLED8_INL_H_
@@ -27,6 +27,7 @@
 #include "engine/wavefront/bsdf.h"
 #include "hwy/highway.h"
 #include "simd/wavefront/principled_lobes8-inl.h"
+#include "simd/wavefront/principled_thin8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -35,9 +36,10 @@ namespace pr8 {
 
 /// PrincipledAt for rows [i, i + Lanes): each parameter its constant or (the rows whose texture
 /// column names one) its texture at the row's shading point, then PrincipledAt's clamps.
+/// `thin`: also diff_trans (principledthin's only).
 HWY_INLINE PrincipledLanes GatherPrincipled(D8 d, const PrincipledTable& t,
                                             const ShadeInputs::Textures& tex, const ShadeIo& b,
-                                            size_t i) {
+                                            size_t i, bool thin = false) {
   const bool textures = tex.textures != nullptr;
   const V8 zero = hn::Zero(d);
   PrincipledLanes p;
@@ -56,7 +58,7 @@ HWY_INLINE PrincipledLanes GatherPrincipled(D8 d, const PrincipledTable& t,
   };
   const auto unit = [&](PrincipledParam k) HWY_ATTR { return Clamp(d, value(k), 0.0f, 1.0f); };
   p.roughness = unit(kPrincipledRoughness);
-  const V8 anisotropic = unit(kPrincipledAnisotropic);
+  p.anisotropic = unit(kPrincipledAnisotropic);
   p.metallic = unit(kPrincipledMetallic);
   p.spec_tint = unit(kPrincipledSpecTint);
   p.sheen = unit(kPrincipledSheen);
@@ -65,12 +67,44 @@ HWY_INLINE PrincipledLanes GatherPrincipled(D8 d, const PrincipledTable& t,
   p.clearcoat_gloss = unit(kPrincipledClearcoatGloss);
   p.spec_trans = unit(kPrincipledSpecTrans);
   p.flatness = unit(kPrincipledFlatness);
+  p.diff_trans = thin ? hn::Mul(hn::Set(d, 0.5f), Clamp(d, value(kPrincipledDiffTrans), 0.0f, 2.0f))
+                      : zero;
   p.eta = Clamp(d, value(kPrincipledEta), 1e-4f, 1e4f);
-  p.dist = Distribution(d, p.roughness, anisotropic);
+  p.dist = Distribution(d, p.roughness, p.anisotropic);
   return p;
 }
 
 }  // namespace pr8
+
+/// PrincipledThinEvalPdf / PrincipledThinSample for rows of MaterialTables::principled_thin.
+inline void ShadePrincipledThin(const PrincipledTable& t, const ShadeInputs::Textures& tex,
+                                const ShadeIo& io, size_t n, bool eval, bool sample) {
+  ForEachBlock(io, n, [&t, &tex, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const pr8::PrincipledLanes p = pr8::GatherPrincipled(d, t, tex, b, i, /*thin=*/true);
+    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+    if (eval) {
+      const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
+      V8 fr, fg, fb;
+      const V8 pdf_l = pr8::ThinEvalPdf(d, p, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      StoreEval(d, b, i, fr, fg, fb, pdf_l);
+    }
+    if (!sample) return;
+    V8 ix, iy, iz;
+    M8 ok = pr8::ThinSampleDirection(d, p, ox, oy, oz, In(d, b, kULobe, i), In(d, b, kUX, i),
+                                     In(d, b, kUY, i), &ix, &iy, &iz);
+    ix = hn::IfThenElseZero(ok, ix), iy = hn::IfThenElseZero(ok, iy);
+    iz = hn::IfThenElse(ok, iz, one);
+    V8 fr, fg, fb;
+    const V8 pdf = pr8::ThinEvalPdf(d, p, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
+    const V8 cos_over_pdf = hn::Div(hn::Abs(iz), pdf);
+    const V8 wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
+             wb = hn::Mul(fb, cos_over_pdf);
+    ok = hn::And(ok, hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
+    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
+  });
+}
 
 /// PrincipledEvalPdf / PrincipledSample for rows of MaterialTables::principled.
 inline void ShadePrincipled(const PrincipledTable& t, const ShadeInputs::Textures& tex,
@@ -170,13 +204,11 @@ inline void ShadePrincipled(const PrincipledTable& t, const ShadeInputs::Texture
   });
 }
 
-/// ShadeBatch for tag kPrincipled (ShadePrincipled) or kPrincipledThin (the scalar oracle over
-/// the n rows, their texture sites from in.texture); two-sided rows are already mirrored by the
-/// caller.
+/// ShadeBatch for tag kPrincipled (ShadePrincipled) or kPrincipledThin (ShadePrincipledThin),
+/// texture sites from in.texture; two-sided rows are already mirrored by the caller.
 inline void ShadePrincipledRows(const MaterialTables& m, MaterialTag tag,
                                 const uint32_t* material_index, size_t n, const ShadeInputs& in,
                                 const ShadeOutputs& out) {
-  if (tag != MaterialTag::kPrincipled) return ptlab::ShadeBatch(m, tag, material_index, n, in, out);
   const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
   ShadeIo io;
   io.index = material_index;
@@ -193,8 +225,9 @@ inline void ShadePrincipledRows(const MaterialTables& m, MaterialTag tag,
     io.out[kWR] = out.weight.r, io.out[kWG] = out.weight.g, io.out[kWB] = out.weight.b;
     io.out[kPdf] = out.pdf, io.out[kEta] = out.eta;
   }
-  // out.delta: principled has no delta lobe; ShadeBatchKernelInFrame has filled it with 0.
-  ShadePrincipled(m.principled, in.texture, io, n, eval, sample);
+  // out.delta: neither model has a delta lobe; ShadeBatchKernelInFrame has filled it with 0.
+  if (tag == MaterialTag::kPrincipled) return ShadePrincipled(m.principled, in.texture, io, n, eval, sample);
+  ShadePrincipledThin(m.principled_thin, in.texture, io, n, eval, sample);
 }
 
 }  // namespace HWY_NAMESPACE

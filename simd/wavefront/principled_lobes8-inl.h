@@ -27,8 +27,8 @@ namespace pr8 {
 /// GGX distribution PrincipledDistribution makes of them.
 struct PrincipledLanes {
   V8 base_r, base_g, base_b;
-  V8 roughness, metallic, spec_tint, sheen, sheen_tint, clearcoat, clearcoat_gloss, spec_trans,
-      flatness, eta;
+  V8 roughness, anisotropic, metallic, spec_tint, sheen, sheen_tint, clearcoat, clearcoat_gloss,
+      spec_trans, flatness, diff_trans, eta;
   mf8::Dist8 dist;
 };
 

@@ -12,6 +12,7 @@
 
 #include "engine/bsdf/bsdf.h"
 #include "engine/bsdf/principled.h"
+#include "engine/bsdf/principled_thin.h"
 #include "engine/core/rng.h"
 #include "engine/wavefront/bsdf.h"
 #include "simd/wavefront/bsdf8.h"
@@ -93,8 +94,13 @@ struct Out {
 };
 
 struct Fixture {
+  MaterialTag tag = MaterialTag::kPrincipled;  // or kPrincipledThin: the rows are in both
   Scene scene;  // only its textures
   MaterialTables m;
+  const PrincipledTable& table() const {
+    return tag == MaterialTag::kPrincipled ? m.principled : m.principled_thin;
+  }
+  void Add(const PrincipledRow& row) { m.AddPrincipled(row), m.AddPrincipled(row, true); }
   std::vector<SurfaceInteraction> its;
   Rows rows;
   ShadeInputs In() const {
@@ -127,9 +133,10 @@ void AddRows(Fixture* fx) {
     PrincipledRow row;
     row.base_color = {rng.NextFloat(), rng.NextFloat(), i % 9 == 0 ? 0.0f : rng.NextFloat()};
     for (int k = 0; k < kPrincipledDiffTrans; ++k) row.value[k] = unit(i, k);
+    row.value[kPrincipledDiffTrans] = 2.0f * unit(i, kPrincipledDiffTrans);
     const float eta = 1.0f + 1.5f * rng.NextFloat();
     row.value[kPrincipledEta] = i % 5 == 0 ? 1.0f / eta : eta;
-    fx->m.AddPrincipled(row);
+    fx->Add(row);
   }
   const float etas[] = {1.0f, 1.0f + 1e-6f, 1.5f, 1.0f / 1.5f, 1e-30f, 1e30f};
   for (float roughness : {0.0f, 1e-3f, 0.05f, 0.5f, 1.0f})
@@ -148,7 +155,8 @@ void AddRows(Fixture* fx) {
           row.value[kPrincipledClearcoatGloss] = roughness;
           row.value[kPrincipledFlatness] = spec_trans;
           row.value[kPrincipledEta] = eta;
-          fx->m.AddPrincipled(row);
+          row.value[kPrincipledDiffTrans] = 2.0f * metallic;  // principledthin's
+          fx->Add(row);
         }
   for (int i = 0; i < 12; ++i) {
     PrincipledRow row;
@@ -159,14 +167,15 @@ void AddRows(Fixture* fx) {
     row.texture[kPrincipledClearcoat] = bitmap;
     row.texture[kPrincipledSheen] = i % 2 ? kNoTexture : face;
     row.texture[kPrincipledAnisotropic] = i % 3 == 1 ? bitmap : kNoTexture;
+    row.texture[kPrincipledDiffTrans] = i % 2 ? face : kNoTexture;
     row.value[kPrincipledEta] = 1.0f + 0.1f * float(i);
-    fx->m.AddPrincipled(row);
+    fx->Add(row);
   }
 }
 
 void AddInputs(Fixture* fx, size_t random_count) {
   Pcg32 rng(23, 9);
-  const uint32_t rows = uint32_t(fx->m.principled.size());
+  const uint32_t rows = uint32_t(fx->table().size());
   for (size_t i = 0; i < random_count; ++i) {
     const uint32_t row = std::min(rows - 1, uint32_t(rng.NextFloat() * rows));
     Vec3f wo = bsdf_test::RandomUpperDirection(rng);
@@ -195,9 +204,13 @@ void AddInputs(Fixture* fx, size_t random_count) {
 // The smallest roughness of row i's lobes at its shading point.
 float AlphaMin(const Fixture& fx, size_t i) {
   const PrincipledParams p =
-      PrincipledAt(fx.m.principled, fx.rows.index[i], RowTextureSite(fx.In().texture, i));
+      PrincipledAt(fx.table(), fx.rows.index[i], RowTextureSite(fx.In().texture, i));
   const Microfacet d = principled_internal::PrincipledDistribution(p.roughness, p.anisotropic);
   float a = std::min(d.alpha_u, d.alpha_v);
+  if (fx.tag == MaterialTag::kPrincipledThin) {
+    const Microfacet t = principled_internal::ThinTransmissionDistribution(p);
+    return std::min(a, std::min(t.alpha_u, t.alpha_v));
+  }
   if (p.clearcoat > 0) a = std::min(a, principled_internal::ClearcoatAlpha(p.clearcoat_gloss));
   return a;
 }
@@ -225,7 +238,7 @@ double WiBound(const Rows& r, size_t i) {
 // (valid) its wi within 5e-5 (the row sits on a lobe boundary).
 bool NearLobeBoundary(const Fixture& fx, size_t i, bool valid, const Out& o1) {
   const Rows& r = fx.rows;
-  const MaterialRef ref = MaterialRef::Make(MaterialTag::kPrincipled, r.index[i]);
+  const MaterialRef ref = MaterialRef::Make(fx.tag, r.index[i]);
   const Vec3f wo{r.wo[0][i], r.wo[1][i], r.wo[2][i]};
   for (float du : {-1e-4f, 1e-4f}) {
     BsdfSample s;
@@ -244,7 +257,7 @@ std::string Describe(const Fixture& fx, const Out& o0, const Out& o1, size_t i) 
   const Rows& r = fx.rows;
   char buf[1024];
   const PrincipledParams p =
-      PrincipledAt(fx.m.principled, r.index[i], RowTextureSite(fx.In().texture, i));
+      PrincipledAt(fx.table(), r.index[i], RowTextureSite(fx.In().texture, i));
   std::snprintf(buf, sizeof(buf),
                 "; row %u (rough %g aniso %g metal %g st %g cc %g gloss %g eta %g) wo (%a, %a, "
                 "%a) u (%a, %a, %a); oracle wi (%g %g %g) pdf %g w %g; simd wi (%g %g %g) pdf "
@@ -258,7 +271,7 @@ std::string Describe(const Fixture& fx, const Out& o0, const Out& o1, size_t i) 
 
 void Compare(const Fixture& fx, const Out& o0, const Out& o1, const char* target) {
   const Rows& r = fx.rows;
-  const std::string name = "principled";
+  const std::string name = fx.tag == MaterialTag::kPrincipled ? "principled" : "principledthin";
   Bound f{name + " f"}, pl{name + " pdf(wo,wl)"}, wi{name + " wi"}, pdf{name + " sample pdf"},
       w{name + " sample weight"}, own_pdf{name + " sample pdf at its wi"},
       own_w{name + " sample weight at its wi"};
@@ -298,7 +311,7 @@ void Compare(const Fixture& fx, const Out& o0, const Out& o1, const char* target
     // The SIMD's sample is one of the oracle's model: its pdf and weight are the oracle's
     // at the SIMD's wi (the same operations as f and pdf(wo, wl) above).
     {
-      const MaterialRef ref = MaterialRef::Make(MaterialTag::kPrincipled, r.index[i]);
+      const MaterialRef ref = MaterialRef::Make(fx.tag, r.index[i]);
       const Vec3f wo{r.wo[0][i], r.wo[1][i], r.wo[2][i]};
       const Vec3f w1{o1.v[4][i], o1.v[5][i], o1.v[6][i]};
       const TextureSite site = RowTextureSite(fx.In().texture, i);
@@ -315,12 +328,12 @@ void Compare(const Fixture& fx, const Out& o0, const Out& o1, const char* target
     EXPECT_EQ(o1.v[11][i], o0.v[11][i]) << name << " eta at " << i;
     const bool refraction = o0.v[6][i] * r.wo[2][i] < 0;
     refracted += refraction;
-    if (!fx.m.principled.base_color_texture.empty() &&
-        fx.m.principled.base_color_texture[r.index[i]] != kNoTexture)
+    if (!fx.table().base_color_texture.empty() &&
+        fx.table().base_color_texture[r.index[i]] != kNoTexture)
       ++textured;
     // Grazing rows and near pass-through refraction: finiteness only (see the contract).
     if (std::fabs(r.wo[2][i]) < 0.02f || std::fabs(o1.v[6][i]) < 0.02f) continue;
-    if (refraction) {
+    if (refraction && fx.tag == MaterialTag::kPrincipled) {  // thin: η = 1, no bending
       const float eta = o0.v[11][i];
       const Vec3f sum{r.wo[0][i] + eta * o0.v[4][i], r.wo[1][i] + eta * o0.v[5][i],
                       r.wo[2][i] + eta * o0.v[6][i]};
@@ -333,9 +346,9 @@ void Compare(const Fixture& fx, const Out& o0, const Out& o1, const char* target
     for (int c = 7; c < 10; ++c) w.Check(i, o1.v[c][i], o0.v[c][i], rel, 1e-20);
   }
   for (const Bound* b : {&f, &pl, &own_pdf, &own_w, &wi, &pdf, &w}) b->Report(target, r);
-  std::printf("[%s] principled samples: valid %zu, refracted %zu, textured %zu, conditioned %zu, "
+  std::printf("[%s] %s samples: valid %zu, refracted %zu, textured %zu, conditioned %zu, "
               "on a boundary %zu (on the disk's rim %zu), wi bound > 1e-3 %zu\n",
-              target, valid, refracted, textured, conditioned, mismatched, rim_flips, rim);
+              target, name.c_str(), valid, refracted, textured, conditioned, mismatched, rim_flips, rim);
   EXPECT_LT(mismatched, r.size() / 200) << name;
   EXPECT_LT(rim_flips, r.size() / 20) << name;
   EXPECT_GT(valid, r.size() / 5) << name;
@@ -344,36 +357,48 @@ void Compare(const Fixture& fx, const Out& o0, const Out& o1, const char* target
   EXPECT_GT(conditioned, valid / 3) << name;
 }
 
-TEST(Principled8, ShadeBatchMatchesOracleOnEveryTarget) {
+void CheckAgainstOracle(MaterialTag tag) {
   Fixture fx;
+  fx.tag = tag;
   AddRows(&fx);
   AddInputs(&fx, size_t(1) << 16);
   const ShadeInputs in = fx.In();
   const size_t n = fx.rows.size();
   Out o0(n);
-  ptlab::ShadeBatch(fx.m, MaterialTag::kPrincipled, fx.rows.index.data(), n, in, o0.Outputs());
+  ptlab::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, in, o0.Outputs());
   test::ForEachTarget(simd::ShadeTargetName, [&](const char* target) {
     Out o1(n);
-    simd::ShadeBatch(fx.m, MaterialTag::kPrincipled, fx.rows.index.data(), n, in, o1.Outputs());
+    simd::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, in, o1.Outputs());
     Compare(fx, o0, o1, target);
   });
 }
 
+TEST(Principled8, ShadeBatchMatchesOracleOnEveryTarget) {
+  CheckAgainstOracle(MaterialTag::kPrincipled);
+}
+
+TEST(Principled8, ThinShadeBatchMatchesOracleOnEveryTarget) {
+  CheckAgainstOracle(MaterialTag::kPrincipledThin);
+}
+
 // Evaluation alone (no sample inputs) and a partial last block give the rows of a full run.
 TEST(Principled8, EvalOnlyAndPartialBlocksMatchFullRuns) {
-  Fixture fx;
-  AddRows(&fx);
-  AddInputs(&fx, 1000);
-  ShadeInputs in = fx.In();
-  const size_t n = 1003;  // not a multiple of 8
-  Out full(n), part(n);
-  simd::ShadeBatch(fx.m, MaterialTag::kPrincipled, fx.rows.index.data(), n, in, full.Outputs());
-  in.u_lobe = in.u_x = in.u_y = nullptr;
-  ShadeOutputs o = part.Outputs();
-  simd::ShadeBatch(fx.m, MaterialTag::kPrincipled, fx.rows.index.data(), n, in, o);
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 4; ++c) ASSERT_EQ(part.v[c][i], full.v[c][i]) << c << " " << i;
-  for (size_t i = 0; i < n; ++i) ASSERT_EQ(part.v[10][i], -7.0f) << "sample written at " << i;
+  for (MaterialTag tag : {MaterialTag::kPrincipled, MaterialTag::kPrincipledThin}) {
+    Fixture fx;
+    fx.tag = tag;
+    AddRows(&fx);
+    AddInputs(&fx, 1000);
+    ShadeInputs in = fx.In();
+    const size_t n = 1003;  // not a multiple of 8
+    Out full(n), part(n);
+    simd::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, in, full.Outputs());
+    in.u_lobe = in.u_x = in.u_y = nullptr;
+    ShadeOutputs o = part.Outputs();
+    simd::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, in, o);
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(part.v[c][i], full.v[c][i]) << c << " " << i;
+    for (size_t i = 0; i < n; ++i) ASSERT_EQ(part.v[10][i], -7.0f) << "sample written at " << i;
+  }
 }
 
 }  // namespace
