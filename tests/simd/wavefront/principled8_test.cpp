@@ -381,6 +381,34 @@ TEST(Principled8, ThinShadeBatchMatchesOracleOnEveryTarget) {
   CheckAgainstOracle(MaterialTag::kPrincipledThin);
 }
 
+// Non-unit, huge, denormal and zero directions (outside the preconditions): every output of
+// every target finite, f, pdf and weight ≥ 0.
+TEST(Principled8, NonUnitAndHugeInputsStayFinite) {
+  for (MaterialTag tag : {MaterialTag::kPrincipled, MaterialTag::kPrincipledThin}) {
+    Fixture fx;
+    fx.tag = tag;
+    AddRows(&fx);
+    const std::vector<Vec3f> dirs = bsdf_test::HardDirections(/*with_non_unit=*/true);
+    const std::vector<float> us = bsdf_test::HardUs();
+    const uint32_t rows = uint32_t(fx.table().size());
+    for (uint32_t row = 0; row < rows; row += 2)
+      for (size_t a = dirs.size() - 4; a < dirs.size(); ++a)
+        for (size_t j = 0; j < dirs.size(); j += 3)
+          fx.rows.Push(row, dirs[a], dirs[j], us[j % us.size()], us[(j + a) % us.size()],
+                       us[(3 * j + a) % us.size()]);
+    fx.its.resize(fx.rows.size());
+    const size_t n = fx.rows.size();
+    test::ForEachTarget(simd::ShadeTargetName, [&](const char* target) {
+      Out o(n);
+      simd::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, fx.In(), o.Outputs());
+      for (size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < 12; ++c) ASSERT_TRUE(std::isfinite(o.v[c][i])) << target << " " << i;
+        for (int c : {0, 1, 2, 3, 7, 8, 9, 10}) ASSERT_GE(o.v[c][i], 0.0f) << target << " " << i;
+      }
+    });
+  }
+}
+
 // Evaluation alone (no sample inputs) and a partial last block give the rows of a full run.
 TEST(Principled8, EvalOnlyAndPartialBlocksMatchFullRuns) {
   for (MaterialTag tag : {MaterialTag::kPrincipled, MaterialTag::kPrincipledThin}) {
