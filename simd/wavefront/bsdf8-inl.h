@@ -733,7 +733,7 @@ HWY_AFTER_NAMESPACE();
 // matA: the Mitsuba microfacet models, each in its own -inl file.
 #include "simd/wavefront/rough_conductor8-inl.h"
 #include "simd/wavefront/rough_dielectric8-inl.h"
-// principled: principled and principledthin (through the oracle for now).
+// principled: principled and principledthin.
 #include "simd/wavefront/principled8-inl.h"
 // mask: Mitsuba's `mask`.
 #include "simd/wavefront/mask8-inl.h"

@@ -377,7 +377,9 @@ size_t RowCount(const MaterialTables& m, MaterialTag tag) {
       return m.mask.size();
     case MaterialTag::kRoughDielectric:  // matA
       return m.rough_dielectric.size();
-    case MaterialTag::kPrincipled:  // principled
+    // principled: AddMaterialRows adds none (0 rows: skipped here); the twin has its own test
+    // and contract (principled8_test.cpp: refraction, eta ≠ 1, sampler cancellations).
+    case MaterialTag::kPrincipled:
       return m.principled.size();
     case MaterialTag::kPrincipledThin:
       return m.principled_thin.size();
