@@ -15,7 +15,4 @@ namespace ptlab::simd {
 void PerturbedFrameBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
                          size_t n, const ShadeInputs& in, float* const frame[9]);
 
-/// Name of the Highway target PerturbedFrameBatch dispatches to now.
-const char* PerturbedFrame8TargetName();
-
 }  // namespace ptlab::simd

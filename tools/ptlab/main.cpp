@@ -41,6 +41,7 @@
 #include "engine/io/scene_file.h"
 #include "engine/io/xml_loader.h"
 #include "simd/bvh8.h"
+#include "simd/dispatched_target.h"
 #include "simd/traverse8.h"
 #include "simd/render_setup.h"
 #include "engine/render/bdpt.h"
@@ -515,7 +516,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   const std::string traversal = setup.TraversalName();
   if (mpi.root()) std::fprintf(stderr, "ptlab: traversal: %s\n",
                setup.packets() ? ("8-wide packets, Highway target " +
-                                  std::string(simd::Traverse8TargetName())).c_str()
+                                  std::string(simd::DispatchedTargetName())).c_str()
                                : "scalar oracle kernels (one ray at a time)");
   std::signal(SIGINT, OnInterrupt);
   std::signal(SIGTERM, OnInterrupt);
@@ -612,7 +613,7 @@ int main(int argc, char** argv) {
   ptlab::CommandLine cl;
   CLI::App& app = cl.app;
   ptlab::DefineCommandLine(&cl, std::string("ptlab 0.1 (traversal: Highway ") +
-                                    ptlab::simd::Traverse8TargetName() + ")");
+                                    ptlab::simd::DispatchedTargetName() + ")");
   const ptlab::RenderArgs& render = cl.render;
   CLI::App* cmd = cl.render_cmd;
   CLI::App* converge_cmd = cl.converge_cmd;
