@@ -1,5 +1,5 @@
 // normal: vectorized perturbed shading frames (plain API), the SIMD twin of
-// engine/wavefront/perturbed_frame_batch.h.
+// engine/wavefront/perturbed_frame.h.
 #pragma once
 
 #include <cstddef>

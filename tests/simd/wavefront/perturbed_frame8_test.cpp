@@ -13,7 +13,7 @@
 
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/wavefront/bsdf.h"
-#include "engine/wavefront/perturbed_frame_batch.h"
+#include "engine/wavefront/perturbed_frame.h"
 #include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/wavefront/bsdf8.h"
