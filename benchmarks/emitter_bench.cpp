@@ -11,6 +11,7 @@
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
 #include "engine/light/area_light.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/area_request8.h"
 #include "simd/wavefront/area_light8.h"
 #include "tests/simd/area_request_rows.h"
@@ -22,7 +23,7 @@ namespace {
 constexpr size_t kBatch = 2048;
 
 const bool kContext = [] {
-  benchmark::AddCustomContext("highway_target", simd::Emitter8TargetName());
+  benchmark::AddCustomContext("highway_target", simd::DispatchedTargetName());
   benchmark::AddCustomContext("batch", std::to_string(kBatch));
   return true;
 }();

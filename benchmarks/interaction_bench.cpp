@@ -11,6 +11,7 @@
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
 #include "engine/render/interaction.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/interaction8.h"
 
 namespace ptlab {
@@ -20,7 +21,7 @@ namespace {
 constexpr size_t kPackets = 256;
 
 const bool kContext = [] {
-  benchmark::AddCustomContext("highway_target", simd::Interaction8TargetName());
+  benchmark::AddCustomContext("highway_target", simd::DispatchedTargetName());
   benchmark::AddCustomContext("hits", std::to_string(kPackets * kPacketWidth));
   return true;
 }();

@@ -13,6 +13,7 @@
 #include "engine/wavefront/bsdf.h"
 #include "engine/core/rng.h"
 #include "engine/sampling/warp.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 
 namespace ptlab {
@@ -22,7 +23,7 @@ namespace {
 constexpr size_t kBatch = 4096;
 
 const bool kContext = [] {
-  benchmark::AddCustomContext("highway_target", simd::ShadeTargetName());
+  benchmark::AddCustomContext("highway_target", simd::DispatchedTargetName());
   benchmark::AddCustomContext("batch", std::to_string(kBatch));
   return true;
 }();

@@ -9,6 +9,7 @@
 #include "engine/core/rng.h"
 #include "engine/render/film.h"
 #include "engine/render/filter.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/splat8.h"
 
 namespace ptlab {
@@ -55,7 +56,7 @@ void BM_Splat_Wave(benchmark::State& state) {
     benchmark::DoNotOptimize(block.sums().data());
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(wave.sx.size()));
-  state.SetLabel(kSimd ? simd::SplatTargetName() : "oracle");
+  state.SetLabel(kSimd ? simd::DispatchedTargetName() : "oracle");
 }
 
 BENCHMARK_TEMPLATE(BM_Splat_Wave, false)->Arg(0)->Arg(1);

@@ -36,6 +36,7 @@
 #include "engine/sampling/warp.h"
 #include "engine/scene/scene.h"
 #include "simd/bvh8.h"
+#include "simd/dispatched_target.h"
 #include "simd/traverse8.h"
 #include "simd/render_setup.h"
 
@@ -335,7 +336,7 @@ void Finish(benchmark::State& state, size_t rays, int64_t hits) {
               0.0, 0.0);
   state.counters["rays_per_second"] = benchmark::Counter(
       static_cast<double>(state.iterations() * rays), benchmark::Counter::kIsRate);
-  state.SetLabel(simd::Traverse8TargetName());
+  state.SetLabel(simd::DispatchedTargetName());
 }
 
 // One pass of Intersect8 or Occluded8 over a set's packets (with `options`, else each kernel's
@@ -438,7 +439,7 @@ void RunEmbreePaired(benchmark::State& state, const std::string& scene_name,
   // Hit counts as a check that both ran the same rays: watertight tests may differ on edges.
   state.counters["hits_ours"] = double(hits_ours) / double(state.iterations());
   state.counters["hits_embree"] = double(hits_embree) / double(state.iterations());
-  state.SetLabel(simd::Traverse8TargetName());
+  state.SetLabel(simd::DispatchedTargetName());
 }
 #endif
 
@@ -459,7 +460,7 @@ void RunCollapsePaired(benchmark::State& state, const std::string& scene_name,
       state, [&] { hits_sah += PacketPass(sah, set, occluded); },
       [&] { hits_greedy += PacketPass(greedy, set, occluded); });
   if (hits_greedy != hits_sah) state.SkipWithError("the two trees' hit counts differ");
-  state.SetLabel(simd::Traverse8TargetName());
+  state.SetLabel(simd::DispatchedTargetName());
 }
 
 void RunCase(benchmark::State& state, const std::string& scene_name, const std::string& set_name,
@@ -671,7 +672,7 @@ void RunRender(benchmark::State& state, IntegratorDesc::Type type, bool packets)
   SetCounters(state, 0.0, static_cast<double>(scene.triangles.size()), 0.0);
   state.counters["rays_per_second"] =
       benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
-  state.SetLabel(packets ? simd::Traverse8TargetName() : "scalar");
+  state.SetLabel(packets ? simd::DispatchedTargetName() : "scalar");
 }
 
 struct CaseName {
@@ -680,7 +681,7 @@ struct CaseName {
 };
 
 int RegisterAll() {
-  benchmark::AddCustomContext("highway_target", simd::Traverse8TargetName());
+  benchmark::AddCustomContext("highway_target", simd::DispatchedTargetName());
 #ifdef PTLAB_HAVE_EMBREE
   benchmark::AddCustomContext("embree", RTC_VERSION_STRING);
 #else

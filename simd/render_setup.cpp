@@ -6,6 +6,7 @@
 #include "engine/bvh/scene_bvh.h"
 #include "engine/core/check.h"
 #include "engine/core/memory.h"
+#include "simd/dispatched_target.h"
 #include "simd/traverse8.h"
 #include "simd/wavefront/kernels8.h"
 
@@ -45,7 +46,7 @@ const WavefrontKernels& RenderSetup::KernelsFor(bool scalar) const {
 }
 
 std::string RenderSetup::TraversalName() const {
-  return packets() ? std::string("packet8 ") + simd::Traverse8TargetName() : std::string("scalar");
+  return packets() ? std::string("packet8 ") + simd::DispatchedTargetName() : std::string("scalar");
 }
 
 RenderResult Render(const Scene& scene, const RenderSetup& setup, RenderOptions options) {

@@ -19,7 +19,6 @@ void Sobol1DTarget(const uint32_t* pixel_seed, const uint32_t* index, uint32_t d
                    float* x) {
   SobolKernel<false>(pixel_seed, index, dim, n, x, nullptr);
 }
-const char* SamplerTargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -32,7 +31,6 @@ namespace ptlab::simd {
 
 HWY_EXPORT(Sobol2DTarget);
 HWY_EXPORT(Sobol1DTarget);
-HWY_EXPORT(SamplerTargetNameTarget);
 
 void ScrambledSobol2DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
                            size_t n, float* x, float* y) {
@@ -42,10 +40,6 @@ void ScrambledSobol2DBatch(const uint32_t* pixel_seed, const uint32_t* index, ui
 void ScrambledSobol1DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
                            size_t n, float* x) {
   HWY_DYNAMIC_DISPATCH(Sobol1DTarget)(pixel_seed, index, dim, n, x);
-}
-
-const char* SamplerTargetName() {
-  return HWY_DYNAMIC_DISPATCH(SamplerTargetNameTarget)();
 }
 
 }  // namespace ptlab::simd

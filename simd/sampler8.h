@@ -20,7 +20,4 @@ void ScrambledSobol2DBatch(const uint32_t* pixel_seed, const uint32_t* index, ui
 void ScrambledSobol1DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
                            size_t n, float* x);
 
-/// The target the kernels dispatch to.
-const char* SamplerTargetName();
-
 }  // namespace ptlab::simd

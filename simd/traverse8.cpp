@@ -44,8 +44,6 @@ bool Intersect1Impl(const Bvh8& bvh, const Ray& ray, Hit* hit) {
 
 bool Occluded1Impl(const Bvh8& bvh, const Ray& ray) { return Occluded1Kernel(bvh, ray); }
 
-int64_t TargetImpl() { return HWY_TARGET; }
-
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
 HWY_AFTER_NAMESPACE();
@@ -63,7 +61,6 @@ HWY_EXPORT(Intersect8Impl);
 HWY_EXPORT(Occluded8Impl);
 HWY_EXPORT(Intersect1Impl);
 HWY_EXPORT(Occluded1Impl);
-HWY_EXPORT(TargetImpl);
 
 namespace {
 
@@ -335,8 +332,6 @@ void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint
     }
   }
 }
-
-const char* Traverse8TargetName() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(TargetImpl)()); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

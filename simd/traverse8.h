@@ -96,7 +96,4 @@ bool Occluded1(const Bvh8& bvh, const Ray& ray);
 void IntersectStream(const Bvh8& bvh, const Ray* rays, size_t n, Hit* hits, uint8_t* hit_mask,
                      uint32_t* scratch, const Traverse8Options& options = {});
 
-/// Name of the Highway target the dispatched kernels run on (e.g. "AVX3", "AVX2", "SSE4").
-const char* Traverse8TargetName();
-
 }  // namespace ptlab::simd

@@ -1,6 +1,6 @@
 // The Mitsuba scene builder: one function per object kind, defined by concept in
-// mitsuba_loader.cpp (scene, sensor, film, sampler, integrator), mitsuba_shapes.cpp,
-// mitsuba_bsdfs.cpp and mitsuba_emitters.cpp.
+// mitsuba_loader.cpp (scene, sampler, integrator), mitsuba_sensor.cpp (sensor, film, filter),
+// mitsuba_shapes.cpp, mitsuba_bsdfs.cpp and mitsuba_emitters.cpp.
 #pragma once
 
 #include <map>

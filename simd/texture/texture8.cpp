@@ -16,7 +16,6 @@ void EvalTextureBatchTarget(const TextureTable& t, const uint32_t* id,
                             float* b) {
   EvalTextureBatchKernel(t, id, at, n, r, g, b);
 }
-const char* Texture8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -28,15 +27,12 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(EvalTextureBatchTarget);
-HWY_EXPORT(Texture8TargetNameTarget);
 
 void EvalTextureBatch(const TextureTable& t, const uint32_t* id, const TexturePointArrays& at,
                       size_t n, float* r, float* g, float* b) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(EvalTextureBatchTarget)(t, id, at, n, r, g, b);
 }
-
-const char* Texture8TargetName() { return HWY_DYNAMIC_DISPATCH(Texture8TargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

@@ -18,7 +18,4 @@ namespace ptlab::simd {
 void EvalTextureBatch(const TextureTable& t, const uint32_t* id, const TexturePointArrays& at,
                       size_t n, float* r, float* g, float* b);
 
-/// Name of the Highway target EvalTextureBatch dispatches to now; for logs and tests.
-const char* Texture8TargetName();
-
 }  // namespace ptlab::simd

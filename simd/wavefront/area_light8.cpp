@@ -16,7 +16,6 @@ void SampleAreaLightBatchTarget(const Scene& scene, const TriangleRows& tri_rows
                                 const AreaLightBatchOutputs& out) {
   SampleAreaLightBatchKernel(scene, tri_rows, mode, n, in, out);
 }
-const char* Emitter8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -28,7 +27,6 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(SampleAreaLightBatchTarget);
-HWY_EXPORT(Emitter8TargetNameTarget);
 
 void SampleAreaLightBatch(const Scene& scene, const TriangleRows& tri_rows, TriangleSampling mode,
                           size_t n, const AreaLightBatchInputs& in,
@@ -36,8 +34,6 @@ void SampleAreaLightBatch(const Scene& scene, const TriangleRows& tri_rows, Tria
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(SampleAreaLightBatchTarget)(scene, tri_rows, mode, n, in, out);
 }
-
-const char* Emitter8TargetName() { return HWY_DYNAMIC_DISPATCH(Emitter8TargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

@@ -27,7 +27,4 @@ void SampleAreaLightBatch(const Scene& scene, const TriangleRows& tri_rows, Tria
                           size_t n, const AreaLightBatchInputs& in,
                           const AreaLightBatchOutputs& out);
 
-/// Name of the Highway target SampleAreaLightBatch dispatches to now; for logs and tests.
-const char* Emitter8TargetName();
-
 }  // namespace ptlab::simd

@@ -16,7 +16,6 @@ void AreaEmitterRequestBatchTarget(const Scene& scene, MaterialTag tag, bool mis
                                    const AreaRequestInputs& in, const AreaRequestOutputs& out) {
   AreaEmitterRequestBatchKernel(scene, tag, mis, n, in, out);
 }
-const char* AreaRequest8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -28,16 +27,11 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(AreaEmitterRequestBatchTarget);
-HWY_EXPORT(AreaRequest8TargetNameTarget);
 
 void AreaEmitterRequestBatch(const Scene& scene, MaterialTag tag, bool mis, size_t n,
                              const AreaRequestInputs& in, const AreaRequestOutputs& out) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(AreaEmitterRequestBatchTarget)(scene, tag, mis, n, in, out);
-}
-
-const char* AreaRequest8TargetName() {
-  return HWY_DYNAMIC_DISPATCH(AreaRequest8TargetNameTarget)();
 }
 
 }  // namespace ptlab::simd

@@ -31,7 +31,4 @@ namespace ptlab::simd {
 void AreaEmitterRequestBatch(const Scene& scene, MaterialTag tag, bool mis, size_t n,
                              const AreaRequestInputs& in, const AreaRequestOutputs& out);
 
-/// Name of the Highway target AreaEmitterRequestBatch dispatches to now; for logs and tests.
-const char* AreaRequest8TargetName();
-
 }  // namespace ptlab::simd

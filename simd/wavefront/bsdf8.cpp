@@ -31,7 +31,6 @@ void ShadeBatchTarget(const MaterialTables& m, MaterialTag tag, const uint32_t* 
                       size_t n, const ShadeInputs& in, const ShadeOutputs& out) {
   ShadeBatchKernel(m, tag, material_index, n, in, out);
 }
-const char* TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -47,7 +46,6 @@ HWY_EXPORT(SampleBeckmannReflectionTarget);
 HWY_EXPORT(ConductorFresnelTarget);
 HWY_EXPORT(DielectricFresnelTarget);
 HWY_EXPORT(ShadeBatchTarget);
-HWY_EXPORT(TargetNameTarget);
 
 void BeckmannEvalPdfBatch(const float* alpha, DirectionArrays wo, DirectionArrays wi, size_t n,
                           float* d, float* pdf) {
@@ -82,10 +80,6 @@ void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const
          const ShadeInputs& bin,
          const ShadeOutputs& bout) { simd::ShadeBatch(mt, tag, index, count, bin, bout); },
       m, refs, n, in, out, scratch);
-}
-
-const char* ShadeTargetName() {
-  return HWY_DYNAMIC_DISPATCH(TargetNameTarget)();
 }
 
 }  // namespace ptlab::simd

@@ -71,8 +71,4 @@ void ShadeBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* materi
 void ShadeHits(const MaterialTables& m, const MaterialRef* refs, size_t n, const ShadeInputs& in,
                const ShadeOutputs& out, ShadeScratch* scratch);
 
-/// Name of the Highway target the kernels above dispatch to now (e.g. "AVX3", "AVX2"); for
-/// logs and benchmark context.
-const char* ShadeTargetName();
-
 }  // namespace ptlab::simd

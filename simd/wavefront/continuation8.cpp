@@ -15,7 +15,6 @@ void ContinuePathsTarget(const ContinueBatchRules& rules, size_t n, const Contin
                          const ContinueBatchPaths& paths, ContinueBatchOutputs* out) {
   ContinuePathsKernel(rules, n, in, paths, out);
 }
-const char* Continue8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -27,15 +26,12 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(ContinuePathsTarget);
-HWY_EXPORT(Continue8TargetNameTarget);
 
 void ContinuePaths(const ContinueBatchRules& rules, size_t n, const ContinueBatchInputs& in,
                    const ContinueBatchPaths& paths, ContinueBatchOutputs* out) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(ContinuePathsTarget)(rules, n, in, paths, out);
 }
-
-const char* Continue8TargetName() { return HWY_DYNAMIC_DISPATCH(Continue8TargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

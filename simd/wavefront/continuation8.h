@@ -25,7 +25,4 @@ namespace ptlab::simd {
 void ContinuePaths(const ContinueBatchRules& rules, size_t n, const ContinueBatchInputs& in,
                    const ContinueBatchPaths& paths, ContinueBatchOutputs* out);
 
-/// Name of the Highway target ContinuePaths dispatches to now; for logs and tests.
-const char* Continue8TargetName();
-
 }  // namespace ptlab::simd

@@ -17,7 +17,6 @@ void SampleDistantDiskBatchTarget(const DistantDiskTable& table, uint32_t disk, 
                                   const EnvironmentBatchOutputs& out) {
   SampleDistantDiskBatchKernel(table, disk, n, in, out);
 }
-const char* DistantDisk8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -29,16 +28,11 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(SampleDistantDiskBatchTarget);
-HWY_EXPORT(DistantDisk8TargetNameTarget);
 
 void SampleDistantDiskBatch(const DistantDiskTable& table, uint32_t disk, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(SampleDistantDiskBatchTarget)(table, disk, n, in, out);
-}
-
-const char* DistantDisk8TargetName() {
-  return HWY_DYNAMIC_DISPATCH(DistantDisk8TargetNameTarget)();
 }
 
 }  // namespace ptlab::simd

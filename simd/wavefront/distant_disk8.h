@@ -22,7 +22,4 @@ namespace ptlab::simd {
 void SampleDistantDiskBatch(const DistantDiskTable& table, uint32_t disk, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out);
 
-/// Name of the Highway target SampleDistantDiskBatch dispatches to now; for logs and tests.
-const char* DistantDisk8TargetName();
-
 }  // namespace ptlab::simd

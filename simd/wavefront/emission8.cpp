@@ -16,7 +16,6 @@ void AddAreaEmissionsTarget(const Scene& scene, const EmissionBatchRules& rules,
                             const EmissionBatchInputs& in, const EmissionBatchPaths& paths) {
   AddAreaEmissionsKernel(scene, rules, n, in, paths);
 }
-const char* Emission8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -28,15 +27,12 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(AddAreaEmissionsTarget);
-HWY_EXPORT(Emission8TargetNameTarget);
 
 void AddAreaEmissions(const Scene& scene, const EmissionBatchRules& rules, size_t n,
                       const EmissionBatchInputs& in, const EmissionBatchPaths& paths) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(AddAreaEmissionsTarget)(scene, rules, n, in, paths);
 }
-
-const char* Emission8TargetName() { return HWY_DYNAMIC_DISPATCH(Emission8TargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

@@ -20,7 +20,4 @@ namespace ptlab::simd {
 void AddAreaEmissions(const Scene& scene, const EmissionBatchRules& rules, size_t n,
                       const EmissionBatchInputs& in, const EmissionBatchPaths& paths);
 
-/// Name of the Highway target AddAreaEmissions dispatches to now; for logs and tests.
-const char* Emission8TargetName();
-
 }  // namespace ptlab::simd

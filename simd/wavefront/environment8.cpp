@@ -22,7 +22,6 @@ void EvalEnvironmentBatchTarget(const EnvironmentMapTable& table, uint32_t map, 
                                 const EnvironmentEvalOutputs& out) {
   EvalEnvironmentBatchKernel(table, map, n, in, out);
 }
-const char* Environment8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -35,7 +34,6 @@ namespace ptlab::simd {
 
 HWY_EXPORT(SampleEnvironmentBatchTarget);
 HWY_EXPORT(EvalEnvironmentBatchTarget);
-HWY_EXPORT(Environment8TargetNameTarget);
 
 void SampleEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
                             const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
@@ -47,10 +45,6 @@ void EvalEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t
                           const EnvironmentEvalInputs& in, const EnvironmentEvalOutputs& out) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(EvalEnvironmentBatchTarget)(table, map, n, in, out);
-}
-
-const char* Environment8TargetName() {
-  return HWY_DYNAMIC_DISPATCH(Environment8TargetNameTarget)();
 }
 
 }  // namespace ptlab::simd

@@ -38,7 +38,4 @@ void SampleEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size
 void EvalEnvironmentBatch(const EnvironmentMapTable& table, uint32_t map, size_t n,
                           const EnvironmentEvalInputs& in, const EnvironmentEvalOutputs& out);
 
-/// Name of the Highway target SampleEnvironmentBatch dispatches to now; for logs and tests.
-const char* Environment8TargetName();
-
 }  // namespace ptlab::simd

@@ -17,7 +17,6 @@ void MakeInteractionRowsTarget(const Scene& scene, const TriangleRows& tri_rows,
                                HitLists* lists) {
   MakeInteractionRowsKernel(scene, tri_rows, rays, hits, hit_mask, packets, out, lists);
 }
-const char* Interaction8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -29,7 +28,6 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(MakeInteractionRowsTarget);
-HWY_EXPORT(Interaction8TargetNameTarget);
 
 void MakeInteractionBatch(const Scene& scene, const TriangleRows& tri_rows, const RayPacket8* rays,
                           const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
@@ -37,8 +35,6 @@ void MakeInteractionBatch(const Scene& scene, const TriangleRows& tri_rows, cons
   HWY_DYNAMIC_DISPATCH(MakeInteractionRowsTarget)
   (scene, tri_rows, rays, hits, hit_mask, packets, out, lists);
 }
-
-const char* Interaction8TargetName() { return HWY_DYNAMIC_DISPATCH(Interaction8TargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

@@ -31,7 +31,4 @@ void MakeInteractionBatch(const Scene& scene, const TriangleRows& tri_rows, cons
                           const HitPacket8* hits, const Mask8* hit_mask, size_t packets,
                           const InteractionRows& out, HitLists* lists);
 
-/// Name of the Highway target MakeInteractionBatch dispatches to now; for logs and tests.
-const char* Interaction8TargetName();
-
 }  // namespace ptlab::simd

@@ -4,6 +4,7 @@
 // simd/wavefront/emission8.
 #include "simd/wavefront/kernels8.h"
 
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/area_request8.h"
 #include "simd/wavefront/continuation8.h"
 #include "simd/wavefront/distant_disk8.h"
@@ -63,7 +64,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8, const TriangleRows& rows
           .vertices = DecideVertices,
           .continuation = ContinuePaths,
           .emission = AddAreaEmissions,
-          .name = Traverse8TargetName()};
+          .name = DispatchedTargetName()};
 }
 
 }  // namespace ptlab::simd

@@ -14,7 +14,7 @@ namespace ptlab::simd {
 /// simd::AreaEmitterRequestBatch (simd/wavefront/area_request8.h), interaction
 /// simd::MakeInteractionBatch (simd/wavefront/interaction8.h) on `rows`, spawn simd::SpawnRayBatch
 /// (simd/wavefront/spawn8.h). `bvh8` and `rows` (BuildTriangleRows of the scene rendered) must outlive
-/// the table; `name` is the Highway target (Traverse8TargetName).
+/// the table; `name` is the Highway target (DispatchedTargetName).
 /// Its oracle: OracleWavefrontKernels on the binary Bvh that `bvh8` was collapsed from.
 WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8, const TriangleRows& rows);
 

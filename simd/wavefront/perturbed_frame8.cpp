@@ -17,7 +17,6 @@ void PerturbedFrameBatchTarget(const MaterialTables& m, MaterialTag tag,
                                float* const frame[9]) {
   PerturbedFrameBatchKernel(m, tag, material_index, n, in, frame);
 }
-const char* PerturbedFrame8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -29,16 +28,11 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(PerturbedFrameBatchTarget);
-HWY_EXPORT(PerturbedFrame8TargetNameTarget);
 
 void PerturbedFrameBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
                          size_t n, const ShadeInputs& in, float* const frame[9]) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(PerturbedFrameBatchTarget)(m, tag, material_index, n, in, frame);
-}
-
-const char* PerturbedFrame8TargetName() {
-  return HWY_DYNAMIC_DISPATCH(PerturbedFrame8TargetNameTarget)();
 }
 
 }  // namespace ptlab::simd

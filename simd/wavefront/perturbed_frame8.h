@@ -1,5 +1,5 @@
 // normal: vectorized perturbed shading frames (plain API), the SIMD twin of
-// engine/wavefront/perturbed_frame_batch.h.
+// engine/wavefront/perturbed_frame.h.
 #pragma once
 
 #include <cstddef>
@@ -14,8 +14,5 @@ namespace ptlab::simd {
 /// compiled target (tests/simd/wavefront/perturbed_frame8_test.cpp).
 void PerturbedFrameBatch(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
                          size_t n, const ShadeInputs& in, float* const frame[9]);
-
-/// Name of the Highway target PerturbedFrameBatch dispatches to now.
-const char* PerturbedFrame8TargetName();
 
 }  // namespace ptlab::simd

@@ -40,7 +40,6 @@ size_t CompactShadowRowsTarget(size_t n, const ShadowRowInputs& in, const Shadow
   // The rows after the last whole vector: the oracle.
   return m + ptlab::CompactShadowRows(n - c, in.From(c), out.From(m));
 }
-const char* ShadowRows8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -52,14 +51,11 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(CompactShadowRowsTarget);
-HWY_EXPORT(ShadowRows8TargetNameTarget);
 
 size_t CompactShadowRows(size_t n, const ShadowRowInputs& in, const ShadowRowOutputs& out) {
   if (n == 0) return 0;
   return HWY_DYNAMIC_DISPATCH(CompactShadowRowsTarget)(n, in, out);
 }
-
-const char* ShadowRows8TargetName() { return HWY_DYNAMIC_DISPATCH(ShadowRows8TargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

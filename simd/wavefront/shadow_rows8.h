@@ -14,7 +14,4 @@ namespace ptlab::simd {
 /// every target, out's rows past the count untouched. tests/simd/wavefront/shadow_rows8_test.cpp.
 size_t CompactShadowRows(size_t n, const ShadowRowInputs& in, const ShadowRowOutputs& out);
 
-/// Name of the Highway target CompactShadowRows dispatches to now; for logs and tests.
-const char* ShadowRows8TargetName();
-
 }  // namespace ptlab::simd

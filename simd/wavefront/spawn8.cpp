@@ -15,7 +15,6 @@ void SpawnRayBatchTarget(const SurfaceInteraction* its, size_t n, const SpawnInp
                          RayPacket8* out) {
   SpawnRayBatchKernel(its, n, in, out);
 }
-const char* Spawn8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -27,15 +26,12 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(SpawnRayBatchTarget);
-HWY_EXPORT(Spawn8TargetNameTarget);
 
 void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                    RayPacket8* out) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(SpawnRayBatchTarget)(its, n, in, out);
 }
-
-const char* Spawn8TargetName() { return HWY_DYNAMIC_DISPATCH(Spawn8TargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

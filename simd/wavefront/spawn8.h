@@ -23,7 +23,4 @@ namespace ptlab::simd {
 void SpawnRayBatch(const SurfaceInteraction* its, size_t n, const SpawnInputs& in,
                    RayPacket8* out);
 
-/// Name of the Highway target SpawnRayBatch dispatches to now; for logs and tests.
-const char* Spawn8TargetName();
-
 }  // namespace ptlab::simd

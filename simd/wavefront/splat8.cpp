@@ -14,7 +14,6 @@ namespace HWY_NAMESPACE {
 void SplatSamplesTarget(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) {
   SplatSamplesKernel(filter, samples, block);
 }
-const char* SplatTargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -26,14 +25,11 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(SplatSamplesTarget);
-HWY_EXPORT(SplatTargetNameTarget);
 
 void SplatSamples(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) {
   if (samples.n == 0) return;
   HWY_DYNAMIC_DISPATCH(SplatSamplesTarget)(filter, samples, block);
 }
-
-const char* SplatTargetName() { return HWY_DYNAMIC_DISPATCH(SplatTargetNameTarget)(); }
 
 }  // namespace ptlab::simd
 #endif  // HWY_ONCE

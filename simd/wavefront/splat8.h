@@ -21,7 +21,4 @@ namespace ptlab::simd {
 /// tests/simd/wavefront/splat8_test.cpp.
 void SplatSamples(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block);
 
-/// Name of the Highway target SplatSamples dispatches to now; for logs and tests.
-const char* SplatTargetName();
-
 }  // namespace ptlab::simd

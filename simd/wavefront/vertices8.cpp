@@ -17,7 +17,6 @@ void DecideVerticesTarget(const Scene& scene, const VertexBatchRules& rules, siz
                           VertexBatchOutputs* out) {
   DecideVerticesKernel(scene, rules, n, in, paths, out);
 }
-const char* VertexBatch8TargetNameTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
@@ -29,17 +28,12 @@ HWY_AFTER_NAMESPACE();
 namespace ptlab::simd {
 
 HWY_EXPORT(DecideVerticesTarget);
-HWY_EXPORT(VertexBatch8TargetNameTarget);
 
 void DecideVertices(const Scene& scene, const VertexBatchRules& rules, size_t n,
                     const VertexBatchInputs& in, const VertexBatchPaths& paths,
                     VertexBatchOutputs* out) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(DecideVerticesTarget)(scene, rules, n, in, paths, out);
-}
-
-const char* VertexBatch8TargetName() {
-  return HWY_DYNAMIC_DISPATCH(VertexBatch8TargetNameTarget)();
 }
 
 }  // namespace ptlab::simd

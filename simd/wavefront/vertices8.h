@@ -27,7 +27,4 @@ void DecideVertices(const Scene& scene, const VertexBatchRules& rules, size_t n,
                     const VertexBatchInputs& in, const VertexBatchPaths& paths,
                     VertexBatchOutputs* out);
 
-/// Name of the Highway target DecideVertices dispatches to now; for logs and tests.
-const char* VertexBatch8TargetName();
-
 }  // namespace ptlab::simd

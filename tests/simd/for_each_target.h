@@ -11,8 +11,9 @@
 
 namespace ptlab::test {
 
-/// fn(target_name) per target; target_name_of_kernels() must report the pinned target (a check
-/// that the kernels under test really dispatch to it).
+/// fn(target_name) per target; target_name_of_kernels() (simd::DispatchedTargetName) must report
+/// the pinned target (a check that simd/ kernels really dispatch to it: every simd/*.cpp is
+/// compiled for the same targets, simd/targets.h).
 template <class NameFn, class Fn>
 void ForEachTarget(NameFn&& target_name_of_kernels, Fn&& fn) {
   const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();

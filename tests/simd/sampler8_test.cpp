@@ -3,6 +3,7 @@
 // clang-format off
 #include "simd/targets.h"  // first: the target policy (must precede every hwy/ include)
 // clang-format on
+#include "simd/dispatched_target.h"
 #include "simd/sampler8.h"
 
 #include <gtest/gtest.h>
@@ -19,7 +20,7 @@ namespace {
 
 template <class Fn>
 void ForEachTarget(Fn&& fn) {
-  test::ForEachTarget(simd::SamplerTargetName, [&](const char*) { fn(); });
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) { fn(); });
 }
 
 TEST(Sampler8, BitIdenticalToTheOracleOnEveryTarget) {

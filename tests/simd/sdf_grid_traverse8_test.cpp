@@ -22,6 +22,7 @@
 #include "engine/core/rng.h"
 #include "engine/render/sdf_grid_normal.h"
 #include "simd/bvh8.h"
+#include "simd/dispatched_target.h"
 #include "simd/traverse8.h"
 #include "tests/engine/bvh/test_meshes.h"
 #include "tests/simd/for_each_target.h"
@@ -131,7 +132,7 @@ TEST(SdfGridTraverse8, MatchesOracleOnEveryTarget) {
     expected.push_back(e);
   }
   EXPECT_GT(grid_hits, s.rays.size() / 10);
-  test::ForEachTarget(Traverse8TargetName, [&](const char*) {
+  test::ForEachTarget(DispatchedTargetName, [&](const char*) {
     int mismatches = 0;
     for (size_t base = 0; base < s.rays.size(); base += 8) {
       RayPacket8 p{};
@@ -169,7 +170,7 @@ TEST(SdfGridTraverse8, MatchesOracleOnEveryTarget) {
   only.sdf_grids = s.bvh.sdf_grids;
   const Bvh8 only8 = BuildBvh8(only);
   ASSERT_TRUE(only8.empty());
-  test::ForEachTarget(Traverse8TargetName, [&](const char*) {
+  test::ForEachTarget(DispatchedTargetName, [&](const char*) {
     int mismatches = 0;
     for (size_t i = 0; i < 800; ++i) {
       Hit e, g;

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "hwy/targets.h"
-#include "simd/traverse8.h"
+#include "simd/dispatched_target.h"
 
 namespace ptlab {
 namespace {
@@ -25,7 +25,7 @@ TEST(TargetSelect, PinsEveryCompiledTargetAndRejectsOthers) {
     const Status s = simd::SelectTargetFromEnvironment();
     EXPECT_TRUE(s.ok()) << s.message();
     // The kernels dispatch there now (the traversal's dispatch is one of them).
-    EXPECT_STREQ(simd::Traverse8TargetName(), hwy::TargetName(t));
+    EXPECT_STREQ(simd::DispatchedTargetName(), hwy::TargetName(t));
   }
   ASSERT_EQ(setenv("PTLAB_TARGET", "AVX9000", 1), 0);
   const Status bad = simd::SelectTargetFromEnvironment();

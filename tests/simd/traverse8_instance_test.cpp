@@ -5,6 +5,7 @@
 #include "simd/targets.h"  // first: the same target policy as simd/
 // clang-format on
 
+#include "simd/dispatched_target.h"
 #include "simd/traverse8.h"
 
 #include <gtest/gtest.h>
@@ -35,7 +36,7 @@ TEST(Traverse8Instances, MatchesOracleOnEveryTarget) {
   const Bvh8 bvh8 = BuildBvh8(bvh);
   ASSERT_EQ(bvh8.groups.size(), 2u);
   const std::vector<Ray> rays = bvh_test::InstancedSceneRays(s, 11, 8 * 1500);
-  test::ForEachTarget(Traverse8TargetName, [&](const char*) {
+  test::ForEachTarget(DispatchedTargetName, [&](const char*) {
     int failures = 0, instanced_hits = 0;
     Pcg32 rng(3, 4);
     for (size_t base = 0; base < rays.size(); base += 8) {

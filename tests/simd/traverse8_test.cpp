@@ -4,6 +4,7 @@
 #include "simd/targets.h"  // first: the same target policy as simd/
 // clang-format on
 
+#include "simd/dispatched_target.h"
 #include "simd/traverse8.h"
 
 #include <gtest/gtest.h>
@@ -221,7 +222,7 @@ struct Mismatches {
   int count = 0;
   void Report(const char* what, const Ray& r, const std::string& detail) {
     if (++count <= 10) {
-      ADD_FAILURE() << what << " (target " << Traverse8TargetName() << "): o = (" << r.o.x << ", "
+      ADD_FAILURE() << what << " (target " << DispatchedTargetName() << "): o = (" << r.o.x << ", "
                     << r.o.y << ", " << r.o.z << ") d = (" << r.d.x << ", " << r.d.y << ", "
                     << r.d.z << ") t in (" << r.t_min << ", " << r.t_max << "): " << detail;
     }
@@ -321,7 +322,7 @@ void ForEachTarget(Body body) {
   for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
     SCOPED_TRACE(hwy::TargetName(target));
-    EXPECT_STREQ(Traverse8TargetName(), hwy::TargetName(target));
+    EXPECT_STREQ(DispatchedTargetName(), hwy::TargetName(target));
     saw_128 |= target == HWY_SSE4 || target == HWY_EMU128 || target == HWY_SCALAR;
     body();
   }

@@ -14,6 +14,7 @@
 #include "engine/bsdf/rough_plastic.h"
 #include "engine/wavefront/bsdf.h"
 #include "engine/core/check.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/lobe_disk.h"
 #include "tools/chi2/microfacet_subjects.h"  // matA
@@ -274,7 +275,7 @@ void RegisterBsdfSubjects(Chi2Registry* r) {
     Chi2Subject s = BsdfChi2Subject(std::move(name), model, path, alpha,
                                     Chi2Direction(in.theta_deg, in.phi_deg));
     s.params = Params(alpha, in, has_alpha) + (s.params.empty() ? "" : " " + s.params);
-    if (path == Chi2BsdfPath::kSimd) s.params += std::string(" target=") + simd::ShadeTargetName();
+    if (path == Chi2BsdfPath::kSimd) s.params += std::string(" target=") + simd::DispatchedTargetName();
     // Rough Beckmann reflection loses samples below the horizon (absorbed: no direction), so
     // fewer land in the cells and a 2 % error of the pdf is caught with less than 95 %
     // probability at 10^6 samples (chi2 --power: 0.91 at α = 1, 0.14 at α = 2, θ = 0°); these

@@ -9,6 +9,7 @@
 #include "engine/bsdf/plastic.h"
 #include "engine/bsdf/plastic_precompute.h"
 #include "engine/wavefront/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/bsdf_subjects.h"
 
@@ -43,7 +44,7 @@ Chi2Subject NonDeltaSubject(std::string name, std::string params,
     };
     return s;
   }
-  s.params += std::string(" target=") + simd::ShadeTargetName();
+  s.params += std::string(" target=") + simd::DispatchedTargetName();
   s.sample_batch = ShadeBatchSampler(m, ref, wo, /*reject_delta=*/true);
   return s;
 }

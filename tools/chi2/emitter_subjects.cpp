@@ -15,6 +15,7 @@
 #include "engine/light/light_selection.h"
 #include "engine/sampling/spherical_triangle.h"
 #include "engine/scene/scene.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/area_light8.h"
 
 namespace ptlab {
@@ -226,7 +227,7 @@ Chi2Subject SimdAreaLightSubject(std::string name, std::shared_ptr<const Scene> 
   s.uniform_dims = lights > 1 ? 3 : 2;
   s.params = std::to_string(lights) + " light(s), uniform pick, triangles=" +
              (mode == TriangleSampling::kSolidAngle ? "solidAngle" : "area") +
-             " target=" + simd::Emitter8TargetName();
+             " target=" + simd::DispatchedTargetName();
   auto rows = std::make_shared<const simd::TriangleRows>(simd::BuildTriangleRows(*scene));
   s.sample_batch = [scene, rows, mode, lights](const float* u1, const Vec2f* u2, int n,
                                                Chi2Point* p, uint8_t* ok) {

@@ -16,6 +16,7 @@
 #include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/distribution2d.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/distant_disk8.h"
 #include "simd/wavefront/environment8.h"
 
@@ -134,7 +135,7 @@ Chi2Subject DrawnByColumnBatch(Chi2Subject s, std::string name, const char* targ
 // `s` with its samples drawn by simd::SampleEnvironmentBatch on row 0 of `table`.
 Chi2Subject DrawnBySimdBatch(Chi2Subject s, std::string name, EnvTable table) {
   return DrawnByColumnBatch(
-      std::move(s), std::move(name), simd::Environment8TargetName(),
+      std::move(s), std::move(name), simd::DispatchedTargetName(),
       [table](size_t n, const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
         simd::SampleEnvironmentBatch(*table, 0, n, in, out);
       });
@@ -267,7 +268,7 @@ void RegisterLightSubjects(Chi2Registry* r, const std::string& data_dir) {
     const Chi2Subject scalar = DiskSubject("distantdisk/" + what, table, params);
     r->Add(scalar);
     r->Add(DrawnByColumnBatch(
-        scalar, "simd/distant_disk_" + what, simd::DistantDisk8TargetName(),
+        scalar, "simd/distant_disk_" + what, simd::DispatchedTargetName(),
         [table](size_t n, const EnvironmentBatchInputs& in, const EnvironmentBatchOutputs& out) {
           simd::SampleDistantDiskBatch(*table, 0, n, in, out);
         }));

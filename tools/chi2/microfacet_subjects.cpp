@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/bsdf/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/bsdf_subjects.h"
 #include "tools/chi2/lobe_disk.h"
@@ -81,7 +82,7 @@ Chi2Subject Subject(const Case& c) {
   std::snprintf(params, sizeof(params), "alpha_u=%g alpha_v=%g theta_o=%g%s", double(c.au),
                 double(c.av), double(c.theta_deg), c.simd ? " target=" : "");
   s.params = params;
-  if (c.simd) s.params += simd::ShadeTargetName();
+  if (c.simd) s.params += simd::DispatchedTargetName();
   // Wide lobes lose many samples (absorbed) and spread thin: more samples keep the lab's power
   // (≥ 95 % against a 2 % smooth error). D cos θ sampling of glass at normal incidence puts
   // most samples in the narrow reflected and transmitted peaks: 0.76 at 10⁶ samples, so 4×.

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/bsdf/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/bsdf_subjects.h"
 
@@ -77,7 +78,7 @@ Chi2Subject Subject(const Case& c) {
                 double(c.row.value[kPrincipledAnisotropic]), double(c.theta_deg),
                 c.simd ? " target=" : "");
   s.params = params;
-  if (c.simd) s.params += simd::ShadeTargetName();
+  if (c.simd) s.params += simd::DispatchedTargetName();
   s.sample_scale = 2;  // several lobes of different widths
   return s;
 }

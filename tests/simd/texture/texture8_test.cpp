@@ -13,6 +13,7 @@
 
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/texture/texture.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 
@@ -84,7 +85,7 @@ TEST(Texture8, BitIdenticalToTheOracleOnEveryTarget) {
     EvalTextureBatch(t, &id[i], {&u[i], &v[i], &px[i], &py[i], &pz[i], &prim[i]}, 1, &want_r[i],
                      &want_g[i], &want_b[i]);
   }
-  test::ForEachTarget(simd::Texture8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     std::vector<float> r(n, -1.0f), g(n, -1.0f), b(n, -1.0f);
     simd::EvalTextureBatch(t, id.data(), at, n, r.data(), g.data(), b.data());
     size_t mismatches = 0;

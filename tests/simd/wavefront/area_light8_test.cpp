@@ -3,6 +3,7 @@
 // and the hard cases (grazing and coincident reference points, the CDF's edges, degenerate
 // triangles, zero-area lights, batch tails), and no NaN or Inf out.
 #include "simd/targets.h"  // first: the same target policy as simd/
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/area_light8.h"
 
 #include <gtest/gtest.h>
@@ -166,7 +167,7 @@ void ExpectBatchMatchesOracle(const std::string& path, size_t lights = 0, bool t
     for (size_t i = 0; i < n; ++i) valid += want.col[9][i] > 0;
     EXPECT_GT(valid, n / 4);  // the inputs are not all degenerate
     const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
-    test::ForEachTarget(simd::Emitter8TargetName, [&](const char*) {
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
       // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
       for (size_t cut = 0; cut < 8; ++cut) {
         const size_t m = n - cut;

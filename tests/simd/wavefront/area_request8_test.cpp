@@ -6,6 +6,7 @@
 // contribution is not finite: the kernel does not trace those), shadow rays bit-identical,
 // contributions per channel within 1e-4 |oracle| + 1e-30, every output finite, untraced rows 0.
 #include "simd/targets.h"  // first: the same target policy as simd/
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/area_request8.h"
 
 #include <gtest/gtest.h>
@@ -101,7 +102,7 @@ void ExpectBatchMatchesOracle(const std::string& path) {
         if (!IsDeltaMaterial(tag)) {
           EXPECT_GT(traced, n / 50);  // not all degenerate
         }
-        test::ForEachTarget(simd::AreaRequest8TargetName, [&](const char* target) {
+        test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
           double worst = 0;
           for (size_t cut = 0; cut < 8; ++cut) {  // every tail length
             const size_t m = n - cut;
@@ -129,7 +130,7 @@ TEST(AreaRequest8, ShortBatchesMatchOracle) {
   Pcg32 rng(2, 9);
   const test::AreaRequestRows rows =
       test::MakeAreaRequestRows(scene, MaterialTag::kRoughPlastic, 200, false, rng);
-  test::ForEachTarget(simd::AreaRequest8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     for (const size_t n : {1, 3, 7, 8, 9, 15, 16, 17, 63, 64, 65, 129}) {
       SCOPED_TRACE(n);
       test::AreaRequestColumns want(n + 1), got(n + 1);
@@ -167,7 +168,7 @@ TEST(AreaRequest8, PerSampleRadianceMatchesOracle) {
     in.le_r = le[0].data(), in.le_g = le[1].data(), in.le_b = le[2].data();
     test::AreaRequestColumns want(n);
     AreaEmitterRequestBatch(scene, tag, true, n, in, want.Out());
-    test::ForEachTarget(simd::AreaRequest8TargetName, [&](const char*) {
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
       for (size_t cut = 0; cut < 8; ++cut) {
         const size_t m = n - cut;
         test::AreaRequestColumns got(m);

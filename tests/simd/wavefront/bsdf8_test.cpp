@@ -2,6 +2,7 @@
 // clang-format off
 #include "simd/targets.h"  // first: the target policy (must precede every hwy/ include)
 // clang-format on
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 
 #include <gtest/gtest.h>
@@ -30,7 +31,7 @@ using bsdf_test::DirectionWithCos;
 // Runs fn once per compiled target supported by this CPU, with dispatch pinned to it.
 template <class Fn>
 void ForEachTarget(Fn&& fn) {
-  test::ForEachTarget(simd::ShadeTargetName, fn);
+  test::ForEachTarget(simd::DispatchedTargetName, fn);
 }
 
 // |simd − oracle| ≤ rel |oracle| + abs, with the worst violation (or closest call) kept.

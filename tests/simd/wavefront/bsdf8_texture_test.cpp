@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/wavefront/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
@@ -75,7 +76,7 @@ TEST(Bsdf8Texture, TexturedDiffuseMatchesTheOracleBitForBit) {
   };
   Out want(n);
   ShadeBatch(m, MaterialTag::kDiffuse, index.data(), n, in, want.View());
-  test::ForEachTarget(simd::ShadeTargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Out got(n);
     simd::ShadeBatch(m, MaterialTag::kDiffuse, index.data(), n, in, got.View());
     int failures = 0;

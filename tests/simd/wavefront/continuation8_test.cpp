@@ -17,6 +17,7 @@
 
 #include "engine/core/rng.h"
 #include "engine/wavefront/continuation.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"                // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/row_checks.h"  // hwy/targets.h, after the policy
@@ -168,7 +169,7 @@ TEST(Continue8, MatchesOracleOnRandomRows) {
   const size_t targets = hwy::SupportedAndGeneratedTargets().size();
   const size_t rows_per_target = (1000000 + targets - 1) / std::max<size_t>(targets, 1);
   size_t rows = 0;
-  test::ForEachTarget(simd::Continue8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(17, 5);
     for (size_t target_rows = 0; target_rows < rows_per_target;) {
       const uint32_t variant = rng.NextUint();
@@ -184,7 +185,7 @@ TEST(Continue8, MatchesOracleOnRandomRows) {
 }
 
 TEST(Continue8, MatchesOracleOnHardCases) {
-  test::ForEachTarget(simd::Continue8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(5, 9);
     for (int variant = 0; variant < 8; ++variant) {
       const ContinueBatchRules rules{(variant & 1) != 0, (variant & 2) != 0};
@@ -203,7 +204,7 @@ TEST(Continue8, MatchesOracleOnHardCases) {
 // Whole vectors of one kind: no row sampled, every row ending black (cut_black), every row
 // going on; the kernel's shortcuts for them must write what the oracle writes.
 TEST(Continue8, MatchesOracleOnUniformVectors) {
-  test::ForEachTarget(simd::Continue8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(3, 1);
     for (int kind = 0; kind < 3; ++kind) {
       Wave wave = RandomWave(rng, 64, /*hard=*/false);

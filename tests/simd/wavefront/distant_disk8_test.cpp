@@ -5,6 +5,7 @@
 // sphere; rotated frames; batch tails; a black disk), and no NaN or Inf out. NaN numbers are
 // not fed: SampleDistantDisk itself returns a NaN direction for them.
 #include "simd/targets.h"  // first: the same target policy as simd/
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/distant_disk8.h"
 
 #include <gtest/gtest.h>
@@ -50,7 +51,7 @@ void ExpectBatchMatchesOracle(const DistantDiskTable& table, uint32_t disk, size
   const EnvironmentBatchInputs in{u_x.data(), u_y.data()};
   SampleColumns want(n);
   SampleDistantDiskBatch(table, disk, n, in, want.Out());
-  test::ForEachTarget(simd::DistantDisk8TargetName, [&](const char* target) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
     float seen_wi = 0;
     // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
     for (size_t cut = 0; cut < 8; ++cut) {
@@ -81,7 +82,7 @@ void ExpectLocalZBitIdentical(const DistantDiskTable& table) {
   const size_t n = u_x.size();
   SampleColumns want(n);
   SampleDistantDiskBatch(table, 0, n, {u_x.data(), u_y.data()}, want.Out());
-  test::ForEachTarget(simd::DistantDisk8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     SampleColumns got(n);
     simd::SampleDistantDiskBatch(table, 0, n, {u_x.data(), u_y.data()}, got.Out());
     for (size_t i = 0; i < n; ++i)

@@ -19,6 +19,7 @@
 #include "engine/core/check.h"
 #include "engine/core/rng.h"
 #include "engine/wavefront/emission.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/row_checks.h"
@@ -167,7 +168,7 @@ void ExpectSameAsOracle(const Scene& scene, const EmissionBatchRules& rules, con
 }
 
 TEST(Emission8, MatchesOracleOnRandomRows) {
-  test::ForEachTarget(simd::Emission8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(17, 4);
     size_t rows = 0;
     for (int round = 0; round < 32; ++round) {
@@ -189,7 +190,7 @@ TEST(Emission8, MatchesOracleOnRandomRows) {
 }
 
 TEST(Emission8, MatchesOracleOnHardCases) {
-  test::ForEachTarget(simd::Emission8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(3, 8);
     for (int variant = 0; variant < 16; ++variant) {
       const uint32_t lights = 1 + uint32_t(variant) % 4;
@@ -224,7 +225,7 @@ TEST(Emission8, MatchesOracleOnHardCases) {
 // checkerboard scaled in uv), the hits' uv random in [-3, 3]² and on texel borders, the other
 // lights constant. The SIMD kernel's texture lanes (EvalTexture8) against the oracle.
 TEST(Emission8, MatchesOracleWithTexturedLights) {
-  test::ForEachTarget(simd::Emission8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(29, 5);
     for (int variant = 0; variant < 16; ++variant) {
       const uint32_t lights = 1 + uint32_t(variant) % 5;

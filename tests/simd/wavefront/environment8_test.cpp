@@ -21,6 +21,7 @@
 #include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/warp.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/sample_columns.h"
@@ -77,7 +78,7 @@ void ExpectBatchMatchesOracle(const EnvironmentMapTable& guided, uint32_t map, s
   const EnvironmentMapTable& unguided = copy;
   ASSERT_EQ(EnvironmentDistribution(unguided, map).marginal_guide, nullptr);
   for (const EnvironmentMapTable* table : {&guided, &unguided}) {
-    test::ForEachTarget(simd::Environment8TargetName, [&](const char* target) {
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
       // Every tail length: batches of n, and of n - 1 ... n - 7 rows.
       float seen_wi = 0, seen_pdf = 0;
       for (size_t cut = 0; cut < 8; ++cut) {
@@ -258,7 +259,7 @@ void ExpectEvalMatchesOracle(const EnvironmentMapTable& table, uint32_t map, siz
     ASSERT_EQ(want[i], EnvironmentRadiance(table, map, dirs[i]).r);
     ASSERT_EQ(want[3 * n + i], EnvironmentPdf(table, map, dirs[i]));
   }
-  test::ForEachTarget(simd::Environment8TargetName, [&](const char* target) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
     std::vector<float> got(4 * n, -1.0f), no_pdf(3 * n, -1.0f);
     simd::EvalEnvironmentBatch(
         table, map, n, in, {got.data(), got.data() + n, got.data() + 2 * n, got.data() + 3 * n});

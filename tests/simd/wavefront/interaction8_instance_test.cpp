@@ -4,6 +4,7 @@
 // clang-format off
 #include "simd/targets.h"  // first: the same target policy as simd/
 // clang-format on
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/interaction8.h"
 
 #include <gtest/gtest.h>
@@ -101,7 +102,7 @@ TEST(Interaction8Instances, WorldSpaceAndBitIdenticalOnEveryTarget) {
   MakeInteractionBatch(scene, rays.data(), hits.data(), masks.data(), rays.size(),
                        {want.data(), want_wo.data()}, &want_lists);
   const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
-  test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     HitLists got_lists{ge.data(), ga.data()};
     simd::MakeInteractionBatch(scene, tri_rows, rays.data(), hits.data(), masks.data(),
                                rays.size(), {got.data(), got_wo.data()}, &got_lists);

@@ -11,6 +11,7 @@
 // single lanes, alternating lanes) over every material tag, no material, area and other
 // emitter tags and sphere lanes.
 #include "simd/targets.h"  // first: the same target policy as simd/
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/interaction8.h"
 
 #include <gtest/gtest.h>
@@ -272,7 +273,7 @@ void ExpectRowsMatchOracle(const std::string& path, bool textured = false) {
     EXPECT_GT(with_uv, 1000u);
   }
   const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
-  test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Rows got(rows);
     Lists got_lists(rows);
     simd::MakeInteractionBatch(scene, tri_rows, p.rays.data(), p.hits.data(), p.mask.data(),
@@ -341,7 +342,7 @@ void ExpectListsMatchOracleOnMasks(const std::string& path) {
   for (int g = 0; g < kMaterialGroups; ++g) EXPECT_GT(want_lists.lists.group_hits[g], 0u) << g;
   EXPECT_GT(want_lists.lists.area_hits, 0u);
   const simd::TriangleRows tri_rows = simd::BuildTriangleRows(scene);
-  test::ForEachTarget(simd::Interaction8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Rows got(rows);
     Lists got_lists(rows);
     simd::MakeInteractionBatch(scene, tri_rows, p.rays.data(), p.hits.data(), p.mask.data(),

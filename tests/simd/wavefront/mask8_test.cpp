@@ -27,6 +27,7 @@
 #include "engine/bsdf/conductor_presets.h"
 #include "engine/bsdf/microfacet.h"
 #include "engine/wavefront/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
@@ -189,7 +190,7 @@ void RunAndCheck(const Fixture& fx, MaterialTag tag, const std::vector<uint32_t>
   const size_t n = index.size();
   Out want(n);
   ShadeBatch(fx.m, tag, index.data(), n, fx.In(), want.View());
-  test::ForEachTarget(simd::ShadeTargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Out got(n);
     simd::ShadeBatch(fx.m, tag, index.data(), n, fx.In(), got.View());
     Check(fx, tag, index, want, got, exact_eval, what);

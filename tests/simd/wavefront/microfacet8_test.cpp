@@ -15,6 +15,7 @@
 #include "engine/bsdf/microfacet.h"
 #include "engine/core/rng.h"
 #include "engine/wavefront/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "tests/engine/bsdf/bsdf_test_inputs.h"
 #include "tests/simd/for_each_target.h"
@@ -254,7 +255,7 @@ TEST(Microfacet8, ShadeBatchMatchesOracleOnEveryTarget) {
     const Rows r = MakeRows(*c.amin, c.tag, size_t(1) << 16);
     Out o0(r.size());
     ptlab::ShadeBatch(fx.m, c.tag, r.index.data(), r.size(), r.In(), o0.Outputs());
-    test::ForEachTarget(simd::ShadeTargetName, [&](const char* target) {
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
       Out o1(r.size());
       simd::ShadeBatch(fx.m, c.tag, r.index.data(), r.size(), r.In(), o1.Outputs());
       Compare(fx, c.tag, r, o0, o1, target);

@@ -13,7 +13,8 @@
 
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/wavefront/bsdf.h"
-#include "engine/wavefront/perturbed_frame_batch.h"
+#include "engine/wavefront/perturbed_frame.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/wavefront/bsdf8.h"
 #include "simd/wavefront/perturbed_frame8.h"
@@ -141,7 +142,7 @@ TEST(PerturbedFrame8, FramesMatchTheOracleBitForBit) {
   PerturbedFrameBatch(f.m, MaterialTag::kDiffuse, f.index.data(), n, f.in, want.Frame());
   for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < 9; ++k) ASSERT_TRUE(std::isfinite(want.c[k][i])) << i;
-  test::ForEachTarget(simd::PerturbedFrame8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Columns got(n);
     simd::PerturbedFrameBatch(f.m, MaterialTag::kDiffuse, f.index.data(), n, f.in, got.Frame());
     int failures = 0;
@@ -162,7 +163,7 @@ TEST(PerturbedFrame8, ShadeBatchOnPerturbedDiffuseRows) {
   Fixture f(n);
   Columns want(n);
   ShadeBatch(f.m, MaterialTag::kDiffuse, f.index.data(), n, f.in, want.View());
-  test::ForEachTarget(simd::ShadeTargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Columns got(n);
     simd::ShadeBatch(f.m, MaterialTag::kDiffuse, f.index.data(), n, f.in, got.View());
     int failures = 0, sampled = 0;

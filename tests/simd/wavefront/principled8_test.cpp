@@ -15,6 +15,7 @@
 #include "engine/bsdf/principled_thin.h"
 #include "engine/core/rng.h"
 #include "engine/wavefront/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 #include "tests/engine/bsdf/bsdf_test_inputs.h"
 #include "tests/simd/for_each_target.h"
@@ -366,7 +367,7 @@ void CheckAgainstOracle(MaterialTag tag) {
   const size_t n = fx.rows.size();
   Out o0(n);
   ptlab::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, in, o0.Outputs());
-  test::ForEachTarget(simd::ShadeTargetName, [&](const char* target) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
     Out o1(n);
     simd::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, in, o1.Outputs());
     Compare(fx, o0, o1, target);
@@ -398,7 +399,7 @@ TEST(Principled8, NonUnitAndHugeInputsStayFinite) {
                        us[(3 * j + a) % us.size()]);
     fx.its.resize(fx.rows.size());
     const size_t n = fx.rows.size();
-    test::ForEachTarget(simd::ShadeTargetName, [&](const char* target) {
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
       Out o(n);
       simd::ShadeBatch(fx.m, tag, fx.rows.index.data(), n, fx.In(), o.Outputs());
       for (size_t i = 0; i < n; ++i) {

@@ -14,6 +14,7 @@
 
 #include "engine/core/rng.h"
 #include "engine/wavefront/shadow_rows.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 
@@ -77,7 +78,7 @@ void ExpectSameAsOracle(const Rows& rows) {
 }
 
 TEST(ShadowRows8, MatchesOracle) {
-  test::ForEachTarget(simd::ShadowRows8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(3, 17);
     for (const uint32_t percent : {0u, 1u, 30u, 50u, 90u, 100u}) {
       for (const size_t n : {0, 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 31, 64, 257, 4099}) {

@@ -5,6 +5,7 @@
 // tails), the lanes after the last row zero, and no NaN or Inf out but t_max's +inf. Plus the
 // oracle against the scalar path's own construction (Frame::ToWorld, SpawnOrigin).
 #include "simd/targets.h"  // first: the same target policy as simd/
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/spawn8.h"
 
 #include <gtest/gtest.h>
@@ -165,7 +166,7 @@ TEST(Spawn8, MatchesOracleOnRandomRows) {
   for (int i = 0; i < 100003; ++i) {
     rows.Push(rng.NextUint() % uint32_t(points.size()), RandomUnit(rng));
   }
-  test::ForEachTarget(simd::Spawn8TargetName,
+  test::ForEachTarget(simd::DispatchedTargetName,
                       [&](const char*) { ExpectSameAsOracle(points, rows, 0, rows.size()); });
 }
 
@@ -191,7 +192,7 @@ TEST(Spawn8, MatchesOracleOnHardCases) {
   for (uint32_t q = 0; q < points.size(); ++q) {
     for (const Vec3f& wi : directions) rows.Push(q, wi);
   }
-  test::ForEachTarget(simd::Spawn8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     ExpectSameAsOracle(points, rows, 0, rows.size());
     // Batch tails and offsets: every count from 0 to 17 rows, starting off a packet boundary.
     for (size_t n = 0; n <= 17; ++n) ExpectSameAsOracle(points, rows, 3, n);

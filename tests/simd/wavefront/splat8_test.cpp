@@ -2,6 +2,7 @@
 // compiled target, for every filter shape and radius, samples inside, on the edges of and
 // outside the block, in random and in the wavefront's order, with extreme radiance.
 #include "simd/targets.h"  // first: the same target policy as simd/
+#include "simd/dispatched_target.h"
 #include "simd/wavefront/splat8.h"
 
 #include <gtest/gtest.h>
@@ -64,7 +65,7 @@ TEST(Splat8, MatchesOracleBitForBitOnEveryTarget) {
     FilmBlock oracle(-3, 5, 37, 21);
     const Columns samples = MakeSamples(oracle, 20000, rng);
     SplatSamples(filter, samples.View(), &oracle);
-    test::ForEachTarget(simd::SplatTargetName, [&](const char* target) {
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
       FilmBlock block(-3, 5, 37, 21);
       simd::SplatSamples(filter, samples.View(), &block);
       ASSERT_EQ(block.sums().size(), oracle.sums().size());
@@ -111,7 +112,7 @@ TEST(Splat8, MatchesOracleInWaveOrderWithExtremeRadianceOnEveryTarget) {
     // The block starts inside the samples' range and ends before it: clipped footprints.
     FilmBlock oracle(1, 2, 17, 9);
     SplatSamples(filter, c.View(), &oracle);
-    test::ForEachTarget(simd::SplatTargetName, [&](const char* target) {
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
       FilmBlock block(1, 2, 17, 9);
       simd::SplatSamples(filter, c.View(), &block);
       size_t differ = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/wavefront/bsdf.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "simd/wavefront/bsdf8.h"
 #include "tests/simd/for_each_target.h"
@@ -58,7 +59,7 @@ TEST(TwoSided8Texture, TexturedTwoSidedDiffuseMatchesTheOracle) {
   int textured_lit = 0;
   for (size_t i = 0; i < n; ++i) textured_lit += index[i] == 1 && want[0][i] > 0;
   EXPECT_GT(textured_lit, 150);  // the textured rows are lit on both sides
-  test::ForEachTarget(simd::ShadeTargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     ShadeBatch(m, MaterialTag::kDiffuse, index.data(), n, in, view(want));
     simd::ShadeBatch(m, MaterialTag::kDiffuse, index.data(), n, in, view(got));
     int failures = 0;

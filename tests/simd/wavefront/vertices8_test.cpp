@@ -25,6 +25,7 @@
 #include "engine/render/integrator_common.h"
 #include "engine/sampling/guide_table.h"
 #include "engine/wavefront/vertices.h"
+#include "simd/dispatched_target.h"
 #include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 #include "tests/simd/row_checks.h"
@@ -297,7 +298,7 @@ constexpr int kRulesVariants = 64;
 
 TEST(VertexBatch8, MatchesOracleOnRandomRows) {
   const std::vector<Scene> scenes = Scenes();
-  test::ForEachTarget(simd::VertexBatch8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(11, 3);
     size_t rows = 0;
     for (int round = 0; round < 4; ++round) {
@@ -319,7 +320,7 @@ TEST(VertexBatch8, MatchesOracleOnRandomRows) {
 
 TEST(VertexBatch8, MatchesOracleOnHardCases) {
   const std::vector<Scene> scenes = Scenes();
-  test::ForEachTarget(simd::VertexBatch8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     Pcg32 rng(5, 9);
     for (const Scene& scene : scenes) {
       for (int variant = 0; variant < kRulesVariants; ++variant) {
@@ -341,7 +342,7 @@ TEST(VertexBatch8, MatchesOracleOnHardCases) {
 // rows draw, so that those rows' u equals a step exactly and the scan's comparison decides; with
 // Sobol', the point's x at the steps (the pick and its remap).
 TEST(VertexBatch8, PicksAtTheCdfStepsMatchTheOracle) {
-  test::ForEachTarget(simd::VertexBatch8TargetName, [&](const char*) {
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) {
     for (const bool sobol : {false, true}) {
       Pcg32 rng(21, 1);
       const Wave wave = RandomWave(rng, 80, 64, /*hard=*/false);

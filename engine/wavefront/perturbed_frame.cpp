@@ -1,5 +1,5 @@
 // normal: the perturbed shading frames of a batch of rows (oracle).
-#include "engine/wavefront/perturbed_frame_batch.h"
+#include "engine/wavefront/perturbed_frame.h"
 
 #include "engine/bsdf/perturbed_frame.h"
 
