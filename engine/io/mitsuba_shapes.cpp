@@ -12,6 +12,7 @@
 #include "engine/io/ply_loader.h"
 #include "engine/io/serialized_loader.h"
 #include "engine/io/shapes.h"
+#include "engine/io/xml_properties.h"
 #include "engine/scene/scene_limits.h"
 
 namespace ptlab::internal {
@@ -195,12 +196,12 @@ Status MitsubaSceneBuilder::Shape(const MitsubaNode& node) {
     PTLAB_RETURN_IF_ERROR(obj.Point("p1", &p1));
     if (!(radius > 0 && radius <= kMaxWorldCoordinate))
       return obj.Error("radius", "cylinder radius must be in (0, " +
-                                     std::to_string(int(kMaxWorldCoordinate)) + "]");
+                                     FormatNumber(kMaxWorldCoordinate) + "]");
     const float length = Length(p1 - p0);
     if (!(length > 0 && length <= kMaxWorldCoordinate))
       return obj.Error(obj.Has("p1") ? "p1" : "p0",
                        "the cylinder's axis p1 - p0 must have a length in (0, " +
-                           std::to_string(int(kMaxWorldCoordinate)) + "]");
+                           FormatNumber(kMaxWorldCoordinate) + "]");
     const Frame axis(Normalize(p1 - p0));
     Matrix4 frame;
     for (int r = 0; r < 3; ++r) {
