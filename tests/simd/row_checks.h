@@ -19,9 +19,11 @@ inline constexpr float kGarbage = -7.25f;
 inline constexpr uint32_t kGarbageU = 0xdeadbeefu;
 
 /// Same length and the same bytes (floats: the same bits, NaN payloads and -0 included).
+/// Empty vectors may hold null data(), which memcmp must not be given (UBSan: nonnull).
 template <class T>
 bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 /// A random permutation of 0, 1, ..., n - 1 (Fisher-Yates from the back): distinct path ids
