@@ -105,8 +105,10 @@ void ExpectSameAsOracle(Points& points, const Rows& rows, size_t from, size_t n)
   const size_t packets = (n + kPacketWidth - 1) / kPacketWidth;
   // Garbage in the packets first: both must write every lane of every packet they get.
   std::vector<RayPacket8> want(packets), got(packets);
-  std::memset(want.data(), 0xab, packets * sizeof(RayPacket8));
-  std::memset(got.data(), 0xcd, packets * sizeof(RayPacket8));
+  if (packets > 0) {  // memset must not get the null data() of an empty vector (UBSan)
+    std::memset(want.data(), 0xab, packets * sizeof(RayPacket8));
+    std::memset(got.data(), 0xcd, packets * sizeof(RayPacket8));
+  }
   SpawnRayBatch(points.View(), n, rows.In(from), want.data());
   simd::SpawnRayBatch(points.View(), n, rows.In(from), got.data());
   for (size_t k = 0; k < packets; ++k) {
