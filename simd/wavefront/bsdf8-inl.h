@@ -457,8 +457,9 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
     case MaterialTag::kBlend:
       return ShadeBlend(m, material_index, n, in, out);
     case MaterialTag::kPrincipled:  // principled
+      return ShadePrincipled(m.principled, in.texture, io, n, eval, sample);
     case MaterialTag::kPrincipledThin:
-      return ShadePrincipledRows(m, tag, material_index, n, in, out);
+      return ShadePrincipledThin(m.principled_thin, in.texture, io, n, eval, sample);
     case MaterialTag::kMask:  // mask
       return ShadeMask(m, material_index, n, in, out);
   }

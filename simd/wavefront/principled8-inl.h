@@ -76,6 +76,20 @@ HWY_INLINE PrincipledLanes GatherPrincipled(D8 d, const PrincipledTable& t,
 
 }  // namespace pr8
 
+/// Both models' sample store: weight f·|cos θi| / pdf, valid where the direction was, pdf > 0
+/// and the weight finite (the oracles' checks, in their order).
+template <class D>
+HWY_INLINE void StoreWeightedSample(D d, const ShadeIo& b, size_t i, hn::Mask<D> ok,
+                                    hn::Vec<D> ix, hn::Vec<D> iy, hn::Vec<D> iz, hn::Vec<D> fr,
+                                    hn::Vec<D> fg, hn::Vec<D> fb, hn::Vec<D> pdf,
+                                    hn::Vec<D> eta) {
+  const auto cos_over_pdf = hn::Div(hn::Abs(iz), pdf);
+  const auto wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
+             wb = hn::Mul(fb, cos_over_pdf);
+  ok = hn::And(ok, hn::And(hn::Gt(pdf, hn::Zero(d)), AllFinite3(d, wr, wg, wb)));
+  StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, eta);
+}
+
 /// PrincipledThinEvalPdf / PrincipledThinSample for rows of MaterialTables::principled_thin.
 inline void ShadePrincipledThin(const PrincipledTable& t, const ShadeInputs::Textures& tex,
                                 const ShadeIo& io, size_t n, bool eval, bool sample) {
@@ -98,11 +112,7 @@ inline void ShadePrincipledThin(const PrincipledTable& t, const ShadeInputs::Tex
     iz = hn::IfThenElse(ok, iz, one);
     V8 fr, fg, fb;
     const V8 pdf = pr8::ThinEvalPdf(d, p, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
-    const V8 cos_over_pdf = hn::Div(hn::Abs(iz), pdf);
-    const V8 wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
-             wb = hn::Mul(fb, cos_over_pdf);
-    ok = hn::And(ok, hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
-    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
+    StoreWeightedSample(d, b, i, ok, ix, iy, iz, fr, fg, fb, pdf, one);
   });
 }
 
@@ -196,38 +206,8 @@ inline void ShadePrincipled(const PrincipledTable& t, const ShadeInputs::Texture
     iz = hn::IfThenElse(ok, iz, one);
     V8 fr, fg, fb;
     const V8 pdf = pr8::EvalPdf(d, p, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
-    const V8 cos_over_pdf = hn::Div(hn::Abs(iz), pdf);
-    const V8 wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
-             wb = hn::Mul(fb, cos_over_pdf);
-    ok = hn::And(ok, hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
-    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, eta_out);
+    StoreWeightedSample(d, b, i, ok, ix, iy, iz, fr, fg, fb, pdf, eta_out);
   });
-}
-
-/// ShadeBatch for tag kPrincipled (ShadePrincipled) or kPrincipledThin (ShadePrincipledThin),
-/// texture sites from in.texture; two-sided rows are already mirrored by the caller.
-inline void ShadePrincipledRows(const MaterialTables& m, MaterialTag tag,
-                                const uint32_t* material_index, size_t n, const ShadeInputs& in,
-                                const ShadeOutputs& out) {
-  const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
-  ShadeIo io;
-  io.index = material_index;
-  if (in.texture.textures != nullptr) io.entry = in.texture.entry;
-  io.in[kWoX] = in.wo.x, io.in[kWoY] = in.wo.y, io.in[kWoZ] = in.wo.z;
-  if (eval) io.in[kWlX] = in.wl.x, io.in[kWlY] = in.wl.y, io.in[kWlZ] = in.wl.z;
-  io.in[kULobe] = in.u_lobe, io.in[kUX] = in.u_x, io.in[kUY] = in.u_y;
-  if (eval) {
-    io.out[kFR] = out.f.r, io.out[kFG] = out.f.g, io.out[kFB] = out.f.b;
-    io.out[kPdfL] = out.pdf_l;
-  }
-  if (sample) {
-    io.out[kWiX] = out.wi.x, io.out[kWiY] = out.wi.y, io.out[kWiZ] = out.wi.z;
-    io.out[kWR] = out.weight.r, io.out[kWG] = out.weight.g, io.out[kWB] = out.weight.b;
-    io.out[kPdf] = out.pdf, io.out[kEta] = out.eta;
-  }
-  // out.delta: neither model has a delta lobe; ShadeBatchKernelInFrame has filled it with 0.
-  if (tag == MaterialTag::kPrincipled) return ShadePrincipled(m.principled, in.texture, io, n, eval, sample);
-  ShadePrincipledThin(m.principled_thin, in.texture, io, n, eval, sample);
 }
 
 }  // namespace HWY_NAMESPACE
