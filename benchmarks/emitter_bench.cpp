@@ -10,10 +10,10 @@
 #include "benchmarks/bench_target.h"
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
-#include "engine/light/area_light.h"
+#include "engine/wavefront/area_light.h"
 #include "simd/dispatched_target.h"
-#include "simd/wavefront/area_request8.h"
 #include "simd/wavefront/area_light8.h"
+#include "simd/wavefront/area_request8.h"
 #include "tests/simd/area_request_rows.h"
 
 namespace ptlab {

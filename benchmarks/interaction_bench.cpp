@@ -10,7 +10,7 @@
 #include "benchmarks/bench_target.h"
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
-#include "engine/render/interaction.h"
+#include "engine/wavefront/interaction.h"
 #include "simd/dispatched_target.h"
 #include "simd/wavefront/interaction8.h"
 

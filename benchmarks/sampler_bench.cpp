@@ -12,11 +12,12 @@
 #include "benchmarks/bench_target.h"
 #include "engine/core/rng.h"
 #include "engine/image/image.h"
-#include "engine/wavefront/environment.h"
 #include "engine/light/environment_map.h"
 #include "engine/sampling/sampler.h"
+#include "engine/wavefront/environment.h"
+#include "engine/wavefront/sobol.h"
 #include "simd/wavefront/environment8.h"
-#include "simd/sampler8.h"
+#include "simd/wavefront/sobol8.h"
 
 namespace ptlab {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "benchmarks/bench_target.h"
 #include "engine/core/rng.h"
-#include "engine/render/film.h"
 #include "engine/render/filter.h"
+#include "engine/wavefront/splat.h"
 #include "simd/dispatched_target.h"
 #include "simd/wavefront/splat8.h"
 

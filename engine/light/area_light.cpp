@@ -116,15 +116,6 @@ AreaLightSample SampleAreaLight(const Scene& scene, uint32_t light, const Vec3f&
   return s;
 }
 
-void SampleAreaLightBatch(const Scene& scene, TriangleSampling mode, size_t n,
-                          const AreaLightBatchInputs& in, const AreaLightBatchOutputs& out) {
-  for (size_t i = 0; i < n; ++i) {
-    SetAreaLightRow(out, i,
-                    SampleAreaLight(scene, in.light[i], AreaLightRowRef(in, i), mode,
-                                    AreaLightRowU(in, i)));
-  }
-}
-
 float AreaLightPdf(const Scene& scene, uint32_t light, uint32_t tri, const Vec3f& p,
                    const Vec3f& n, const Vec3f& ref, TriangleSampling mode) {
   const AreaLightTable& lights = scene.area_lights;

@@ -63,13 +63,6 @@ void FilmBlock::Splat(const PixelFilter& filter, float sx, float sy, const Color
   }
 }
 
-void SplatSamples(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) {
-  for (size_t k = 0; k < samples.n; ++k) {
-    block->Splat(filter, samples.sx[k], samples.sy[k],
-                 Color3f{samples.r[k], samples.g[k], samples.b[k]});
-  }
-}
-
 void FilmBlock::Merge(const FilmBlock& other) {
   const int xa = std::max(x0_, other.x0_), xb = std::min(x0_ + width_, other.x0_ + other.width_);
   const int ya = std::max(y0_, other.y0_), yb = std::min(y0_ + height_, other.y0_ + other.height_);

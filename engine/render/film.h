@@ -21,16 +21,6 @@ namespace ptlab {
 inline constexpr int kMaxFilterTaps = 32;
 static_assert(2 * kMaxFilterRadius + 1 <= kMaxFilterTaps, "the largest filter must fit its taps");
 
-/// Samples to splat, SoA: continuous image positions and radiance, n rows.
-struct FilmSamples {
-  const float* sx = nullptr;
-  const float* sy = nullptr;
-  const float* r = nullptr;
-  const float* g = nullptr;
-  const float* b = nullptr;
-  size_t n = 0;
-};
-
 /// The pixels of a block one sample touches: [ix0, ix1] x [iy0, iy1], image coordinates (empty
 /// when ix1 < ix0 or iy1 < iy0).
 struct SplatFootprint {
@@ -101,9 +91,5 @@ class FilmBlock {
   // first touching 800 x 600 pixels' 7.3 MiB in 4 KiB pages took 25 ms.
   AlignedVector<float> own_;
 };
-
-/// Splats the samples in order into `block` (FilmBlock::Splat each): the scalar oracle of
-/// simd::SplatSamples (simd/wavefront/splat8.h) and the oracle table's splat kernel (wavefront.h).
-void SplatSamples(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block);
 
 }  // namespace ptlab

@@ -125,7 +125,7 @@ struct EmitterSampleRequest {
 
 /// The rest of PrepareEmitterSampleWith once area light sample ls is drawn (the light picked
 /// with probability pick_pmf): the shadow ray and the contribution, if any. The wavefront draws
-/// its area-light samples as a batch (SampleAreaLightBatch) and finishes each with this.
+/// its area-light samples as a batch (SampleAreaLightBatch, engine/wavefront/area_light.h) and finishes each with this.
 inline EmitterSampleRequest AreaEmitterSampleRequest(const Scene& scene,
                                                      const SurfaceInteraction& its,
                                                      const Vec3f& wo, bool mis,

@@ -93,16 +93,6 @@ SurfaceInteraction InstanceInteraction(const Scene& scene, const Hit& hit, bool 
   return its;
 }
 
-// MakeInteraction, the surface coordinates only `with_uv` (otherwise left (0, 0)).
-SurfaceInteraction MakeInteractionWith(const Scene& scene, const Ray& ray, const Hit& hit,
-                                       bool with_uv) {
-  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv);
-  if (IsSdfGridHit(hit.prim)) return SdfGridInteraction(scene, ray, hit);
-  if (IsInstancedHit(hit.prim, scene.triangles.size()))
-    return InstanceInteraction(scene, hit, with_uv);
-  return TriangleInteraction(scene, hit.prim, hit, with_uv);
-}
-
 // A hit on scene triangle row `tri` (in the space its vertices are stored in).
 SurfaceInteraction TriangleInteraction(const Scene& scene, uint32_t tri, const Hit& hit,
                                        bool with_uv) {
@@ -124,31 +114,16 @@ SurfaceInteraction TriangleInteraction(const Scene& scene, uint32_t tri, const H
 }  // namespace
 
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
-  return MakeInteractionWith(scene, ray, hit, /*with_uv=*/true);
+  return MakeInteraction(scene, ray, hit, /*with_uv=*/true);
 }
 
-void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitPacket8* hits,
-                          const Mask8* hit_mask, size_t packets, const InteractionRows& out,
-                          HitLists* lists) {
-  HitLists& l = *lists;
-  // Surface coordinates only for the textures that read them (TextureSiteOf).
-  const bool with_uv = !scene.textures.empty();
-  l.hits = l.area_hits = 0;
-  std::fill(std::begin(l.group_hits), std::end(l.group_hits), 0u);
-  for (size_t k = 0; k < packets; ++k) {
-    for (Mask8 todo = hit_mask[k] & kAllLanes; todo != 0; todo &= todo - 1) {
-      const int j = std::countr_zero(todo);
-      const HitPacket8& h = hits[k];
-      const Ray ray = GetLaneRay(rays[k], j);
-      const size_t q = k * kPacketWidth + size_t(j);
-      SurfaceInteraction& its = out.its[q];
-      its = MakeInteractionWith(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]}, with_uv);
-      out.wo[q] = LocalDirectionBack(its.frame, ray.d);
-      l.entries[l.hits++] = uint32_t(q);
-      if (its.emitter.tag() == EmitterTag::kArea) l.area_entries[l.area_hits++] = uint32_t(q);
-      ++l.group_hits[MaterialGroup(its.material)];
-    }
-  }
+SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit,
+                                   bool with_uv) {
+  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv);
+  if (IsSdfGridHit(hit.prim)) return SdfGridInteraction(scene, ray, hit);
+  if (IsInstancedHit(hit.prim, scene.triangles.size()))
+    return InstanceInteraction(scene, hit, with_uv);
+  return TriangleInteraction(scene, hit.prim, hit, with_uv);
 }
 
 }  // namespace ptlab

@@ -108,20 +108,4 @@ constexpr float ScrambledSobol1D(uint32_t index, const SobolSeeds& seeds) {
   return FixedPointToFloat(ReverseBits32(LaineKarrasPermutation(i, seeds.x)));
 }
 
-/// Batch form, the scalar oracle of simd::ScrambledSobol2DBatch: row i is point index[i] of
-/// dimension `dim` of the pixel with 32-bit seed pixel_seed[i] (DimensionSeeds).
-inline void ScrambledSobol2DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
-                                  size_t n, float* x, float* y) {
-  for (size_t i = 0; i < n; ++i) {
-    const Vec2f p = ScrambledSobol2D(index[i], DimensionSeeds(pixel_seed[i], dim));
-    x[i] = p.x, y[i] = p.y;
-  }
-}
-
-/// Batch form of ScrambledSobol1D (oracle of simd::ScrambledSobol1DBatch).
-inline void ScrambledSobol1DBatch(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim,
-                                  size_t n, float* x) {
-  for (size_t i = 0; i < n; ++i) x[i] = ScrambledSobol1D(index[i], DimensionSeeds(pixel_seed[i], dim));
-}
-
 }  // namespace ptlab

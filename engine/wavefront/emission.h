@@ -8,8 +8,8 @@
 
 #include "engine/core/packet8.h"
 #include "engine/core/vec.h"
-#include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
+#include "engine/wavefront/interaction.h"
 
 namespace ptlab {
 

@@ -1,39 +1,26 @@
 // The oracle's kernel table: the scalar reference of every wavefront stage (each slot's oracle
-// lives in its stage's file; here the traversal wrappers and the table itself).
+// lives in its stage's file; here the wrappers that hand a slot its part of the accelerator,
+// and the table itself).
 #include "engine/wavefront/kernels.h"
 
-#include <bit>
 #include <cstdlib>
 #include <cstring>
 
-#include "engine/bvh/intersect1.h"
-#include "engine/sampling/sobol.h"
+#include "engine/wavefront/sobol.h"
+#include "engine/wavefront/traverse.h"
 
 namespace ptlab {
 
 namespace {
 
-// The oracle's traversal kernels: each active lane alone through Intersect1 / Occluded1.
+// The traversal slots read the binary BVH of the accelerator.
 Mask8 OracleIntersect8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active,
                        HitPacket8* hits) {
-  Mask8 got = 0;
-  for (Mask8 todo = active & kAllLanes; todo != 0; todo &= todo - 1) {
-    const int j = std::countr_zero(todo);
-    Hit h;
-    if (!Intersect1(*accel.bvh, GetLaneRay(rays, j), &h)) continue;
-    SetLaneHit(hits, j, h.t, h.b1, h.b2, h.prim);
-    got |= LaneBit(j);
-  }
-  return got;
+  return Intersect8(*accel.bvh, rays, active, hits);
 }
 
 Mask8 OracleOccluded8(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active) {
-  Mask8 got = 0;
-  for (Mask8 todo = active & kAllLanes; todo != 0; todo &= todo - 1) {
-    const int j = std::countr_zero(todo);
-    if (Occluded1(*accel.bvh, GetLaneRay(rays, j))) got |= LaneBit(j);
-  }
-  return got;
+  return Occluded8(*accel.bvh, rays, active);
 }
 
 void OracleAreaLight(const WavefrontAccel&, const Scene& scene, TriangleSampling mode, size_t n,

@@ -8,21 +8,21 @@
 
 #include "engine/bvh/bvh.h"
 #include "engine/core/packet8.h"
-#include "engine/light/area_light.h"
 #include "engine/render/camera.h"
-#include "engine/render/film.h"
 #include "engine/render/filter.h"
 #include "engine/render/integrator.h"
-#include "engine/render/interaction.h"
 #include "engine/render/packet_render.h"
+#include "engine/wavefront/area_light.h"
 #include "engine/wavefront/area_request.h"
 #include "engine/wavefront/bsdf.h"
 #include "engine/wavefront/continuation.h"
 #include "engine/wavefront/distant_disk.h"
 #include "engine/wavefront/emission.h"
 #include "engine/wavefront/environment.h"
+#include "engine/wavefront/interaction.h"
 #include "engine/wavefront/shadow_rows.h"
 #include "engine/wavefront/spawn.h"
+#include "engine/wavefront/splat.h"
 #include "engine/wavefront/vertices.h"
 
 namespace ptlab {
@@ -49,14 +49,15 @@ struct WavefrontAccel {
 struct WavefrontKernels {
   WavefrontAccel accel;
 
-  // Traversal stage. Contract of both: simd::Intersect8 / simd::Occluded8 (simd/traverse8.h),
-  // bit-identical to Intersect1 / Occluded1 lane by lane: only lanes in `active` are read, and
+  // Traversal stage. Oracle: ptlab::Intersect8 / ptlab::Occluded8 (engine/wavefront/traverse.h);
+  // SIMD: simd::Intersect8 / simd::Occluded8 (simd/traverse8.h), bit-identical to Intersect1 /
+  // Occluded1 lane by lane: only lanes in `active` are read, and
   // a lane that misses or is inactive is not written.
   Mask8 (*intersect8)(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active,
                       HitPacket8* hits) = nullptr;
   Mask8 (*occluded8)(const WavefrontAccel& accel, const RayPacket8& rays, Mask8 active) = nullptr;
 
-  // Sampling stage: the Sobol' sampler's batch draws (engine/sampling/sobol.h; contract:
+  // Sampling stage: the Sobol' sampler's batch draws (engine/wavefront/sobol.h; contract:
   // bit-identical to those oracles). The wavefront draws a decision's numbers for all its
   // paths with one call when the scene's sampler is `sobol`.
   void (*sobol2d)(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim, size_t n,
@@ -75,11 +76,12 @@ struct WavefrontKernels {
 
   // Splat stage: a wave's finite samples, in the scalar loop's order, into the film block
   // through the filter's precomputed table (PixelFilter::Eval). Oracle: ptlab::SplatSamples
-  // (FilmBlock::Splat per sample); SIMD: simd::SplatSamples, bit-identical (simd/wavefront/splat8.h).
+  // (engine/wavefront/splat.h: FilmBlock::Splat per sample); SIMD: simd::SplatSamples,
+  // bit-identical (simd/wavefront/splat8.h).
   void (*splat)(const PixelFilter& filter, const FilmSamples& samples, FilmBlock* block) = nullptr;
 
   // Emitter stage: the wave's area-light samples (every emitter sample whose pick is an area
-  // light) as batches over SoA columns (engine/light/area_light.h), one call per group of rows
+  // light) as batches over SoA columns (engine/wavefront/area_light.h), one call per group of rows
   // of area_request below (the kernel does not care which rows it gets); the area_request slot
   // finishes them. Oracle: ptlab::SampleAreaLightBatch (SampleAreaLight per row); SIMD:
   // simd::SampleAreaLightBatch, bit-identical (simd/wavefront/area_light8.h).
@@ -136,10 +138,10 @@ struct WavefrontKernels {
                        const EnvironmentBatchInputs& in,
                        const EnvironmentBatchOutputs& out) = nullptr;
 
-  // Interaction stage: a wave's hit records -> the shading stage's rows (engine/render/
-  // interaction.h, InteractionRows): the SurfaceInteraction of each hit (its frame, material
-  // and emitter; uv only in a scene with textures: only they read it) and wo, the direction back along the ray in its
-  // frame; row = queue entry, 8 rows per packet. And the wave's hit lists (HitLists, same
+  // Interaction stage: a wave's hit records -> the shading stage's rows
+  // (engine/wavefront/interaction.h, InteractionRows): the SurfaceInteraction of each hit (its
+  // frame, material and emitter; uv only in a scene with textures: only they read it) and wo,
+  // the direction back along the ray in its frame; row = queue entry, 8 rows per packet. And the wave's hit lists (HitLists, same
   // header): every hit's queue entry and those of the hits on area lights, in queue order, and
   // the hits per material group; the shading stage adds emission over the area list only and
   // the sampling stage takes the entry list and group counts as they are. Oracle:

@@ -11,9 +11,9 @@
 #include <cstdint>
 
 #include "engine/core/vec.h"
-#include "engine/render/interaction.h"
 #include "engine/sampling/sampler.h"
 #include "engine/scene/scene.h"
+#include "engine/wavefront/interaction.h"
 
 namespace ptlab {
 

@@ -11,8 +11,9 @@
 
 #include "engine/core/memory.h"
 #include "engine/render/integrator_common.h"
-#include "engine/render/interaction.h"
+#include "engine/wavefront/interaction.h"
 #include "engine/wavefront/soa.h"
+#include "engine/wavefront/splat.h"
 #include "engine/wavefront/vertices.h"
 #include "engine/wavefront/wavefront.h"
 

@@ -14,13 +14,13 @@
 #include <optional>
 
 #include "engine/core/vec.h"
-#include "engine/light/area_light.h"
 #include "engine/scene/scene.h"
+#include "engine/wavefront/area_light.h"
 #include "hwy/highway.h"
 #include "simd/light_pdf8-inl.h"
-#include "simd/wavefront/area_radiance8-inl.h"
 #include "simd/transpose4-inl.h"
 #include "simd/triangle_point8-inl.h"
+#include "simd/wavefront/area_radiance8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {

@@ -3,8 +3,8 @@
 
 #include <cstddef>
 
-#include "engine/light/area_light.h"
 #include "engine/scene/scene.h"
+#include "engine/wavefront/area_light.h"
 #include "simd/triangle_rows.h"
 
 namespace ptlab::simd {

@@ -4,8 +4,8 @@
 #include <cstddef>
 
 #include "engine/core/packet8.h"
-#include "engine/render/interaction.h"
 #include "engine/scene/scene.h"
+#include "engine/wavefront/interaction.h"
 #include "simd/triangle_rows.h"
 
 namespace ptlab::simd {

@@ -1,4 +1,4 @@
-// simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/sampler8, simd/wavefront/bsdf8,
+// simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/wavefront/sobol8, simd/wavefront/bsdf8,
 // simd/wavefront/splat8, simd/wavefront/area_light8, simd/wavefront/area_request8, simd/wavefront/environment8, simd/wavefront/distant_disk8,
 // simd/wavefront/interaction8, simd/wavefront/spawn8, simd/wavefront/vertices8, simd/wavefront/continuation8, simd/wavefront/shadow_rows8,
 // simd/wavefront/emission8.
@@ -12,7 +12,7 @@
 #include "simd/wavefront/area_light8.h"
 #include "simd/wavefront/environment8.h"
 #include "simd/wavefront/interaction8.h"
-#include "simd/sampler8.h"
+#include "simd/wavefront/sobol8.h"
 #include "simd/wavefront/bsdf8.h"
 #include "simd/wavefront/shadow_rows8.h"
 #include "simd/wavefront/spawn8.h"

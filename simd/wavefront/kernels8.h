@@ -8,7 +8,7 @@
 namespace ptlab::simd {
 
 /// The SIMD table: intersect8 / occluded8 run simd::Intersect8 / simd::Occluded8 on `bvh8`
-/// (each with its default options), sobol2d / sobol1d the 8-wide Sobol' batches (simd/sampler8.h),
+/// (each with its default options), sobol2d / sobol1d the 8-wide Sobol' batches (simd/wavefront/sobol8.h),
 /// bsdf simd::ShadeBatch (simd/wavefront/bsdf8.h), splat simd::SplatSamples (simd/wavefront/splat8.h),
 /// area_light simd::SampleAreaLightBatch (simd/wavefront/area_light8.h) on `rows`, area_request
 /// simd::AreaEmitterRequestBatch (simd/wavefront/area_request8.h), interaction

@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "engine/render/film.h"
 #include "engine/render/filter.h"
+#include "engine/wavefront/splat.h"
 #include "hwy/highway.h"
 
 HWY_BEFORE_NAMESPACE();

@@ -1,8 +1,8 @@
 // Vectorized film splatting through the pixel filter's table (plain API).
 #pragma once
 
-#include "engine/render/film.h"
 #include "engine/render/filter.h"
+#include "engine/wavefront/splat.h"
 
 namespace ptlab::simd {
 

@@ -1,7 +1,7 @@
 // MakeInteraction's surface uv: a mesh's texture coordinates interpolated at the hit, the
 // barycentrics on meshes without them (Nori), (φ/2π, θ/π) on spheres. The batch into the
 // wavefront's rows.
-#include "engine/render/interaction.h"
+#include "engine/wavefront/interaction.h"
 
 #include <gtest/gtest.h>
 

@@ -16,7 +16,7 @@
 
 #include "engine/core/rng.h"
 #include "engine/io/scene_file.h"
-#include "engine/light/area_light.h"
+#include "engine/wavefront/area_light.h"
 #include "tests/simd/for_each_target.h"
 #include "tests/test_data.h"
 

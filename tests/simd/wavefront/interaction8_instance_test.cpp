@@ -18,7 +18,7 @@
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/core/rng.h"
 #include "engine/io/mitsuba_loader.h"
-#include "engine/render/interaction.h"
+#include "engine/wavefront/interaction.h"
 #include "tests/simd/for_each_target.h"
 
 namespace ptlab {

@@ -28,7 +28,7 @@
 #include "engine/core/rng.h"
 #include "engine/io/mesh_builder.h"
 #include "engine/io/scene_file.h"
-#include "engine/render/interaction.h"
+#include "engine/wavefront/interaction.h"
 #include "tests/simd/for_each_target.h"
 #include "tests/test_data.h"
 

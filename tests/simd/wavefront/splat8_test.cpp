@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "engine/core/rng.h"
-#include "engine/render/film.h"
 #include "engine/render/filter.h"
+#include "engine/wavefront/splat.h"
 #include "tests/simd/for_each_target.h"
 
 namespace ptlab {

@@ -1,11 +1,11 @@
-// Vectorized sampler entry points: per-target instantiation and dispatch of simd/sampler8-inl.h.
+// Vectorized sampler entry points: per-target instantiation and dispatch of simd/wavefront/sobol8-inl.h.
 #include "simd/targets.h"  // first: the target policy
 
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "simd/sampler8.cpp"
+#define HWY_TARGET_INCLUDE "simd/wavefront/sobol8.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
-#include "simd/sampler8-inl.h"
+#include "simd/wavefront/sobol8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -25,7 +25,7 @@ void Sobol1DTarget(const uint32_t* pixel_seed, const uint32_t* index, uint32_t d
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include "simd/sampler8.h"
+#include "simd/wavefront/sobol8.h"
 
 namespace ptlab::simd {
 

@@ -1,4 +1,4 @@
-// Per-target kernels of simd/sampler8.h (re-included once per Highway target). Each step is
+// Per-target kernels of simd/wavefront/sobol8.h (re-included once per Highway target). Each step is
 // the integer operation of its scalar twin in engine/sampling/sobol.h, lane by lane.
 
 #if defined(PTLAB_SIMD_SAMPLER8_INL_H_) == defined(HWY_TARGET_TOGGLE)

@@ -4,7 +4,7 @@
 #include "simd/targets.h"  // first: the target policy (must precede every hwy/ include)
 // clang-format on
 #include "simd/dispatched_target.h"
-#include "simd/sampler8.h"
+#include "simd/wavefront/sobol8.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "engine/core/rng.h"
-#include "engine/sampling/sobol.h"
+#include "engine/wavefront/sobol.h"
 #include "tests/simd/for_each_target.h"
 
 namespace ptlab {
@@ -23,7 +23,7 @@ void ForEachTarget(Fn&& fn) {
   test::ForEachTarget(simd::DispatchedTargetName, [&](const char*) { fn(); });
 }
 
-TEST(Sampler8, BitIdenticalToTheOracleOnEveryTarget) {
+TEST(Sobol8, BitIdenticalToTheOracleOnEveryTarget) {
   Pcg32 rng(17, 19);
   const size_t n = 1 << 17;  // 2^17 rows x 12 dimensions x (1-D + 2-D) > 10^6 values a target
   std::vector<uint32_t> seed(n), index(n);

@@ -7,9 +7,10 @@
 namespace ptlab::simd {
 
 // 8-wide Highway kernels (hn::CappedTag<uint32_t, 8>) of the batch oracles in
-// engine/sampling/sobol.h, chosen at run time among the compiled targets. The sampler is integer arithmetic (hashes, bit reversal, the Laine-Karras
+// engine/wavefront/sobol.h, chosen at run time among the compiled targets. The sampler is
+// integer arithmetic (hashes, bit reversal, the Laine-Karras
 // permutation, dimension 1 from byte tables) and one exact conversion to float, so the
-// results are bit-identical to the oracle's on every target (tests/simd/sampler8_test.cpp).
+// results are bit-identical to the oracle's on every target (tests/simd/wavefront/sobol8_test.cpp).
 // Arrays hold n rows (any n); outputs may not alias inputs.
 
 /// Oracle: ptlab::ScrambledSobol2DBatch.
