@@ -113,12 +113,14 @@ HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
   const V8 t = hn::Sub(RoundedMul(d, hn::Sub(eta, k), hn::Add(eta, k)), s2);
   const V8 ek = hn::Mul(eta, k);
   const V8 abs_z = hn::Sqrt(hn::Add(hn::Mul(t, t), hn::Mul(hn::Set(d, 4.0f), hn::Mul(ek, ek))));
+  // The oracle's branches as one square root and one quotient per lane: root = a for t > 0
+  // (then b = ek / a), root = b otherwise (then a = ek / b, or 0 for b = 0).
   const M8 pos = hn::Gt(t, zero);
-  const V8 a_pos = hn::Sqrt(hn::Mul(half, hn::Add(abs_z, t)));
-  const V8 b_neg = hn::Sqrt(hn::Mul(half, hn::Sub(abs_z, t)));
-  const V8 a =
-      hn::IfThenElse(pos, a_pos, hn::IfThenElseZero(hn::Gt(b_neg, zero), hn::Div(ek, b_neg)));
-  const V8 b = hn::IfThenElse(pos, hn::Div(ek, a_pos), b_neg);
+  const V8 root =
+      hn::Sqrt(hn::Mul(half, hn::IfThenElse(pos, hn::Add(abs_z, t), hn::Sub(abs_z, t))));
+  const V8 other = hn::Div(ek, root);
+  const V8 a = hn::IfThenElse(pos, root, hn::IfThenElseZero(hn::Gt(root, zero), other));
+  const V8 b = hn::IfThenElse(pos, other, root);
   const V8 b2 = hn::Mul(b, b);
   const V8 am = hn::Sub(a, c), ap = hn::Add(a, c);
   const V8 num_s = hn::Add(hn::Mul(am, am), b2), den_s = hn::Add(hn::Mul(ap, ap), b2);
