@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/bsdf.h"  // IsDeltaMaterial, MixesDeltaLobes
@@ -113,12 +114,14 @@ HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
   const V8 t = hn::Sub(RoundedMul(d, hn::Sub(eta, k), hn::Add(eta, k)), s2);
   const V8 ek = hn::Mul(eta, k);
   const V8 abs_z = hn::Sqrt(hn::Add(hn::Mul(t, t), hn::Mul(hn::Set(d, 4.0f), hn::Mul(ek, ek))));
+  // The oracle's branches as one square root and one quotient per lane: root = a for t > 0
+  // (then b = ek / a), root = b otherwise (then a = ek / b, or 0 for b = 0).
   const M8 pos = hn::Gt(t, zero);
-  const V8 a_pos = hn::Sqrt(hn::Mul(half, hn::Add(abs_z, t)));
-  const V8 b_neg = hn::Sqrt(hn::Mul(half, hn::Sub(abs_z, t)));
-  const V8 a =
-      hn::IfThenElse(pos, a_pos, hn::IfThenElseZero(hn::Gt(b_neg, zero), hn::Div(ek, b_neg)));
-  const V8 b = hn::IfThenElse(pos, hn::Div(ek, a_pos), b_neg);
+  const V8 root =
+      hn::Sqrt(hn::Mul(half, hn::IfThenElse(pos, hn::Add(abs_z, t), hn::Sub(abs_z, t))));
+  const V8 other = hn::Div(ek, root);
+  const V8 a = hn::IfThenElse(pos, root, hn::IfThenElseZero(hn::Gt(root, zero), other));
+  const V8 b = hn::IfThenElse(pos, other, root);
   const V8 b2 = hn::Mul(b, b);
   const V8 am = hn::Sub(a, c), ap = hn::Add(a, c);
   const V8 num_s = hn::Add(hn::Mul(am, am), b2), den_s = hn::Add(hn::Mul(ap, ap), b2);
@@ -273,6 +276,64 @@ HWY_INLINE void ForEachBlock(const BlockIo<kIn, kOut>& io, size_t n, const Block
   for (size_t c = 0; c < kOut; ++c) {
     if (io.out[c] == nullptr) continue;
     for (size_t j = 0; j < rem; ++j) io.out[c][i + j] = t_out[c][j];
+  }
+}
+
+/// ForEachBlock over the rows grouped by a key of each row (0 .. kGroupKeys - 1, counting sort,
+/// stable within a key): a kernel whose lanes branch on the key (AllTrue / AllFalse) then runs
+/// one branch per block, not all of them for blocks that mix keys. The inputs are copied in the
+/// grouped order and the outputs copied back; every lane's result depends on its own inputs
+/// only, so each row's outputs are the ones ForEachBlock gives it. Batches whose blocks seldom
+/// mix keys (at most one in four) go to ForEachBlock as they are.
+inline constexpr uint32_t kGroupKeys = 4;
+template <size_t kIn, size_t kOut, class Key, class Block>
+HWY_NOINLINE void ForEachBlockGrouped(const BlockIo<kIn, kOut>& io, size_t n, const Key& key,
+                                      const Block& block) {
+  if (io.index == nullptr) return ForEachBlock(io, n, block);
+  size_t mixed = 0, count[kGroupKeys] = {};
+  thread_local std::vector<uint32_t> keys;
+  keys.resize(n);
+  for (size_t r = 0; r < n; ++r) ++count[keys[r] = key(r)];
+  for (size_t i = 0; i < n; i += 8) {
+    const size_t end = std::min(n, i + 8);
+    for (size_t r = i + 1; r < end; ++r) {
+      if (keys[r] != keys[i]) {
+        ++mixed;
+        break;
+      }
+    }
+  }
+  if (mixed * 4 <= (n + 7) / 8) return ForEachBlock(io, n, block);
+  // order[g] = the row at grouped position g.
+  thread_local std::vector<uint32_t> order, t_index, t_entry;
+  thread_local std::vector<float> t_in, t_out;
+  size_t start[kGroupKeys] = {};
+  for (uint32_t k = 1; k < kGroupKeys; ++k) start[k] = start[k - 1] + count[k - 1];
+  order.resize(n);
+  for (size_t r = 0; r < n; ++r) order[start[keys[r]]++] = uint32_t(r);
+  BlockIo<kIn, kOut> t;
+  t_index.resize(n);
+  for (size_t g = 0; g < n; ++g) t_index[g] = io.index[order[g]];
+  t.index = t_index.data();
+  if (io.entry != nullptr) {
+    t_entry.resize(n);
+    for (size_t g = 0; g < n; ++g) t_entry[g] = io.entry[order[g]];
+    t.entry = t_entry.data();
+  }
+  t_in.resize(kIn * n), t_out.resize(kOut * n);
+  for (size_t c = 0; c < kIn; ++c) {
+    if (io.in[c] == nullptr) continue;
+    float* col = t_in.data() + c * n;
+    for (size_t g = 0; g < n; ++g) col[g] = io.in[c][order[g]];
+    t.in[c] = col;
+  }
+  for (size_t c = 0; c < kOut; ++c)
+    t.out[c] = io.out[c] != nullptr ? t_out.data() + c * n : nullptr;
+  ForEachBlock(t, n, block);
+  for (size_t c = 0; c < kOut; ++c) {
+    if (io.out[c] == nullptr) continue;
+    const float* col = t.out[c];
+    for (size_t g = 0; g < n; ++g) io.out[c][order[g]] = col[g];
   }
 }
 

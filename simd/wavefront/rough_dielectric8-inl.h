@@ -96,7 +96,11 @@ HWY_INLINE V8 RoughDielectricEvalPdf(D8 d, const RoughDielectricLanes& c, V8 ox,
 /// RoughDielectricEval / RoughDielectricPdf / RoughDielectricSample.
 inline void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeIo& io, size_t n,
                                  bool eval, bool sample) {
-  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+  // Rows grouped by distribution and sampling (a block mixing Beckmann and GGX rows runs both).
+  const auto key = [&t, &io](size_t r) {
+    return uint32_t(t.flags[io.index[r]] & (kMicrofacetGgx | kMicrofacetSampleVisible));
+  };
+  ForEachBlockGrouped(io, n, key, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), minus = hn::Set(d, -1.0f);
     RoughDielectricLanes c;

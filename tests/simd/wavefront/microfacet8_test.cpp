@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -261,6 +262,39 @@ TEST(Microfacet8, ShadeBatchMatchesOracleOnEveryTarget) {
       Compare(fx, c.tag, r, o0, o1, target);
     });
   }
+}
+
+// A batch mixing Beckmann and GGX rows, visible and plain sampling (simd::ShadeBatch groups its
+// rows by those flags before the 8-wide blocks, ForEachBlockGrouped): every row's outputs are
+// bit for bit those of the row shaded alone (a block of one key, no regrouping), on every target.
+TEST(Microfacet8, RoughDielectricMixedBatchEqualsRowsAlone) {
+  const Fixture fx = MakeFixture();
+  const MaterialTag tag = MaterialTag::kRoughDielectric;
+  // The random rows of MakeRows (its hard cases come after them, in order, unmixed).
+  const Rows all = MakeRows(fx.diel_amin, tag, 4096);
+  Rows r;
+  for (size_t i = 0; i < 4096; ++i)
+    r.Push(all.index[i], all.alpha_min[i], {all.wo[0][i], all.wo[1][i], all.wo[2][i]},
+           {all.wl[0][i], all.wl[1][i], all.wl[2][i]}, all.u_lobe[i], all.u_x[i], all.u_y[i]);
+  size_t ggx = 0;
+  for (const uint32_t row : r.index) ggx += fx.m.rough_dielectric.flags[row] & kMicrofacetGgx;
+  ASSERT_GT(ggx, r.size() / 4);  // the batch mixes the distributions
+  ASSERT_LT(ggx, r.size() * 3 / 4);
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
+    Out batch(r.size());
+    simd::ShadeBatch(fx.m, tag, r.index.data(), r.size(), r.In(), batch.Outputs());
+    size_t differ = 0;
+    for (size_t i = 0; i < r.size(); ++i) {
+      Rows one;
+      one.Push(r.index[i], r.alpha_min[i], {r.wo[0][i], r.wo[1][i], r.wo[2][i]},
+               {r.wl[0][i], r.wl[1][i], r.wl[2][i]}, r.u_lobe[i], r.u_x[i], r.u_y[i]);
+      Out alone(1);
+      simd::ShadeBatch(fx.m, tag, one.index.data(), 1, one.In(), alone.Outputs());
+      for (int c = 0; c < 12; ++c)
+        differ += std::memcmp(&alone.v[c][0], &batch.v[c][i], sizeof(float)) != 0;
+    }
+    EXPECT_EQ(differ, 0u) << target;
+  });
 }
 
 }  // namespace
