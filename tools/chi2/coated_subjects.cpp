@@ -1,4 +1,5 @@
-// Chi-square subjects of matB's models: the smooth plastic's and the blend's non-delta samples.
+// Chi-square subjects of matB's models: the smooth plastic's, the blend's and the mask's non-delta
+// samples.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include "engine/bsdf/bsdf.h"
 #include "engine/bsdf/plastic.h"
 #include "engine/bsdf/plastic_precompute.h"
+#include "engine/scene/material_tables.h"
 #include "engine/wavefront/bsdf.h"
 #include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
@@ -103,6 +105,35 @@ void RegisterCoatedBsdfSubjects(Chi2Registry* r) {
         if (ch == '.') ch = 'p';
       r->Add(NonDeltaSubject(name, Fmt("weight=%g theta_o=45 phi_o=70", w), m, ref, wo, simd,
                              ((1.0 - w) + w * (1.0 - ps)) * kCosineSamplerMass));
+    }
+  }
+  // Masks: the pass-through (Mitsuba's null lobe) is a delta sample, so the non-delta mass is
+  // the opacity times the nested model's own: a diffuse one (known) and an anisotropic GGX
+  // conductor with visible normals (unknown: some normals reflect below the horizon).
+  struct MaskCase {
+    float opacity, theta_deg;
+    bool conductor;
+  };
+  for (const MaskCase& c : {MaskCase{0.3f, 40, false}, MaskCase{0.8f, 75, false},
+                            MaskCase{0.6f, 50, true}}) {
+    for (bool simd : {false, true}) {
+      auto m = std::make_shared<MaterialTables>();
+      const MaterialRef nested =
+          c.conductor ? m->AddRoughConductor(0.15f, 0.45f, kMicrofacetGgx | kMicrofacetSampleVisible,
+                                             {0.2f, 0.9f, 1.1f}, {3.9f, 2.4f, 2.1f}, {1, 1, 1})
+                      : m->AddDiffuse({0.6f, 0.5f, 0.4f});
+      const MaterialRef ref = m->AddMask(c.opacity, nested);
+      const Vec3f wo = Chi2Direction(c.theta_deg, 30);
+      std::string name = std::string(simd ? "simd/shade_mask" : "bsdf/mask") +
+                         (c.conductor ? "_ggx_conductor" : "_diffuse") +
+                         Fmt("_o%g_t%g", c.opacity, c.theta_deg);
+      for (char& ch : name)
+        if (ch == '.') ch = 'p';
+      Chi2Subject subject =
+          NonDeltaSubject(name, Fmt("opacity=%g theta_o=%g phi_o=30", c.opacity, c.theta_deg), m,
+                          ref, wo, simd, c.opacity * kCosineSamplerMass);
+      if (c.conductor) subject.albedo = kChi2UnknownAlbedo;
+      r->Add(std::move(subject));
     }
   }
 }
