@@ -18,6 +18,7 @@
 #include "simd/wavefront/bsdf8.h"
 #include "tools/chi2/lobe_disk.h"
 #include "tools/chi2/microfacet_subjects.h"  // matA
+#include "tools/chi2/perturbed_subjects.h"
 #include "tools/chi2/principled_subjects.h"  // principled
 #include "tools/chi2/stats_math.h"
 
@@ -311,6 +312,7 @@ void RegisterBsdfSubjects(Chi2Registry* r) {
   RegisterCoatedBsdfSubjects(r);  // matB
   RegisterMicrofacetBsdfSubjects(r);  // matA: the Mitsuba microfacet models
   RegisterPrincipledBsdfSubjects(r);  // principled: principled and principledthin
+  RegisterPerturbedBsdfSubjects(r);   // normal: normalmap and bumpmap
 
   // Deliberately wrong pdfs for the right samplers. Both keep the true albedo, so the lab
   // compares their integral (and the absorbed count) with the sampler's actual mass.
