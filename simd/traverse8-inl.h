@@ -23,26 +23,14 @@ namespace hn = hwy::HWY_NAMESPACE;
 // ---------------------------------------------------------------------------------------------
 // Entry points (dispatched from simd/traverse8.cpp).
 
-// t_bound (nullptr: none): per lane, a distance beyond which no hit matters to the caller
-// (the instance level's best hit so far, see simd/traverse8.cpp). It only starts the lane's
-// closest-hit distance, which prunes boxes; the triangle test keeps the ray's own (t_min,
-// t_max), so the hits found at or before the bound are the ones found without it. Only for
-// BVH8s without spheres or sdfgrids (their tests take the closest distance as their t_max).
 HWY_INLINE Mask8 Intersect8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8 active,
-                                  HitPacket8* hits, const Traverse8Options& options,
-                                  const float* t_bound = nullptr) {
+                                  HitPacket8* hits, const Traverse8Options& options) {
   const bool spheres = bvh.spheres.size() != 0;
   const bool grids = bvh.sdf_grids.size() != 0;
   if (bvh.empty() && !spheres && !grids) return 0;
   PacketState s;
   const Mask8 live = SetupPacket(rays, active & kAllLanes, &s);
   if (live == 0) return 0;
-  if (t_bound != nullptr) {
-    for (Mask8 todo = live; todo != 0; todo &= todo - 1) {
-      const int j = std::countr_zero(todo);
-      s.best_t[j] = t_bound[j] < s.best_t[j] ? t_bound[j] : s.best_t[j];
-    }
-  }
   if (!bvh.empty()) TraverseLanes<false>(bvh, &s, live, options);
   if (spheres) SphereLanes<false>(bvh, rays, &s, live);
   if (grids) SdfGridLanes<false>(bvh, rays, &s, live);
@@ -83,10 +71,9 @@ HWY_INLINE Mask8 Occluded8Kernel(const Bvh8& bvh, const RayPacket8& rays, Mask8 
 
 // The single-ray kernels test the spheres with the oracle's own scalar code (bit-identical by
 // construction); only the packet kernels need the vector twin.
-// t_bound: as Intersect8Kernel's, for one ray (ray.t_max: none).
-HWY_INLINE bool Intersect1Kernel(const Bvh8& bvh, const Ray& ray, Hit* hit, float t_bound) {
+HWY_INLINE bool Intersect1Kernel(const Bvh8& bvh, const Ray& ray, Hit* hit) {
   if (!(ray.t_min < ray.t_max)) return false;
-  LaneBest best{t_bound < ray.t_max ? t_bound : ray.t_max, kNoHit, 0.0f, 0.0f};
+  LaneBest best{ray.t_max, kNoHit, 0.0f, 0.0f};
   if (!bvh.empty()) {
     WatertightLanes rv;
     const SingleRay r = MakeSingleRay(ray.o, ray.d, ray.t_min, ray.t_max, &rv);
