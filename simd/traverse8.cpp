@@ -14,7 +14,6 @@
 // clang-format on
 
 #include <algorithm>
-#include <cstddef>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -45,36 +44,6 @@ bool Intersect1Impl(const Bvh8& bvh, const Ray& ray, Hit* hit) {
 
 bool Occluded1Impl(const Bvh8& bvh, const Ray& ray) { return Occluded1Kernel(bvh, ray); }
 
-// The instance tree's box test for eight lanes (simd/traverse8.cpp's InstanceLanes: rows o_x,
-// o_y, o_z, inv_x, inv_y, inv_z, t_min of eight floats each): IntersectBox's operations per lane
-// ((near plane - o) * inv_d by the sign of inv_d, the interval folded x, y, z in turn with the
-// same comparisons, the robust far scale), in vectors. Writes each lane's entry distance;
-// returns the lanes that enter the box in [t_min, t_far].
-uint32_t InstanceBoxLanesImpl(const BvhNode& n, const float* lanes, const float* t_far,
-                              float* t_entry) {
-  const DF d;
-  const size_t count = hn::Lanes(d);
-  const float lo[3] = {n.bounds_min.x, n.bounds_min.y, n.bounds_min.z};
-  const float hi[3] = {n.bounds_max.x, n.bounds_max.y, n.bounds_max.z};
-  const VF zero = hn::Zero(d), scale = hn::Set(d, kRobustFarScale);
-  uint32_t bits = 0;
-  for (size_t i = 0; i < 8; i += count) {
-    VF t0 = hn::Load(d, lanes + 48 + i), t1 = hn::Load(d, t_far + i);
-    for (int a = 0; a < 3; ++a) {
-      const VF o = hn::Load(d, lanes + 8 * a + i), inv = hn::Load(d, lanes + 24 + 8 * a + i);
-      const MF neg = hn::Lt(inv, zero);  // signbit: inv_d is never -0 (d is finite)
-      const VF lo_a = hn::Set(d, lo[a]), hi_a = hn::Set(d, hi[a]);
-      const VF near = hn::Mul(hn::Sub(hn::IfThenElse(neg, hi_a, lo_a), o), inv);
-      const VF far = hn::Mul(hn::Sub(hn::IfThenElse(neg, lo_a, hi_a), o), inv);
-      t0 = hn::IfThenElse(hn::Gt(near, t0), near, t0);
-      t1 = hn::IfThenElse(hn::Lt(far, t1), far, t1);
-    }
-    hn::Store(t0, d, t_entry + i);
-    bits |= MaskBits(d, hn::Le(t0, hn::Mul(t1, scale))) << i;
-  }
-  return bits;
-}
-
 }  // namespace HWY_NAMESPACE
 }  // namespace ptlab::simd
 HWY_AFTER_NAMESPACE();
@@ -85,6 +54,7 @@ HWY_AFTER_NAMESPACE();
 #include "engine/bvh/box_intersect.h"
 #include "engine/bvh/instance_level.h"
 #include "engine/core/check.h"
+#include "simd/instance_box8.h"
 
 namespace ptlab::simd {
 
@@ -92,7 +62,6 @@ HWY_EXPORT(Intersect8Impl);
 HWY_EXPORT(Occluded8Impl);
 HWY_EXPORT(Intersect1Impl);
 HWY_EXPORT(Occluded1Impl);
-HWY_EXPORT(InstanceBoxLanesImpl);
 
 namespace {
 
@@ -120,41 +89,14 @@ bool OccludedGroup8(const void* groups, uint32_t g, const Ray& ray) {
   return Occluded1(static_cast<const Bvh8*>(groups)[g], ray);
 }
 
-// The instance tree's box test for the eight lanes of a packet at once (InstanceBoxLanesImpl:
-// IntersectBox's operations in vectors); the scalar test lane by lane cost 14 % of the instanced
-// terrain's camera and shadow packets (perf, 2026-12-07). Conservative like the oracle's: a lane
-// skips only instances it cannot hit at or before its far end.
-struct InstanceLanes {
-  alignas(32) float o[3][8], inv[3][8], t_min[8];  // InstanceBoxLanesImpl's layout
-};
-
-// Lanes of `rays` in `live` (others get benign values that enter nothing).
-static_assert(offsetof(InstanceLanes, inv) == 24 * sizeof(float) &&
-              offsetof(InstanceLanes, t_min) == 48 * sizeof(float));
-
-InstanceLanes MakeInstanceLanes(const RayPacket8& rays, Mask8 live) {
-  InstanceLanes l;
-  const float* org[3] = {rays.org_x, rays.org_y, rays.org_z};
-  const float* dir[3] = {rays.dir_x, rays.dir_y, rays.dir_z};
-  for (int j = 0; j < 8; ++j) {
-    const bool on = LaneActive(live, j);
-    for (int a = 0; a < 3; ++a) {
-      l.o[a][j] = on ? org[a][j] : 0.0f;
-      l.inv[a][j] = on ? 1.0f / dir[a][j] : 1.0f;
-    }
-    l.t_min[j] = on ? rays.t_min[j] : 1.0f;
-  }
-  return l;
-}
-
-// Lanes of `lanes` whose ray enters the node's box in [t_min, t_far[j]]; *first_entry: the
-// least entry distance among them (INFINITY if none). Lanes outside `lanes` need benign
-// t_far (finite or not, never NaN-producing beyond what the test tolerates).
+// The lanes of `lanes` whose ray enters the node's box in [t_min, t_far[j]] (InstanceBoxLanes:
+// the oracle's IntersectBox in vectors; tested lane by lane with scalar code, the box tests
+// cost 14 % of the instanced terrain's camera and shadow packets, perf 2026-12-07);
+// *first_entry: the least entry distance among them (INFINITY if none).
 Mask8 LanesInBox(const BvhNode& n, const InstanceLanes& l, const float* t_far, Mask8 lanes,
                  float* first_entry) {
   alignas(32) float t_entry[8];
-  const Mask8 in =
-      HWY_DYNAMIC_DISPATCH(InstanceBoxLanesImpl)(n, &l.o[0][0], t_far, t_entry) & lanes;
+  const Mask8 in = InstanceBoxLanes(n, l, t_far, t_entry) & lanes;
   float first = INFINITY;
   for (Mask8 todo = in; todo != 0; todo &= todo - 1)
     first = std::min(first, t_entry[std::countr_zero(todo)]);
@@ -162,7 +104,7 @@ Mask8 LanesInBox(const BvhNode& n, const InstanceLanes& l, const float* t_far, M
   return in;
 }
 
-// RayToInstance for the lanes of `lanes` (the same operations in the same order, so the same
+// RayToInstance for every lane (the same operations in the same order, so the same
 // bits), into `local`: every lane, branch-free (a lane outside the caller's mask may compute
 // with NaN, harmlessly; it is never traced).
 void PacketToInstance(const InstanceLevel& level, uint32_t i, const RayPacket8& rays,
