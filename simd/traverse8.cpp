@@ -51,7 +51,6 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 #include <bit>
 
-#include "engine/bvh/box_intersect.h"
 #include "engine/bvh/instance_level.h"
 #include "engine/core/check.h"
 #include "simd/instance_box8.h"
@@ -84,7 +83,6 @@ bool IntersectGroup8(const void* groups, uint32_t g, const Ray& ray, Hit* hit) {
   return Intersect1(static_cast<const Bvh8*>(groups)[g], ray, hit);
 }
 
-
 bool OccludedGroup8(const void* groups, uint32_t g, const Ray& ray) {
   return Occluded1(static_cast<const Bvh8*>(groups)[g], ray);
 }
@@ -104,9 +102,9 @@ Mask8 LanesInBox(const BvhNode& n, const InstanceLanes& l, const float* t_far, M
   return in;
 }
 
-// RayToInstance for every lane (the same operations in the same order, so the same
-// bits), into `local`: every lane, branch-free (a lane outside the caller's mask may compute
-// with NaN, harmlessly; it is never traced).
+// RayToInstance for every lane of `rays` into `local` (the same operations in the same order,
+// so the same bits), branch-free: a lane outside the caller's mask may compute with NaN,
+// harmlessly; it is never traced.
 void PacketToInstance(const InstanceLevel& level, uint32_t i, const RayPacket8& rays,
                       RayPacket8* local) {
   const float* m = level.world_to_group.data() + size_t(i) * 12;
@@ -240,8 +238,8 @@ Mask8 OccludedInstancesPacket(const Bvh8& bvh, const RayPacket8& rays, Mask8 ope
       if (lanes != 0) {
         RayPacket8 local;
         PacketToInstance(level, i, rays, &local);
-        done |= HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh.groups[level.group[i]], local, lanes,
-                                                    options);
+        done |=
+            HWY_DYNAMIC_DISPATCH(Occluded8Impl)(bvh.groups[level.group[i]], local, lanes, options);
         if (done == open) return done;
       }
     }

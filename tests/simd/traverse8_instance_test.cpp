@@ -105,7 +105,9 @@ std::vector<Ray> AdversarialInstanceRays(const Scene& s, const Bvh& bvh, uint64_
   const InstanceTable& in = s.instances;
   std::vector<Ray> rays;
   const auto world_vertex = [&](uint32_t k, uint32_t row, int v) {
-    const Vec3f p = v == 0 ? s.triangles.V0(row) : v == 1 ? s.triangles.V1(row) : s.triangles.V2(row);
+    const Vec3f p = v == 0   ? s.triangles.V0(row)
+                    : v == 1 ? s.triangles.V1(row)
+                             : s.triangles.V2(row);
     return in.to_world[k].ApplyPoint(p);
   };
   while (int(rays.size()) < n) {
@@ -176,7 +178,8 @@ TEST(Traverse8Instances, AdversarialPacketsMatchOracleOnEveryTarget) {
     Pcg32 rng(8, 1);
     std::vector<size_t> shuffled(rays.size());
     for (size_t i = 0; i < rays.size(); ++i) shuffled[i] = i;
-    for (size_t i = rays.size(); i > 1; --i) std::swap(shuffled[i - 1], shuffled[rng.NextUint() % i]);
+    for (size_t i = rays.size(); i > 1; --i)
+      std::swap(shuffled[i - 1], shuffled[rng.NextUint() % i]);
     for (size_t base = 0; base < rays.size(); base += 8) {
       RayPacket8 p;
       for (int j = 0; j < 8; ++j) SetLaneRay(&p, j, rays[shuffled[base + size_t(j)]]);
