@@ -126,6 +126,11 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::PrincipledBsdf(const MitsubaNode& nod
     }
   }
   const MaterialRef ref = scene_.materials.AddPrincipled(row, thin);
+  // Mitsuba orients the anisotropic lobes by ∂p/∂u (its shading frame's tangent), as for the
+  // rough conductor: a row that may be anisotropic gets the uv-aligned frame.
+  if (row.value[kPrincipledAnisotropic] != 0.0f ||
+      row.texture[kPrincipledAnisotropic] != kNoTexture)
+    UvAlignedFrame(ref);
   if (!obj.children().empty())
     return obj.children()[0]->Error("<" + obj.children()[0]->tag + "> is not allowed inside " +
                                     DescribeMitsuba(node));

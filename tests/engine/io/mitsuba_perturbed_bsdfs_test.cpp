@@ -61,6 +61,31 @@ TEST(MitsubaPerturbedBsdfs, BumpMapTakesItsTextureUnderAnyName) {
   EXPECT_EQ(p.scale[0], 0.02f);
 }
 
+// principled's `anisotropic` orients its lobes by ∂p/∂u, as Mitsuba's shading frame does: an
+// anisotropic row (constant or textured) gets the uv-aligned frame, an isotropic one keeps its
+// own.
+TEST(MitsubaPerturbedBsdfs, AnisotropicPrincipledGetsTheUvAlignedFrame) {
+  for (const char* type : {"principled", "principledthin"}) {
+    StatusOr<Scene> s = Load(std::string("<bsdf type=\"") + type +
+                             "\"><float name=\"anisotropic\" value=\"0.7\"/></bsdf>");
+    ASSERT_TRUE(s.ok()) << s.status().message();
+    const MaterialTag tag = std::string(type) == "principled" ? MaterialTag::kPrincipled
+                                                              : MaterialTag::kPrincipledThin;
+    const ShadingPerturbations& p = s->materials.perturbation;
+    ASSERT_EQ(p.size(), 1u) << type;
+    EXPECT_EQ(p.Of(MaterialRef::Make(tag, 0)), 0) << type;
+    EXPECT_EQ(PerturbationKind(p.kind[0]), PerturbationKind::kNormalMap);
+    EXPECT_EQ(p.dp_du_x.size(), s->triangles.size());
+  }
+  StatusOr<Scene> textured = Load(
+      "<bsdf type=\"principled\"><texture name=\"anisotropic\" type=\"checkerboard\"/></bsdf>");
+  ASSERT_TRUE(textured.ok()) << textured.status().message();
+  EXPECT_EQ(textured->materials.perturbation.size(), 1u);
+  StatusOr<Scene> isotropic = Load("<bsdf type=\"principled\"><float name=\"roughness\" value=\"0.3\"/></bsdf>");
+  ASSERT_TRUE(isotropic.ok()) << isotropic.status().message();
+  EXPECT_TRUE(isotropic->materials.perturbation.empty());
+}
+
 TEST(MitsubaPerturbedBsdfs, ScenesWithoutMapsHaveNoPerturbationColumns) {
   StatusOr<Scene> s = Load("<bsdf type=\"diffuse\"/>");
   ASSERT_TRUE(s.ok());
