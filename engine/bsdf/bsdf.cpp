@@ -48,11 +48,15 @@ RoughConductorParams RoughConductorRow(const ConductorTable& t, uint32_t i,
   return p;
 }
 
-RoughDielectricParams RoughDielectricRow(const RoughDielectricTable& t, uint32_t i) {
+RoughDielectricParams RoughDielectricRow(const RoughDielectricTable& t, uint32_t i,
+                                         const TextureSite& site) {
   RoughDielectricParams p;
   const uint8_t f = t.flags[i];
+  // αu, αv may be textured (TexturedFloat), as the rough conductor's.
   p.dist = MakeMicrofacet((f & kMicrofacetGgx) ? MicrofacetType::kGgx : MicrofacetType::kBeckmann,
-                          t.alpha_u[i], t.alpha_v[i], (f & kMicrofacetSampleVisible) != 0);
+                          TexturedFloat(t.alpha_texture, i, t.alpha_u[i], site),
+                          TexturedFloat(t.alpha_v_texture, i, t.alpha_v[i], site),
+                          (f & kMicrofacetSampleVisible) != 0);
   p.eta = t.int_ior[i] / t.ext_ior[i];
   p.reflectance = {t.reflectance_r[i], t.reflectance_g[i], t.reflectance_b[i]};
   p.transmittance = {t.transmittance_r[i], t.transmittance_g[i], t.transmittance_b[i]};
@@ -73,7 +77,7 @@ Color3f BsdfEval(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, cons
         return RoughConductorEval(RoughConductorRow(m.conductor, ref.index(), site), wo, wi);
       return ConductorEval(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughDielectric:  // matA
-      return RoughDielectricEval(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, wi);
+      return RoughDielectricEval(RoughDielectricRow(m.rough_dielectric, ref.index(), site), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEval(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
     // matB
@@ -109,7 +113,7 @@ float BsdfPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, const V
         return RoughConductorPdf(RoughConductorRow(m.conductor, ref.index(), site), wo, wi);
       return ConductorPdf(ConductorRow(m.conductor, ref.index()), wo, wi);
     case MaterialTag::kRoughDielectric:  // matA
-      return RoughDielectricPdf(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, wi);
+      return RoughDielectricPdf(RoughDielectricRow(m.rough_dielectric, ref.index(), site), wo, wi);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi);
     // matB
@@ -155,7 +159,7 @@ Color3f BsdfEvalPdf(const MaterialTables& m, MaterialRef ref, const Vec3f& wo, c
     case MaterialTag::kRoughPlastic:
       return RoughPlasticEvalPdf(RoughPlasticRow(m.rough_plastic, ref.index()), wo, wi, pdf);
     case MaterialTag::kRoughDielectric: {  // matA
-      const RoughDielectricParams p = RoughDielectricRow(m.rough_dielectric, ref.index());
+      const RoughDielectricParams p = RoughDielectricRow(m.rough_dielectric, ref.index(), site);
       *pdf = RoughDielectricPdf(p, wo, wi);
       return RoughDielectricEval(p, wo, wi);
     }
@@ -212,8 +216,8 @@ bool BsdfSampleDirection(const MaterialTables& m, MaterialRef ref, const Vec3f& 
         return RoughConductorSample(RoughConductorRow(m.conductor, ref.index(), site), wo, u2, sample);
       return ConductorSample(ConductorRow(m.conductor, ref.index()), wo, u2, sample);
     case MaterialTag::kRoughDielectric:  // matA
-      return RoughDielectricSample(RoughDielectricRow(m.rough_dielectric, ref.index()), wo, u1, u2,
-                                   sample);
+      return RoughDielectricSample(RoughDielectricRow(m.rough_dielectric, ref.index(), site), wo,
+                                   u1, u2, sample);
     case MaterialTag::kRoughPlastic:
       return RoughPlasticSample(RoughPlasticRow(m.rough_plastic, ref.index()), wo, u1, u2, sample);
     // matB

@@ -138,7 +138,10 @@ StatusOr<MaterialRef> MitsubaSceneBuilder::Bsdf(const MitsubaNode& node) {
                     (c.textured() && (c.alpha_texture[row] != kNoTexture ||
                                       c.alpha_v_texture[row] != kNoTexture));
     } else if (ref.tag() == MaterialTag::kRoughDielectric) {
-      anisotropic = m.rough_dielectric.alpha_u[row] != m.rough_dielectric.alpha_v[row];
+      const RoughDielectricTable& r = m.rough_dielectric;
+      anisotropic = r.alpha_u[row] != r.alpha_v[row] ||
+                    (r.textured() && (r.alpha_texture[row] != kNoTexture ||
+                                      r.alpha_v_texture[row] != kNoTexture));
     }
     if (anisotropic) UvAlignedFrame(ref);
   } else if (type == "normalmap" || type == "bumpmap") {  // normal

@@ -106,8 +106,8 @@ StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
                                                MaterialTables* materials,
                                                const MicrofacetRoughnessTextures& textures) {
   const std::string& type = obj.type();
-  // mask: only roughconductor takes a textured roughness.
-  if (type != "roughconductor" &&
+  // mask: roughconductor and roughdielectric take a textured roughness.
+  if (type != "roughconductor" && type != "roughdielectric" &&
       (textures.alpha_u != kNoTexture || textures.alpha_v != kNoTexture)) {
     const char* name = obj.Has("alpha") ? "alpha" : "alpha_u";
     return obj.Error(name, "unsupported: bsdf \"" + type + "\" with a textured " + name);
@@ -146,7 +146,11 @@ StatusOr<MaterialRef> AddMitsubaMicrofacetBsdf(const MitsubaObject& obj,
     PTLAB_RETURN_IF_ERROR(Specular(obj, "specular_transmittance", &transmittance));
     float alpha_u, alpha_v;
     uint8_t flags;
-    PTLAB_RETURN_IF_ERROR(Roughness(obj, &alpha_u, &alpha_v, &flags));
+    PTLAB_RETURN_IF_ERROR(Roughness(obj, &alpha_u, &alpha_v, &flags, textures));
+    if (textures.alpha_u != kNoTexture || textures.alpha_v != kNoTexture)
+      return materials->AddTexturedRoughDielectric(alpha_u, alpha_v, textures.alpha_u,
+                                                   textures.alpha_v, flags, int_ior, ext_ior,
+                                                   reflectance, transmittance);
     return materials->AddRoughDielectric(alpha_u, alpha_v, flags, int_ior, ext_ior, reflectance,
                                          transmittance);
   }

@@ -108,7 +108,10 @@ struct RoughDielectricTable {
   AlignedVector<uint8_t> flags;
   AlignedVector<float> reflectance_r, reflectance_g, reflectance_b;
   AlignedVector<float> transmittance_r, transmittance_g, transmittance_b;
+  /// Textured αu, αv (a TextureTable row or kNoTexture): empty until a row is textured.
+  AlignedVector<uint32_t> alpha_texture, alpha_v_texture;
   size_t size() const { return alpha_u.size(); }
+  bool textured() const { return !alpha_texture.empty(); }
 };
 
 /// Nori `microfacet`: Beckmann rough plastic, kd + ks specular lobe, ks = 1 - max(kd).
@@ -252,7 +255,20 @@ struct MaterialTables {
         t.reflectance_b.push_back(reflectance.b);
     t.transmittance_r.push_back(transmittance.r), t.transmittance_g.push_back(transmittance.g),
         t.transmittance_b.push_back(transmittance.b);
+    if (t.textured()) t.alpha_texture.push_back(kNoTexture), t.alpha_v_texture.push_back(kNoTexture);
     return MaterialRef::Make(MaterialTag::kRoughDielectric, uint32_t(t.size() - 1));
+  }
+  /// A Mitsuba roughdielectric whose αu and / or αv are textures (kNoTexture: the constant).
+  MaterialRef AddTexturedRoughDielectric(float alpha_u, float alpha_v, uint32_t alpha_u_texture,
+                                         uint32_t alpha_v_texture, uint8_t microfacet_flags,
+                                         float int_ior, float ext_ior, const Color3f& reflectance,
+                                         const Color3f& transmittance) {
+    auto& t = rough_dielectric;
+    const MaterialRef ref = AddRoughDielectric(alpha_u, alpha_v, microfacet_flags, int_ior,
+                                               ext_ior, reflectance, transmittance);
+    t.alpha_texture.resize(t.size(), kNoTexture), t.alpha_v_texture.resize(t.size(), kNoTexture);
+    t.alpha_texture[ref.index()] = alpha_u_texture, t.alpha_v_texture[ref.index()] = alpha_v_texture;
+    return ref;
   }
   MaterialRef AddRoughPlastic(float alpha, float int_ior, float ext_ior, const Color3f& kd) {
     auto& t = rough_plastic;

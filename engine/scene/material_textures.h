@@ -25,6 +25,9 @@ inline void MaterialTextures(const MaterialTables& m, MaterialRef ref, std::vect
     case MaterialTag::kConductor:
       add(m.conductor.alpha_texture, i);
       return add(m.conductor.alpha_v_texture, i);
+    case MaterialTag::kRoughDielectric:
+      add(m.rough_dielectric.alpha_texture, i);
+      return add(m.rough_dielectric.alpha_v_texture, i);
     case MaterialTag::kBlend:
       add(m.blend.weight_texture, i);
       MaterialTextures(m, m.blend.First(i), ids);
@@ -43,7 +46,6 @@ inline void MaterialTextures(const MaterialTables& m, MaterialRef ref, std::vect
     case MaterialTag::kMirror:
     case MaterialTag::kDielectric:
     case MaterialTag::kRoughPlastic:
-    case MaterialTag::kRoughDielectric:
     case MaterialTag::kPlastic:
     case MaterialTag::kThinDielectric:
       return;

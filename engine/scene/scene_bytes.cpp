@@ -17,7 +17,7 @@ static_assert(sizeof(TriangleShadingTable) == 5 * kColumn);
 static_assert(sizeof(VertexTable) == 5 * kColumn);
 static_assert(sizeof(MeshTable) == 7 * kColumn);
 static_assert(sizeof(MaterialTables) ==
-              (4 + 3 + 9 + 7 + 6 + /* matA */ 6 + 5 + 11 + /* matB */ 11 + 7 + 3 +
+              (4 + 3 + 9 + 7 + 6 + /* matA */ 6 + 5 + 13 + /* matB */ 11 + 7 + 3 +
                kMaterialTagCount + /* normal */ 9 + kMaterialTagCount +
                /* principled */ 2 * (3 + 1 + 2 * kPrincipledParamCount) + /* mask */ 3 + 1 + 2) *
               kColumn);
@@ -86,7 +86,7 @@ size_t MatABytes(const MaterialTables& m) {
          VectorsBytes(c.alpha_v, c.specular_r, c.specular_g, c.specular_b, c.flags) +
          VectorsBytes(rd.alpha_u, rd.alpha_v, rd.int_ior, rd.ext_ior, rd.flags, rd.reflectance_r,
                       rd.reflectance_g, rd.reflectance_b, rd.transmittance_r, rd.transmittance_g,
-                      rd.transmittance_b);
+                      rd.transmittance_b, rd.alpha_texture, rd.alpha_v_texture);
 }
 
 // mask: the mask table and the textured-parameter columns of the blend and the conductor.

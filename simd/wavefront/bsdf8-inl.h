@@ -507,7 +507,7 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
         return ShadeRoughConductor(m.conductor, in.texture, io, n, eval, sample);  // mask: tex
       return ShadeConductor(m.conductor, io, n, eval, sample);
     case MaterialTag::kRoughDielectric:  // matA
-      return ShadeRoughDielectric(m.rough_dielectric, io, n, eval, sample);
+      return ShadeRoughDielectric(m.rough_dielectric, in.texture, io, n, eval, sample);
     case MaterialTag::kRoughPlastic:
       return ShadeRoughPlastic(m.rough_plastic, io, n, eval, sample);
     // matB

@@ -94,17 +94,26 @@ HWY_INLINE V8 RoughDielectricEvalPdf(D8 d, const RoughDielectricLanes& c, V8 ox,
 }
 
 /// RoughDielectricEval / RoughDielectricPdf / RoughDielectricSample.
-inline void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeIo& io, size_t n,
-                                 bool eval, bool sample) {
+/// `tex` for the textured αu, αv (TexturedFloat8, then clamped as MakeMicrofacet does).
+inline void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeInputs::Textures& tex,
+                                 const ShadeIo& io, size_t n, bool eval, bool sample) {
+  const bool textured = tex.textures != nullptr && t.textured();
   // Rows grouped by distribution and sampling (a block mixing Beckmann and GGX rows runs both).
   const auto key = [&t, &io](size_t r) {
     return uint32_t(t.flags[io.index[r]] & (kMicrofacetGgx | kMicrofacetSampleVisible));
   };
-  ForEachBlockGrouped(io, n, key, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+  ForEachBlockGrouped(io, n, key, [&t, &tex, textured, eval, sample](const ShadeIo& b,
+                                                                    size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), minus = hn::Set(d, -1.0f);
     RoughDielectricLanes c;
     c.dist = GatherDist(d, t.alpha_u, t.alpha_v, t.flags, b.index, i);
+    if (textured) {
+      V8 au = Gather(d, t.alpha_u, b.index, i), av = Gather(d, t.alpha_v, b.index, i);
+      TexturedFloat8(d, tex, t.alpha_texture, b, i, &au);
+      TexturedFloat8(d, tex, t.alpha_v_texture, b, i, &av);
+      c.dist.au = mf8::ClampAlpha(d, au), c.dist.av = mf8::ClampAlpha(d, av);
+    }
     c.eta = hn::Div(Gather(d, t.int_ior, b.index, i), Gather(d, t.ext_ior, b.index, i));
     c.r_r = Gather(d, t.reflectance_r, b.index, i), c.r_g = Gather(d, t.reflectance_g, b.index, i);
     c.r_b = Gather(d, t.reflectance_b, b.index, i);

@@ -230,5 +230,44 @@ TEST(Mask, RoughConductorWithTexturedAlphaIsTheConstantRowAtTheSite) {
   }
 }
 
+// A rough dielectric's textured αu, αv: the row evaluates and samples as a constant row with the
+// textures' values, bit for bit (reflection and refraction).
+TEST(Mask, RoughDielectricWithTexturedAlphaIsTheConstantRowAtTheSite) {
+  TextureTable textures;
+  const uint32_t tu = AddChecker(&textures, 0.05f, 0.3f);
+  const uint32_t tv = AddChecker(&textures, 0.3f, 0.05f);
+  MaterialTables m;
+  const MaterialRef ref = m.AddTexturedRoughDielectric(0.1f, 0.1f, tu, tv,
+                                                       kMicrofacetGgx | kMicrofacetSampleVisible,
+                                                       1.5f, 1.0f, {1, 1, 1}, {1, 1, 1});
+  Pcg32 rng(7, 5);
+  int refracted = 0;
+  for (const Vec2f uv : {Vec2f{0.25f, 0.25f}, Vec2f{0.75f, 0.25f}}) {
+    const TextureSite site{&textures, {uv, {0, 0, 0}, 0}};
+    MaterialTables c;
+    const MaterialRef same = c.AddRoughDielectric(
+        TexturedFloat(m.rough_dielectric.alpha_texture, 0, 0, site),
+        TexturedFloat(m.rough_dielectric.alpha_v_texture, 0, 0, site),
+        kMicrofacetGgx | kMicrofacetSampleVisible, 1.5f, 1.0f);
+    EXPECT_NEAR(c.rough_dielectric.alpha_u[0], uv.x < 0.5f ? 0.05f : 0.3f, 1e-7f);
+    for (int i = 0; i < 200; ++i) {
+      Vec3f wo = bsdf_test::RandomUpperDirection(rng), wi = bsdf_test::RandomUpperDirection(rng);
+      if (i % 3 == 0) wi.z = -wi.z;
+      if (i % 5 == 0) wo.z = -wo.z;
+      EXPECT_EQ(BsdfEval(m, ref, wo, wi, site).r, BsdfEval(c, same, wo, wi).r);
+      EXPECT_EQ(BsdfPdf(m, ref, wo, wi, site), BsdfPdf(c, same, wo, wi));
+      BsdfSample s0, s1;
+      const float u1 = rng.NextFloat();
+      const Vec2f u2{rng.NextFloat(), rng.NextFloat()};
+      EXPECT_EQ(BsdfSampleDirection(m, ref, wo, u1, u2, &s0, site),
+                BsdfSampleDirection(c, same, wo, u1, u2, &s1));
+      EXPECT_EQ(s0.wi.z, s1.wi.z);
+      EXPECT_EQ(s0.weight.g, s1.weight.g);
+      refracted += s0.wi.z * wo.z < 0;
+    }
+  }
+  EXPECT_GT(refracted, 50);
+}
+
 }  // namespace
 }  // namespace ptlab

@@ -1,5 +1,5 @@
-// Mitsuba's `mask` bsdf, a textured blendbsdf weight and a textured roughconductor alpha in the
-// loader (engine/io/mitsuba_mask_bsdf.cpp, mitsuba_bsdfs.cpp, mitsuba_microfacet_bsdfs.cpp).
+// Mitsuba's `mask` bsdf, a textured blendbsdf weight and a textured roughconductor or
+// roughdielectric alpha in the loader (engine/io/mitsuba_mask_bsdf.cpp, mitsuba_bsdfs.cpp, mitsuba_microfacet_bsdfs.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -72,6 +72,20 @@ TEST(MitsubaMaskBsdf, MaskBlendWeightAndRoughnessTexturesLoad) {
   EXPECT_LT(m.perturbation.Of(m.mask.Nested(1)), 0);  // an isotropic row keeps its frame
 }
 
+// roughdielectric's alpha as a texture (Mitsuba 3 lets a texture drive it): both αu and αv
+// read it, the row gets the uv-aligned frame as a textured rough conductor does.
+TEST(MitsubaMaskBsdf, RoughDielectricTakesATexturedAlpha) {
+  StatusOr<Scene> s = LoadBody("rd", "<shape type=\"cube\"><bsdf type=\"roughdielectric\">" +
+                                         Checker("alpha") + "</bsdf></shape>");
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  const RoughDielectricTable& t = s->materials.rough_dielectric;
+  ASSERT_EQ(t.size(), 1u);
+  ASSERT_TRUE(t.textured());
+  EXPECT_NE(t.alpha_texture[0], kNoTexture);
+  EXPECT_EQ(t.alpha_v_texture[0], t.alpha_texture[0]);
+  EXPECT_GE(s->materials.perturbation.Of(MaterialRef::Make(MaterialTag::kRoughDielectric, 0)), 0);
+}
+
 TEST(MitsubaMaskBsdf, ErrorsNameTheProblem) {
   const auto error = [](const std::string& body) {
     StatusOr<Scene> s = LoadBody("error", body);
@@ -88,7 +102,7 @@ TEST(MitsubaMaskBsdf, ErrorsNameTheProblem) {
                   "<bsdf type=\"diffuse\"/></bsdf></shape>")
                 .find("one nested"),
             std::string::npos);
-  EXPECT_NE(error("<shape type=\"cube\"><bsdf type=\"roughdielectric\">" + Checker("alpha") +
+  EXPECT_NE(error("<shape type=\"cube\"><bsdf type=\"conductor\">" + Checker("alpha") +
                   "</bsdf></shape>")
                 .find("unsupported"),
             std::string::npos);

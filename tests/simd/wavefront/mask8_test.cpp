@@ -283,5 +283,62 @@ TEST(Mask8, TexturedBlendWeightAndRoughConductorAlphaMatchTheOracle) {
   RunAndCheck(fx, MaterialTag::kConductor, index, [](uint32_t) { return false; }, "rough conductor");
 }
 
+// A rough dielectric's textured αu, αv (TexturedFloat8): on every target each row is, bit for
+// bit, what the same target gives for a constant row of the texture's values at its site (the
+// constant rows hold the oracle's TexturedFloat, so this also checks that the SIMD luminance is
+// the oracle's; the constant rows' contract against the oracle is microfacet8_test.cpp's).
+TEST(Mask8, TexturedRoughDielectricAlphaIsTheConstantRowOnEveryTarget) {
+  std::mt19937 rng(9);
+  Fixture fx;
+  TextureTable& t = fx.textures;
+  const uint32_t rough = AddTexture(&t, TextureKind::kCheckerboard, 1, 1, 6, &rng, 0.0f, 0.6f);
+  const uint32_t face = AddTexture(&t, TextureKind::kFaceAttribute, 3, 4, 12, &rng, -1.0f, 2.0f);
+  const uint32_t bitmap = AddTexture(&t, TextureKind::kBitmap, 5, 3, 45, &rng, 0.0f, 1.2f);
+  MaterialTables& m = fx.m;
+  for (uint8_t flags = 0; flags < 4; ++flags) {
+    m.AddRoughDielectric(0.1f, 0.3f, flags, 1.5f, 1.0f);
+    m.AddTexturedRoughDielectric(0.1f, 0.1f, rough, kNoTexture, flags, 1.5f, 1.0f, {1, 1, 1},
+                                 {1, 0.9f, 0.8f});
+    m.AddTexturedRoughDielectric(0.1f, 0.1f, kNoTexture, face, flags, 1.33f, 1.0f, {1, 1, 1},
+                                 {1, 1, 1});
+    m.AddTexturedRoughDielectric(0.1f, 0.1f, bitmap, bitmap, flags, 1.0f / 1.5f, 1.0f,
+                                 {0.9f, 1, 1}, {1, 1, 1});
+  }
+  const size_t n = 6000;
+  FillRows(&fx, n, &rng, {0.5f});
+  std::vector<uint32_t> index(n), own(n);
+  std::uniform_int_distribution<uint32_t> row(0, uint32_t(m.rough_dielectric.size() - 1));
+  // Row i of `constant` is table row index[i] with its α as the oracle reads it at row i's site.
+  MaterialTables constant;
+  const ShadeInputs in = fx.In();
+  const RoughDielectricTable& rd = m.rough_dielectric;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t r = index[i] = row(rng);
+    const TextureSite site = RowTextureSite(in.texture, i);
+    constant.AddRoughDielectric(TexturedFloat(rd.alpha_texture, r, rd.alpha_u[r], site),
+                                TexturedFloat(rd.alpha_v_texture, r, rd.alpha_v[r], site),
+                                rd.flags[r], rd.int_ior[r], rd.ext_ior[r],
+                                {rd.reflectance_r[r], rd.reflectance_g[r], rd.reflectance_b[r]},
+                                {rd.transmittance_r[r], rd.transmittance_g[r],
+                                 rd.transmittance_b[r]});
+    own[i] = uint32_t(i);
+  }
+  int textured_rows = 0;
+  for (size_t i = 0; i < n; ++i)
+    textured_rows += rd.alpha_texture[index[i]] != kNoTexture || rd.alpha_v_texture[index[i]] != kNoTexture;
+  EXPECT_GT(textured_rows, int(n / 2));
+  test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
+    Out got(n), want(n);
+    simd::ShadeBatch(m, MaterialTag::kRoughDielectric, index.data(), n, in, got.View());
+    simd::ShadeBatch(constant, MaterialTag::kRoughDielectric, own.data(), n, in, want.View());
+    int failures = 0;
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 12; ++c)
+        if (!Same(got.c[c][i], want.c[c][i]) && ++failures <= 5)
+          ADD_FAILURE() << target << " row " << i << " (table row " << index[i] << ") output "
+                        << c << ": " << got.c[c][i] << " vs constant row " << want.c[c][i];
+  });
+}
+
 }  // namespace
 }  // namespace ptlab
