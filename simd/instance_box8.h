@@ -20,7 +20,8 @@ InstanceLanes MakeInstanceLanes(const RayPacket8& rays, Mask8 live);
 
 /// The lanes whose ray enters the node's box in [t_min, t_far[j]] by IntersectBox's test (the
 /// same slab distances, comparisons and robust far scale, so the same answer lane by lane);
-/// t_entry[j]: each lane's entry distance. Highway-dispatched.
+/// t_entry[j]: each lane's entry distance. t_far and t_entry are eight floats, 32-byte aligned
+/// (loaded and stored aligned). Highway-dispatched.
 Mask8 InstanceBoxLanes(const BvhNode& node, const InstanceLanes& lanes, const float* t_far,
                        float* t_entry);
 
