@@ -83,10 +83,11 @@ HWY_INLINE V8 CoatingTransmittance8(D8 d, const PlasticTable& t, const PlasticRo
 }
 
 /// PlasticRoughEvalPdf: f into *fr, *fg, *fb, the pdf returned (both 0 unless wo.z, wi.z > 0).
-/// t_o: the coating's transmittance at wo.z, ps: CoatingSpecularProbability of it.
+/// t_o: the coating's transmittance at wo.z, ps: CoatingSpecularProbability of it, g1o:
+/// G1OverCos(wo) (the three depend on wo only: computed once for eval and sample).
 HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRoughLanes& c,
-                                   V8 t_o, V8 ps, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy, V8 iz, V8* fr,
-                                   V8* fg, V8* fb) {
+                                   V8 t_o, V8 ps, V8 g1o, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy, V8 iz,
+                                   V8* fr, V8* fg, V8* fb) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), inv_pi = hn::Set(d, kInvPi),
            quarter = hn::Set(d, 0.25f);
   const M8 above = hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero));
@@ -104,7 +105,7 @@ HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRou
   const M8 lobe = hn::And(has_h, hn::And(hn::Gt(dv, zero), hn::Gt(wo_h, zero)));
   V8 cos_t;
   const V8 fresnel = FresnelDielectric(d, wo_h, c.eta, &cos_t);
-  const V8 g1o = mf8::G1OverCos(d, c.dist, ox, oy, oz), g1i = mf8::G1OverCos(d, c.dist, ix, iy, iz);
+  const V8 g1i = mf8::G1OverCos(d, c.dist, ix, iy, iz);
   const V8 s = hn::Mul(hn::Mul(fresnel, dv), hn::Mul(hn::Mul(quarter, g1o), g1i));
   const M8 add = hn::And(lobe, hn::And(hn::IsFinite(s), hn::Gt(s, zero)));
   r = hn::IfThenElse(add, hn::Add(r, hn::Mul(c.s_r, s)), r);
@@ -135,9 +136,10 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
   const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
   const V8 t_o = CoatingTransmittance8(d, t, c, oz);
   const V8 ps = CoatingSpecularProbability(d, t_o, c.ws);
+  const V8 g1o = mf8::G1OverCos(d, c.dist, ox, oy, oz);
   if (eval) {
     V8 fr, fg, fb;
-    const V8 pdf_l = PlasticRoughEvalPdf8(d, t, c, t_o, ps, ox, oy, oz, In(d, b, kWlX, i),
+    const V8 pdf_l = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, In(d, b, kWlX, i),
                                           In(d, b, kWlY, i), In(d, b, kWlZ, i), &fr, &fg, &fb);
     StoreLanes(d, rough, fr, b.out[kFR], i), StoreLanes(d, rough, fg, b.out[kFG], i);
     StoreLanes(d, rough, fb, b.out[kFB], i), StoreLanes(d, rough, pdf_l, b.out[kPdfL], i);
@@ -158,7 +160,8 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
     drawn = hn::Or(drawn, hn::And(spec, hn::Gt(pm, zero)));
   }
   V8 fr, fg, fb;
-  const V8 pdf = PlasticRoughEvalPdf8(d, t, c, t_o, ps, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
+  const V8 pdf = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, ix, iy, iz, &fr, &fg,
+                                      &fb);
   const V8 scale = hn::Div(iz, hn::IfThenElse(hn::Gt(pdf, zero), pdf, one));
   const V8 wr = hn::Mul(fr, scale), wg = hn::Mul(fg, scale), wb = hn::Mul(fb, scale);
   const M8 ok = hn::And(hn::And(drawn, hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero))),
