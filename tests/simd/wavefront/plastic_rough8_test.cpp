@@ -52,7 +52,7 @@ namespace {
 //   weight channel is held to that bound relative to the row's largest channel: as η → 1 the
 //   coating's Fresnel term ((η − 1)/2)² comes from c − √(η² − 1 + c²), which cancels, so a
 //   channel that carries only the specular lobe (zero diffuse base) moves by δ c²/(η² − 1)
-//   relatively (seen 10 % at η = 1 + 1e-6 on a channel 1e-12 of the row's weight).
+//   relatively (seen 9 % at η = 1 + 1e-6 on a channel of 5e-13).
 // - everything finite, f, pdf, weight ≥ 0.
 struct Rows {
   std::vector<uint32_t> index;
@@ -223,7 +223,7 @@ void Compare(const Fixture& fx, const Rows& r, const Out& o0, const Out& o1,
              const char* target) {
   Bound f_ggx{"GGX f"}, pl_ggx{"GGX pdf(wo,wl)"}, f_beck{"Beckmann f"},
       pl_beck{"Beckmann pdf(wo,wl)"}, wi{"sample wi.xy"}, wi_z{"sample wi.z² (|Δz| > 5e-5)"}, pdf{"sample pdf"}, w{"sample weight"};
-  size_t mismatched = 0, valid = 0, conditioned = 0;
+  size_t mismatched = 0, valid = 0, conditioned = 0, ill_conditioned = 0;
   for (size_t i = 0; i < r.size(); ++i) {
     for (int c = 0; c < 13; ++c) ASSERT_TRUE(std::isfinite(o1.v[c][i])) << c << " at " << i;
     for (int c : {0, 1, 2, 3, 7, 8, 9, 10}) ASSERT_GE(o1.v[c][i], 0.0f) << c << " at " << i;
@@ -258,6 +258,7 @@ void Compare(const Fixture& fx, const Rows& r, const Out& o0, const Out& o1,
     // An ill-conditioned sample (see the contract): the bound grows with the oracle's own
     // sensitivity, computed only for the rows that need it.
     const double cond = dwi > 5e-5 ? 4 * OracleWiSensitivity(fx, r, i, o0) : 0.0;
+    ill_conditioned += cond > 0;
     for (int c = 4; c < 6; ++c) wi.Check(i, o1.v[c][i], o0.v[c][i], 0, 5e-5 + cond);
     const double z0 = o0.v[6][i], z1 = o1.v[6][i];
     if (std::fabs(z1 - z0) > 5e-5 + cond) wi_z.Check(i, z1 * z1, z0 * z0, 0, 2e-4);
@@ -270,6 +271,11 @@ void Compare(const Fixture& fx, const Rows& r, const Out& o0, const Out& o1,
     for (int c = 7; c < 10; ++c) w.Check(i, o1.v[c][i], o0.v[c][i], rel, rel * w_max + 1e-30);
   }
   for (const Bound* b : {&f_ggx, &pl_ggx, &f_beck, &pl_beck, &wi, &wi_z, &pdf, &w}) b->Report(target, r);
+  std::printf("[%s] %zu valid samples, %zu with |Δwi| > 5e-5 (bound widened by the oracle's "
+              "sensitivity), %zu validity mismatches on the horizon\n",
+              target, valid, ill_conditioned, mismatched);
+  // The widening stays the exception (seen 0.3 %: most are wi.z at the rim, above).
+  EXPECT_LT(ill_conditioned, valid / 100);
   // Each mismatch sits on the horizon (checked above); the hard cases put many rows there
   // (u = 0 or 1 − 2⁻²⁴ lands on the rim of the concentric disk), as in Shade8's contract.
   EXPECT_LT(mismatched, r.size() / 50);
