@@ -382,5 +382,58 @@ BENCHMARK_TEMPLATE(BM_Shade8_Principled, false)
     ->DenseRange(0, 3);
 BENCHMARK_TEMPLATE(BM_Shade8_Principled, true)->Name("BM_Shade8_Principled/simd")->DenseRange(0, 3);
 
+// plastic8: Mitsuba's roughplastic (the plastic tag's rough rows, PlasticRoughEvalPdf /
+// PlasticRoughSample) per sample (eval + pdf at a light direction and a sample): range 0 64
+// Beckmann rows, 1 64 GGX rows (α log-uniform in [1e-2, 1], η in [1.3, 1.7], nonlinear every
+// other row); the directions and numbers of the inputs above.
+struct PlasticRoughInputs {
+  MaterialTables tables[2];
+  std::vector<uint32_t> index;
+  PlasticRoughInputs() {
+    Pcg32 rng(9, 39);
+    for (int i = 0; i < 64; ++i) {
+      PlasticDesc d;
+      d.alpha = std::pow(10.0f, -2.0f * rng.NextFloat());
+      d.int_ior = 1.3f + 0.4f * rng.NextFloat(), d.ext_ior = 1.0f, d.nonlinear = i % 2 == 0;
+      d.diffuse = {rng.NextFloat(), 0.3f, 0.2f};
+      d.distribution = CoatingDistribution::kBeckmann;
+      tables[0].AddPlastic(*MakePlasticRow(d));
+      d.distribution = CoatingDistribution::kGgx;
+      tables[1].AddPlastic(*MakePlasticRow(d));
+    }
+    for (size_t i = 0; i < kBatch; ++i) index.push_back(uint32_t(rng.NextFloat() * 64) % 64);
+  }
+};
+
+template <bool kSimd>
+void BM_Shade8_PlasticRough(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  static const PlasticRoughInputs pr;
+  const int c = int(state.range(0));
+  const char* labels[] = {"rough_plastic_beckmann", "rough_plastic_ggx"};
+  state.SetLabel(labels[c]);
+  Outputs out;
+  const ShadeOutputs o = out.Shade();
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::ShadeBatch(pr.tables[c], MaterialTag::kPlastic, pr.index.data(), kBatch, in.Shade(),
+                       o);
+    } else {
+      ptlab::ShadeBatch(pr.tables[c], MaterialTag::kPlastic, pr.index.data(), kBatch, in.Shade(),
+                        o);
+    }
+    benchmark::DoNotOptimize(out.v[10].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
+BENCHMARK_TEMPLATE(BM_Shade8_PlasticRough, false)
+    ->Name("BM_Shade8_PlasticRough/scalar")
+    ->DenseRange(0, 1);
+BENCHMARK_TEMPLATE(BM_Shade8_PlasticRough, true)
+    ->Name("BM_Shade8_PlasticRough/simd")
+    ->DenseRange(0, 1);
+
 }  // namespace
 }  // namespace ptlab

@@ -34,82 +34,82 @@ HWY_INLINE V8 CoatingFresnel(D8 d, V8 cos_theta, V8 eta) {
   return FresnelDielectric(d, cos_theta, eta, &cos_t);
 }
 
-/// PlasticEval / PlasticPdf / PlasticSample for rows of PlasticTable.
-inline void ShadePlastic(const PlasticTable& t, const ShadeIo& io, size_t n, bool eval,
-                         bool sample) {
-  ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
-    const D8 d;
-    const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), inv_pi = hn::Set(d, kInvPi);
-    const V8 eta = Gather(d, t.eta, b.index, i);
-    const V8 base_r = Gather(d, t.base_r, b.index, i), base_g = Gather(d, t.base_g, b.index, i),
-             base_b = Gather(d, t.base_b, b.index, i);
-    const V8 ws = Gather(d, t.specular_sampling_weight, b.index, i);
-    const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
-    const M8 above = hn::Gt(oz, zero);
-    const V8 f_o = CoatingFresnel(d, oz, eta);
-    const V8 t_o = hn::Sub(one, f_o);
-    const V8 ps = CoatingSpecularProbability(d, t_o, ws);
-    const V8 pd = hn::Sub(one, ps);
-    if (eval) {
-      const V8 lz = In(d, b, kWlZ, i);
-      const M8 both = hn::And(above, hn::Gt(lz, zero));
-      const V8 tt = hn::Mul(t_o, hn::Sub(one, CoatingFresnel(d, lz, eta)));
-      const V8 s = hn::Mul(tt, inv_pi);
-      StoreEval(d, b, i, hn::IfThenElseZero(both, hn::Mul(base_r, s)),
-                hn::IfThenElseZero(both, hn::Mul(base_g, s)),
-                hn::IfThenElseZero(both, hn::Mul(base_b, s)),
-                hn::IfThenElseZero(both, hn::Mul(pd, hn::Mul(lz, inv_pi))));
-    }
-    if (!sample) return;
-    const V8 u_lobe = In(d, b, kULobe, i);
-    const M8 spec = hn::Lt(u_lobe, ps);
-    V8 ix, iy, iz;
-    SampleCosineHemisphere(d, In(d, b, kUX, i), In(d, b, kUY, i), &ix, &iy, &iz);
-    // Diffuse lanes: weight base (1 − F_o)(1 − F_i) / pd.
-    const V8 q = hn::Div(hn::Mul(t_o, hn::Sub(one, CoatingFresnel(d, iz, eta))), pd);
-    const V8 pdf_diffuse = hn::Mul(pd, hn::Mul(iz, inv_pi));
-    V8 wr = hn::Mul(base_r, q), wg = hn::Mul(base_g, q), wb = hn::Mul(base_b, q);
-    const M8 diffuse_ok = hn::And(hn::And(hn::Gt(iz, zero), hn::Gt(pdf_diffuse, zero)),
-                                  AllFinite3(d, wr, wg, wb));
-    // Specular lanes: the mirror direction, weight specular F_o / ps.
-    const V8 fs = hn::Div(f_o, hn::IfThenElse(spec, ps, one));
-    wr = hn::IfThenElse(spec, hn::Mul(Gather(d, t.specular_r, b.index, i), fs), wr);
-    wg = hn::IfThenElse(spec, hn::Mul(Gather(d, t.specular_g, b.index, i), fs), wg);
-    wb = hn::IfThenElse(spec, hn::Mul(Gather(d, t.specular_b, b.index, i), fs), wb);
-    ix = hn::IfThenElse(spec, hn::Neg(ox), ix), iy = hn::IfThenElse(spec, hn::Neg(oy), iy);
-    iz = hn::IfThenElse(spec, oz, iz);
-    const V8 pdf = hn::IfThenElse(spec, ps, pdf_diffuse);
-    const M8 ok = hn::And(above, hn::Or(spec, diffuse_ok));
-    StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
-    if (b.out[kDelta] != nullptr)
-      Store(d, hn::IfThenElseZero(hn::And(ok, spec), one), b.out[kDelta], i);
-  });
+/// PlasticEval / PlasticPdf / PlasticSample for rows [i, i + Lanes) of PlasticTable, every
+/// lane as a smooth row (the rough lanes are overwritten by PlasticRoughBlock).
+HWY_INLINE void PlasticBlock(const PlasticTable& t, const ShadeIo& b, size_t i, bool eval,
+                             bool sample) {
+  const D8 d;
+  const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), inv_pi = hn::Set(d, kInvPi);
+  const V8 eta = Gather(d, t.eta, b.index, i);
+  const V8 base_r = Gather(d, t.base_r, b.index, i), base_g = Gather(d, t.base_g, b.index, i),
+           base_b = Gather(d, t.base_b, b.index, i);
+  const V8 ws = Gather(d, t.specular_sampling_weight, b.index, i);
+  const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+  const M8 above = hn::Gt(oz, zero);
+  const V8 f_o = CoatingFresnel(d, oz, eta);
+  const V8 t_o = hn::Sub(one, f_o);
+  const V8 ps = CoatingSpecularProbability(d, t_o, ws);
+  const V8 pd = hn::Sub(one, ps);
+  if (eval) {
+    const V8 lz = In(d, b, kWlZ, i);
+    const M8 both = hn::And(above, hn::Gt(lz, zero));
+    const V8 tt = hn::Mul(t_o, hn::Sub(one, CoatingFresnel(d, lz, eta)));
+    const V8 s = hn::Mul(tt, inv_pi);
+    StoreEval(d, b, i, hn::IfThenElseZero(both, hn::Mul(base_r, s)),
+              hn::IfThenElseZero(both, hn::Mul(base_g, s)),
+              hn::IfThenElseZero(both, hn::Mul(base_b, s)),
+              hn::IfThenElseZero(both, hn::Mul(pd, hn::Mul(lz, inv_pi))));
+  }
+  if (!sample) return;
+  const V8 u_lobe = In(d, b, kULobe, i);
+  const M8 spec = hn::Lt(u_lobe, ps);
+  V8 ix, iy, iz;
+  SampleCosineHemisphere(d, In(d, b, kUX, i), In(d, b, kUY, i), &ix, &iy, &iz);
+  // Diffuse lanes: weight base (1 − F_o)(1 − F_i) / pd.
+  const V8 q = hn::Div(hn::Mul(t_o, hn::Sub(one, CoatingFresnel(d, iz, eta))), pd);
+  const V8 pdf_diffuse = hn::Mul(pd, hn::Mul(iz, inv_pi));
+  V8 wr = hn::Mul(base_r, q), wg = hn::Mul(base_g, q), wb = hn::Mul(base_b, q);
+  const M8 diffuse_ok = hn::And(hn::And(hn::Gt(iz, zero), hn::Gt(pdf_diffuse, zero)),
+                                AllFinite3(d, wr, wg, wb));
+  // Specular lanes: the mirror direction, weight specular F_o / ps.
+  const V8 fs = hn::Div(f_o, hn::IfThenElse(spec, ps, one));
+  wr = hn::IfThenElse(spec, hn::Mul(Gather(d, t.specular_r, b.index, i), fs), wr);
+  wg = hn::IfThenElse(spec, hn::Mul(Gather(d, t.specular_g, b.index, i), fs), wg);
+  wb = hn::IfThenElse(spec, hn::Mul(Gather(d, t.specular_b, b.index, i), fs), wb);
+  ix = hn::IfThenElse(spec, hn::Neg(ox), ix), iy = hn::IfThenElse(spec, hn::Neg(oy), iy);
+  iz = hn::IfThenElse(spec, oz, iz);
+  const V8 pdf = hn::IfThenElse(spec, ps, pdf_diffuse);
+  const M8 ok = hn::And(above, hn::Or(spec, diffuse_ok));
+  StoreSample(d, b, i, ok, ix, iy, iz, wr, wg, wb, pdf, one);
+  if (b.out[kDelta] != nullptr)
+    Store(d, hn::IfThenElseZero(hn::And(ok, spec), one), b.out[kDelta], i);
 }
 
-/// The plastic tag's batch: ShadePlastic over every row, then the rough rows (roughplastic)
-/// again through the oracle, row by row. The rough coating has no 8-wide kernel yet (it needs
-/// the SIMD twin of engine/bsdf/microfacet.h); its rows are exactly the oracle's.
-inline void ShadePlasticRows(const MaterialTables& m, const uint32_t* material_index, size_t n,
-                             const ShadeInputs& in, const ShadeOutputs& out, const ShadeIo& io,
-                             bool eval, bool sample) {
-  ShadePlastic(m.plastic, io, n, eval, sample);
-  const auto& dist = m.plastic.distribution;
-  for (size_t i = 0; i < n; ++i) {
-    if (dist[material_index[i]] == uint8_t(CoatingDistribution::kSmooth)) continue;
-    ShadeInputs r;
-    r.wo = {in.wo.x + i, in.wo.y + i, in.wo.z + i};
-    if (eval) r.wl = {in.wl.x + i, in.wl.y + i, in.wl.z + i};
-    if (sample) r.u_lobe = in.u_lobe + i, r.u_x = in.u_x + i, r.u_y = in.u_y + i;
-    ShadeOutputs o;
-    if (eval) o.f = {out.f.r + i, out.f.g + i, out.f.b + i}, o.pdf_l = out.pdf_l + i;
-    if (sample) {
-      o.wi = {out.wi.x + i, out.wi.y + i, out.wi.z + i};
-      o.weight = {out.weight.r + i, out.weight.g + i, out.weight.b + i};
-      o.pdf = out.pdf + i, o.eta = out.eta + i;
-      if (out.delta != nullptr) o.delta = out.delta + i;
-    }
-    ptlab::ShadeBatch(m, MaterialTag::kPlastic, material_index + i, 1, r, o);
-  }
+}  // namespace HWY_NAMESPACE
+}  // namespace ptlab::simd
+HWY_AFTER_NAMESPACE();
+
+// The rough coating's kernel (it uses the helpers above).
+#include "simd/wavefront/plastic_rough8-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace ptlab::simd {
+namespace HWY_NAMESPACE {
+
+/// The plastic tag's batch, smooth (`plastic`) and rough (`roughplastic`) rows: grouped by the
+/// coating's distribution (ForEachBlockGrouped), each 8-wide block runs PlasticBlock where it
+/// has smooth rows and PlasticRoughBlock where it has rough ones (both for a mixed block).
+inline void ShadePlasticRows(const MaterialTables& m, const uint32_t* /*material_index*/,
+                             size_t n, const ShadeInputs& /*in*/, const ShadeOutputs& /*out*/,
+                             const ShadeIo& io, bool eval, bool sample) {
+  const PlasticTable& t = m.plastic;
+  const auto key = [&t, &io](size_t r) { return uint32_t(t.distribution[io.index[r]]); };
+  ForEachBlockGrouped(io, n, key, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+    const D8 d;
+    const M8 rough = RoughCoatingLanes(d, t, b.index, i);
+    if (!hn::AllTrue(d, rough)) PlasticBlock(t, b, i, eval, sample);
+    if (!hn::AllFalse(d, rough)) PlasticRoughBlock(t, b, i, rough, eval, sample);
+  });
 }
 
 }  // namespace HWY_NAMESPACE

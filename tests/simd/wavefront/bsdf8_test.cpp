@@ -18,6 +18,7 @@
 #include "engine/bsdf/fresnel.h"
 #include "engine/bsdf/plastic.h"
 #include "engine/bsdf/plastic_precompute.h"
+#include "engine/bsdf/plastic_rough.h"  // plastic8
 #include "engine/core/rng.h"
 #include "hwy/targets.h"
 #include "tests/simd/for_each_target.h"
@@ -316,7 +317,7 @@ void AddMaterialRows(MaterialTables* m, Pcg32& rng) {
     m->AddPlastic(*MakePlasticRow(d));
     m->AddThinDielectric(eta);
   }
-  for (float alpha : {1e-4f, 0.05f, 0.5f, 1.0f}) {  // rough rows (the oracle in both paths)
+  for (float alpha : {1e-4f, 0.05f, 0.5f, 1.0f}) {  // rough rows (plastic8: their SIMD twin)
     PlasticDesc d;
     d.distribution = alpha < 0.1f ? CoatingDistribution::kGgx : CoatingDistribution::kBeckmann;
     d.alpha = alpha, d.int_ior = 1.5f, d.ext_ior = 1.0f, d.diffuse = {0.2f, 0.5f, 0.9f};
@@ -478,6 +479,9 @@ void CheckShadeContract(const MaterialTables& m, MaterialTag tag, const ShadeDat
     // matA: the rough dielectric's samples, whose pdf is that of the sampled normal, are
     // checked under their own contract in microfacet8_test.cpp.
     if (tag == MaterialTag::kRoughDielectric) continue;
+    // plastic8: the plastic tag's rough rows sample visible normals (microfacet8): their samples
+    // are checked under that sampler's contract in plastic_rough8_test.cpp.
+    if (tag == MaterialTag::kPlastic && PlasticRowIsRough(m.plastic, s.index[i])) continue;
     const bool v0 = r0.pdf[i] > 0, v1 = r1.pdf[i] > 0;
     // Whether this row's sample came from cosine-hemisphere sampling (z from sqrt(1 − r²)).
     bool cosine = tag == MaterialTag::kDiffuse;
