@@ -428,5 +428,18 @@ TEST_F(Robustness, StrategiesOutputCheckedFirst) {
   EXPECT_FALSE(fs::exists(dir_ / "s1_t2.exr"));
 }
 
+// Class "ambiguous converge variants": a key given twice in one --variant (ptlab's or a
+// peer's) ran with whichever came last, exit 0; now a usage error before any render.
+TEST_F(Robustness, ConvergeDuplicateVariantKeys) {
+  const std::string scene = Write("scene.xml", kScene);
+  const std::string converge = kPtlab + " converge " + scene + " --ref auto --spp 1 --no-plots -o " +
+                               (dir_ / "conv").string() + " --variant ";
+  Expect(converge + "integrator=bdpt,integrator=path_mis", 2,
+         {"key 'integrator' is given twice; expected each key at most once"});
+  Expect(converge + "renderer=mitsuba3,variant=scalar_rgb,variant=llvm_ad_rgb", 2,
+         {"peer key 'variant' is given twice; expected each key at most once"});
+  EXPECT_FALSE(fs::exists(dir_ / "conv" / "converge.csv"));
+}
+
 }  // namespace
 }  // namespace ptlab
