@@ -441,5 +441,15 @@ TEST_F(Robustness, ConvergeDuplicateVariantKeys) {
   EXPECT_FALSE(fs::exists(dir_ / "conv" / "converge.csv"));
 }
 
+// Class "a scene's sample count past -s's range": a Mitsuba sample_count (or a Nori
+// sampleCount) of 2e9 in a 600-byte file rendered for hours; now 1..1048576, as -s.
+TEST_F(Robustness, SceneSampleCountRange) {
+  std::string text = Mitsuba("");
+  text.replace(text.find("\"sample_count\" value=\"1\""), 24, "\"sample_count\" value=\"2000000000\"");
+  const std::string scene = Write("spp.xml", text);
+  Expect("timeout 60 " + kPtlab + " render -q " + scene + " -o " + (dir_ / "a.exr").string(), 2,
+         {"spp.xml:", "sample_count 2000000000 is out of range; expected 1..1048576 (as -s)"});
+}
+
 }  // namespace
 }  // namespace ptlab
