@@ -36,8 +36,8 @@ StatusOr<Image> ReadTextureImage(const std::string& path, bool raw) {
       return Status::Error(path + ": not a texture image ptlab reads (EXR, HDR, PFM, PNG, JPEG, " +
                            "BMP, TGA) or bad header: " + stbi_failure_reason() +
                            " (at most 2^28 pixels)");
-    // A header may not claim more pixels than its bytes can decode to (a 30 KB PNG claiming
-    // 16000 x 16000 pixels took 3.8 GB).
+    // A header may not claim more pixels than its bytes can decode to (a 71-byte PNG claiming
+    // 16000 x 16000 pixels peaked at 3.0 GB before stb failed on its missing data).
     if (const std::string claimed = ClaimedSizeError(w, h, bytes.size(), kMaxPngPixelsPerByte);
         !claimed.empty())
       return Status::Error(path + ": " + claimed);
