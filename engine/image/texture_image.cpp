@@ -2,11 +2,12 @@
 #include "engine/image/texture_image.h"
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <cstdint>
 
+#include "engine/core/input_file.h"
+#include "engine/core/memory_budget.h"
+#include "engine/image/image_header_checks.h"
 #include "engine/image/image_io.h"
 #include "engine/image/srgb.h"
 #include <stb/stb_image.h>
@@ -14,9 +15,10 @@
 namespace ptlab {
 
 StatusOr<Image> ReadTextureImage(const std::string& path, bool raw) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::Error(path + ": cannot open the texture image");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A regular file of at most 2 GiB: a FIFO or /dev/zero read forever, a directory threw
+  // std::ios_base::failure past main.
+  std::string bytes;
+  PTLAB_RETURN_IF_ERROR(ReadInputFile(path, "the texture image", &bytes));
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const ImageFormat format = DetectImageFormat(data, bytes.size());
   Image image;
@@ -32,7 +34,20 @@ StatusOr<Image> ReadTextureImage(const std::string& path, bool raw) {
     if (!stbi_info_from_memory(data, len, &w, &h, &comp) || w <= 0 || h <= 0 ||
         int64_t(w) * int64_t(h) > (int64_t(1) << 28))
       return Status::Error(path + ": not a texture image ptlab reads (EXR, HDR, PFM, PNG, JPEG, " +
-                           "BMP, TGA) or bad header: " + stbi_failure_reason());
+                           "BMP, TGA) or bad header: " + stbi_failure_reason() +
+                           " (at most 2^28 pixels)");
+    // A header may not claim more pixels than its bytes can decode to (a 71-byte PNG claiming
+    // 16000 x 16000 pixels peaked at 3.0 GB before stb failed on its missing data).
+    if (const std::string claimed = ClaimedSizeError(w, h, bytes.size(), kMaxPngPixelsPerByte);
+        !claimed.empty())
+      return Status::Error(path + ": " + claimed);
+    // Decoding takes 3 bytes a pixel (stb), 12 (floats) and 12 more in the scene's texture
+    // table: within what a file of this size may expand into (--max-memory).
+    if (const std::string over = OverExpansionBudget(
+            30.0 * double(w) * double(h), bytes.size(),
+            "the texture's " + std::to_string(w) + "x" + std::to_string(h) + " pixels");
+        !over.empty())
+      return Status::Error(path + ": " + over);
     image = Image(w, h);
     const size_t n = image.rgb.size();
     if (stbi_is_16_bit_from_memory(data, len)) {

@@ -1,6 +1,7 @@
 // Mitsuba scene preprocessing: parameters, includes and search paths.
 #include "engine/io/mitsuba_document.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <map>
@@ -72,6 +73,7 @@ class Preprocessor {
   std::vector<std::string> search_paths;  // most recent first
   std::vector<std::string> files;
   std::vector<std::string> include_stack;  // canonical paths of the files being read
+  uint64_t distinct_bytes = 0;             // bytes of the included files, each once
 
  private:
   Status SceneChild(const XmlLocator& at, const pugi::xml_node& node, const std::string& dir,
@@ -116,10 +118,25 @@ class Preprocessor {
       if (depth + 1 > kMaxMitsubaIncludeDepth)
         return at.Error(node, "<include> nesting deeper than " +
                                   std::to_string(kMaxMitsubaIncludeDepth) + " levels");
+      if (++include_count_ > kMaxMitsubaIncludes)
+        return at.Error(node, "<include>: more than " + std::to_string(kMaxMitsubaIncludes) +
+                                  " includes read for one scene (files included more than once "
+                                  "count each time); expected at most that");
       std::string text;
       Status read = ReadTextFile(path, "included scene", &text);
       if (!read.ok()) return at.Error(node, "<include>: " + read.message());
-      files.push_back(path);
+      if (std::find(files.begin(), files.end(), path) != files.end()) {
+        repeated_include_bytes_ += text.size();
+        if (repeated_include_bytes_ > kMaxMitsubaRepeatedIncludeBytes)
+          return at.Error(node, "<include>: '" + path + "' is included again, and the files " +
+                                    "included more than once now add up to " +
+                                    std::to_string(repeated_include_bytes_) +
+                                    " bytes; expected at most " +
+                                    std::to_string(kMaxMitsubaRepeatedIncludeBytes));
+      } else {
+        files.push_back(path);
+        distinct_bytes += text.size();
+      }
       include_stack.push_back(canonical);
       Status s =
           ReadScene(text, fs::path(path).parent_path().string(), path, depth + 1, out, nullptr);
@@ -127,12 +144,17 @@ class Preprocessor {
       return s;
     }
     MitsubaNode child;
-    PTLAB_RETURN_IF_ERROR(Copy(at, node, &child));
+    PTLAB_RETURN_IF_ERROR(Copy(at, node, 1, &child));
     out->children.push_back(std::move(child));
     return Status::Ok();
   }
 
-  Status Copy(const XmlLocator& at, const pugi::xml_node& node, MitsubaNode* out) {
+  Status Copy(const XmlLocator& at, const pugi::xml_node& node, int depth, MitsubaNode* out) {
+    if (depth > kMaxMitsubaElementDepth)
+      return at.Error(node, "elements nested deeper than " +
+                                std::to_string(kMaxMitsubaElementDepth) +
+                                " levels; expected at most " +
+                                std::to_string(kMaxMitsubaElementDepth));
     out->tag = node.name();
     out->where = at.At(node);
     const std::string_view tag = out->tag;
@@ -148,7 +170,7 @@ class Preprocessor {
         return at.Error(node, "unexpected text inside <" + out->tag + ">; expected only elements");
       if (child.type() != pugi::node_element) continue;
       MitsubaNode c;
-      PTLAB_RETURN_IF_ERROR(Copy(at, child, &c));
+      PTLAB_RETURN_IF_ERROR(Copy(at, child, depth + 1, &c));
       out->children.push_back(std::move(c));
     }
     return Status::Ok();
@@ -170,6 +192,15 @@ class Preprocessor {
         return at.Error(node, "unknown parameter '$" + name + "' in '" + std::string(text) +
                                   "'; expected a name set by <default name=\"" + name +
                                   "\" value=...> or -D " + name + "=...");
+      if (out->size() + it->second.size() > kMaxMitsubaValueBytes)
+        return at.Error(node, "the value with '$" + name + "' would grow past " +
+                                  std::to_string(kMaxMitsubaValueBytes) +
+                                  " bytes; expected at most that after substitution");
+      substituted_bytes_ += it->second.size();
+      if (substituted_bytes_ > kMaxMitsubaSubstitutedBytes)
+        return at.Error(node, "parameter substitutions ('$" + name + "') insert more than " +
+                                  std::to_string(kMaxMitsubaSubstitutedBytes) +
+                                  " bytes over the scene; expected at most that");
       *out += it->second;
       i = end;
     }
@@ -208,6 +239,9 @@ class Preprocessor {
 
   const LoadOptions& options_;
   std::map<std::string, std::string> params_;
+  size_t substituted_bytes_ = 0;       // against kMaxMitsubaSubstitutedBytes
+  size_t repeated_include_bytes_ = 0;  // against kMaxMitsubaRepeatedIncludeBytes
+  size_t include_count_ = 0;           // against kMaxMitsubaIncludes
   std::vector<std::unique_ptr<XmlLocator>> locators_;
 };
 
@@ -237,6 +271,7 @@ StatusOr<MitsubaDocument> ReadMitsubaDocument(const std::string& xml, const std:
   doc.search_paths = pre.search_paths;
   doc.search_paths.push_back(base_dir.empty() ? "." : base_dir);
   doc.files = pre.files;
+  doc.input_bytes = xml.size() + pre.distinct_bytes;
   return doc;
 }
 

@@ -2,6 +2,8 @@
 // parameters substituted for `$name`, <path>s collected as search paths.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,10 +39,26 @@ struct MitsubaDocument {
   std::string version;  // the root's version attribute
   std::vector<std::string> search_paths;
   std::vector<std::string> files;
+  /// Bytes of the main file and of every included file (once each): what the scene's
+  /// expansion budget (ExpansionBudgetBytes) is measured against.
+  uint64_t input_bytes = 0;
 };
 
 /// Maximum depth of nested <include>s (the main file is depth 0).
 inline constexpr int kMaxMitsubaIncludeDepth = 16;
+/// Maximum nesting of elements inside one top-level element (30,000 levels overflowed the
+/// stack of the recursive copy).
+inline constexpr int kMaxMitsubaElementDepth = 256;
+/// Budgets of what a small file can expand into: an attribute value after `$name`
+/// substitution, all bytes that substitutions insert over the document (a parameter doubled
+/// 34 times in <default>s grew to 256 GiB), and the XML read again when a file is included
+/// more than once, and how many includes are read (10 includes of a file that includes 10 ...,
+/// 7 levels deep, hung).
+inline constexpr size_t kMaxMitsubaValueBytes = size_t(1) << 20;
+inline constexpr size_t kMaxMitsubaSubstitutedBytes = size_t(32) << 20;
+inline constexpr size_t kMaxMitsubaRepeatedIncludeBytes = size_t(32) << 20;
+/// Most <include>s read in one document (each file opened again counts).
+inline constexpr size_t kMaxMitsubaIncludes = 65536;
 
 /// Reads the Mitsuba scene in the text `xml` (what messages call `display_name`, in the folder
 /// `base_dir`). Parameters: options.defines ("name=value" each; they win over <default>), then

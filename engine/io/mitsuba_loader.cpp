@@ -118,7 +118,10 @@ Status MitsubaSceneBuilder::Sampler(const MitsubaNode& node) {
   PTLAB_RETURN_IF_ERROR(obj->Integer("seed", &seed));  // ptlab's --seed sets the streams
   PTLAB_RETURN_IF_ERROR(obj->Boolean("jitter", &jitter));
   PTLAB_RETURN_IF_ERROR(obj->Float("strength", &strength));
-  if (count < 1) return obj->Error("sample_count", "sample_count must be >= 1");
+  if (count < 1 || count > kMaxSampleCount)
+    return obj->Error("sample_count", "sample_count " + std::to_string(count) +
+                                          " is out of range; expected 1.." +
+                                          std::to_string(kMaxSampleCount) + " (as -s)");
   scene_.sampler.sample_count = uint32_t(count);
   return Status::Ok();
 }

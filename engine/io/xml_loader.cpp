@@ -232,7 +232,10 @@ Status SceneParser::ParseSampler(const pugi::xml_node& node) {
   PTLAB_RETURN_IF_ERROR(props.Expect({"sampleCount"}));
   int count = 1;
   PTLAB_RETURN_IF_ERROR(props.Integer("sampleCount", &count));
-  if (count < 1) return props.Error("sampleCount", "sampleCount must be >= 1");
+  if (count < 1 || count > kMaxSampleCount)
+    return props.Error("sampleCount", "sampleCount " + std::to_string(count) +
+                                          " is out of range; expected 1.." +
+                                          std::to_string(kMaxSampleCount) + " (as -s)");
   scene_.sampler.sample_count = uint32_t(count);
   return Status::Ok();
 }

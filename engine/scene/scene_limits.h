@@ -40,4 +40,8 @@ inline std::string FilmSizeError(int64_t width, int64_t height) {
   return "";
 }
 
+/// Largest sample count a scene file may ask for: the maximum of `ptlab render -s` (a Mitsuba
+/// sample_count of 2e9 in a 600-byte file rendered for hours).
+inline constexpr int kMaxSampleCount = 1 << 20;
+
 }  // namespace ptlab

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -134,6 +135,7 @@ bool IsPeerSpec(const std::string& spec) {
 StatusOr<PeerVariant> ParsePeerVariant(const std::string& spec) {
   PeerVariant v;
   bool has_renderer = false;
+  std::vector<std::string> seen;
   size_t at = 0;
   while (at < spec.size()) {
     size_t end = spec.find(',', at);
@@ -145,6 +147,11 @@ StatusOr<PeerVariant> ParsePeerVariant(const std::string& spec) {
       return Status::Error("variant '" + spec + "': '" + item + "' is not key=value (peer keys: " +
                            kRendererKeys + ")");
     const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+    // A key given twice is ambiguous (the last one silently won): refused.
+    if (std::find(seen.begin(), seen.end(), key) != seen.end())
+      return Status::Error("variant '" + spec + "': peer key '" + key +
+                           "' is given twice; expected each key at most once");
+    seen.push_back(key);
     auto bad = [&](const char* expected) {
       return Status::Error("variant '" + spec + "': peer key '" + key + "': '" + value +
                            "' is not " + expected);

@@ -158,6 +158,11 @@ StatusOr<Variant> ParseVariant(const std::string& spec) {
     if (!k)
       return Status::Error("variant '" + spec + "': unknown key '" + key + "'; expected one of " +
                            VariantKeys());
+    // A key given twice is ambiguous (the last one silently won): refused.
+    for (const auto& setting : variant.settings)
+      if (setting.first == key)
+        return Status::Error("variant '" + spec + "': key '" + key +
+                             "' is given twice; expected each key at most once");
     if (!k->apply(value, nullptr).ok()) return Expected(k->name, k->expected, value);
     variant.settings.emplace_back(key, value);
     at = end + 1;

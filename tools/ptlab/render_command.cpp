@@ -118,6 +118,17 @@ OutputGuard RenderOutputGuard(const RenderArgs& args, const std::vector<std::str
   guard.AddOutput(png, "PNG output");
   guard.AddOutput(var_exr, "--moments variance output");
   guard.AddOutput(tile_times, "--tile-times");
+  // --strategies DIR: every name WriteStrategyImages may write (s<S>_t<T>.exr up to 4 bounces,
+  // longer.exr, figure.png), so none of them replaces an input or another output.
+  if (!args.strategies.empty()) {
+    const std::filesystem::path dir(args.strategies);
+    for (int s = 0; s <= 6; ++s)
+      for (int t = 0; s + t <= 6; ++t)
+        guard.AddOutput((dir / ("s" + std::to_string(s) + "_t" + std::to_string(t) + ".exr")).string(),
+                        "--strategies image");
+    guard.AddOutput((dir / "longer.exr").string(), "--strategies image");
+    guard.AddOutput((dir / "figure.png").string(), "--strategies figure");
+  }
   return guard;
 }
 
@@ -254,6 +265,13 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   if (args.moments && (!args.adaptive.empty() || mpi.active())) {
     if (mpi.root()) std::fprintf(stderr, "error: --moments does not run with -a or under mpirun\n");
     return kExitUsage;
+  }
+  if (output_ok.ok() && mpi.root() && !args.strategies.empty()) {
+    // The --strategies folder is created and probed before the render (a file of that name,
+    // or an unwritable folder, failed only after the render and its images were written).
+    std::string error;
+    output_code = PrepareOutputFolder(args.strategies, &error);
+    if (output_code != 0) output_ok = Status::Error("--strategies: " + error);
   }
   if (output_ok.ok() && mpi.root()) {
     std::string error;

@@ -621,7 +621,11 @@ TEST(SceneLoader, OutOfRangeValues) {
   ExpectParseError(
       "<sampler type=\"independent\">\n<integer name=\"sampleCount\" value=\"0\"/>"
       "</sampler>\n",
-      5, {"sampleCount must be >= 1"});
+      5, {"sampleCount 0 is out of range; expected 1..1048576"});
+  ExpectParseError(
+      "<sampler type=\"independent\">\n<integer name=\"sampleCount\" value=\"2000000000\"/>"
+      "</sampler>\n",
+      5, {"sampleCount 2000000000 is out of range; expected 1..1048576 (as -s)"});
   ExpectParseError(
       "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
       "<color name=\"albedo\" value=\"1.5 0 0\"/></bsdf></shape>\n",

@@ -310,5 +310,146 @@ TEST_F(Robustness, UnboundedWork) {
          2, {"--width", "expected each side in 1..65536"});
 }
 
+
+// The second probe of issue 41 (the newer surfaces: Mitsuba 3 scenes, bitmap textures,
+// --strategies). A Mitsuba 3 scene of a 16x16 sensor and a constant emitter, with `body`.
+std::string Mitsuba(const std::string& body) {
+  return "<scene version=\"3.0.0\"><sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>"
+         "<transform name=\"to_world\"><lookat origin=\"0,0,5\" target=\"0,0,0\" up=\"0,1,0\"/>"
+         "</transform><sampler type=\"independent\"><integer name=\"sample_count\" value=\"1\"/>"
+         "</sampler><film type=\"hdrfilm\"><integer name=\"width\" value=\"16\"/>"
+         "<integer name=\"height\" value=\"16\"/></film></sensor><emitter type=\"constant\"/>\n" +
+         body + "</scene>\n";
+}
+
+// Class "unbounded expansion of a small Mitsuba file": a parameter doubled in <default>s
+// (2^34 x 16 bytes from 2 KB: hung), a file included 10 times by a file included 10 times
+// ... 7 levels (10^7 spheres: hung; now at most 65536 includes and 32 MiB read again), and
+// 2000 spheres in a shapegroup placed by 10^4 instances through repeated includes (48 KB:
+// 20 M spheres, 3.3 GB RSS, exit 0). Each is refused by a budget that names its limit.
+TEST_F(Robustness, MitsubaExpansion) {
+  std::string laughs = "<default name=\"a0\" value=\"0123456789abcdef\"/>\n";
+  for (int i = 1; i <= 34; ++i)
+    laughs += "<default name=\"a" + std::to_string(i) + "\" value=\"$a" + std::to_string(i - 1) +
+              "$a" + std::to_string(i - 1) + "\"/>\n";
+  const std::string doubling = Write("doubling.xml", Mitsuba(laughs));
+  Expect("timeout 60 " + kPtlab + " render -q " + doubling + " -o " + (dir_ / "a.exr").string(), 2,
+         {"doubling.xml:", "would grow past 1048576 bytes"});
+  Write("inc0.xml", "<scene version=\"3.0.0\"><shape type=\"sphere\"/></scene>\n");
+  for (int level = 1; level <= 7; ++level) {
+    std::string includes;
+    for (int j = 0; j < 10; ++j)
+      includes += "<include filename=\"inc" + std::to_string(level - 1) + ".xml\"/>\n";
+    Write("inc" + std::to_string(level) + ".xml",
+          "<scene version=\"3.0.0\">" + includes + "</scene>\n");
+  }
+  const std::string fan = Write("fan.xml", Mitsuba("<include filename=\"inc7.xml\"/>\n"));
+  Expect("timeout 60 " + kPtlab + " render -q " + fan + " -o " + (dir_ / "b.exr").string(), 2,
+         {"inc2.xml:9:1:", "more than 65536 includes read"});
+  // Fewer, larger files included again and again: the bytes read again are budgeted too.
+  Write("big0.xml", "<scene version=\"3.0.0\">" + std::string(1 << 20, ' ') + "</scene>\n");
+  std::string big_includes;
+  for (int j = 0; j < 40; ++j) big_includes += "<include filename=\"big0.xml\"/>\n";
+  const std::string big = Write("big.xml", Mitsuba(big_includes));
+  Expect("timeout 60 " + kPtlab + " render -q " + big + " -o " + (dir_ / "b2.exr").string(), 2,
+         {"big.xml:", "is included again", "expected at most 33554432"});
+  std::string group = "<scene version=\"3.0.0\"><shape type=\"shapegroup\" id=\"g\">\n";
+  for (int i = 0; i < 2000; ++i) group += "<shape type=\"sphere\"/>\n";
+  Write("group.xml", group + "</shape><include filename=\"ii4.xml\"/></scene>\n");
+  Write("ii0.xml", "<scene version=\"3.0.0\"><shape type=\"instance\"><ref id=\"g\"/></shape></scene>\n");
+  for (int level = 1; level <= 4; ++level) {
+    std::string includes;
+    for (int j = 0; j < 10; ++j)
+      includes += "<include filename=\"ii" + std::to_string(level - 1) + ".xml\"/>\n";
+    Write("ii" + std::to_string(level) + ".xml",
+          "<scene version=\"3.0.0\">" + includes + "</scene>\n");
+  }
+  const std::string instances = Write("instances.xml", Mitsuba("<include filename=\"group.xml\"/>\n"));
+  Expect("timeout 60 " + kPtlab + " render -q " + instances + " --max-memory 0.1 -o " +
+             (dir_ / "c.exr").string(),
+         2, {"ii0.xml:", "the instanced spheres and sdfgrids", "--max-memory"});
+}
+
+// Class "crash on deep nesting": 30,000 nested elements in one Mitsuba shape overflowed the
+// stack of the recursive copy (SIGSEGV); now a depth limit.
+TEST_F(Robustness, MitsubaDeepNesting) {
+  std::string deep = "<shape type=\"sphere\">";
+  for (int i = 0; i < 30000; ++i) deep += "<a>";
+  for (int i = 0; i < 30000; ++i) deep += "</a>";
+  const std::string scene = Write("deep.xml", Mitsuba(deep + "</shape>\n"));
+  Expect(kPtlab + " render -q " + scene + " -o " + (dir_ / "a.exr").string(), 2,
+         {"deep.xml:", "nested deeper than 256 levels"});
+}
+
+// Class "texture inputs not checked like other inputs": a bitmap texture that is a FIFO or
+// /dev/zero read forever, a directory threw std::ios_base::failure past main (SIGABRT), and a
+// 71-byte PNG claiming 16000x16000 pixels peaked at 3 GB. Now the input-file check (regular
+// file, at most 2 GiB), the header-against-size check and the expansion budget.
+TEST_F(Robustness, TextureInputChecks) {
+  const auto scene_with = [&](const std::string& name, const std::string& texture) {
+    return Write(name, Mitsuba("<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture "
+                               "type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" "
+                               "value=\"" + texture + "\"/></texture></bsdf></shape>\n"));
+  };
+  ASSERT_EQ(Run("mkfifo " + (dir_ / "fifo.png").string()), 0);
+  fs::create_directory(dir_ / "folder.png");
+  Expect("timeout 60 " + kPtlab + " render -q " + scene_with("fifo.xml", "fifo.png") + " -o " +
+             (dir_ / "a.exr").string(),
+         2, {"fifo.xml:", "fifo.png: cannot read the texture image: it is not a regular file"});
+  Expect("timeout 60 " + kPtlab + " render -q " + scene_with("zero.xml", "/dev/zero") + " -o " +
+             (dir_ / "b.exr").string(),
+         2, {"zero.xml:", "/dev/zero: cannot read the texture image: it is not a regular file"});
+  Expect(kPtlab + " render -q " + scene_with("dir.xml", "folder.png") + " -o " +
+             (dir_ / "c.exr").string(),
+         2, {"dir.xml:", "folder.png: cannot read the texture image: it is a directory"});
+  // An 8-bit RGB PNG: signature, IHDR (16000 x 16000), IEND; stb reads the size from IHDR.
+  const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) +
+                          std::string("\0\0\0\x0dIHDR\0\0\x3e\x80\0\0\x3e\x80\x08\x02\0\0\0", 21) +
+                          std::string("\0\0\0\0", 4) + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+  Write("claim.png", png);
+  Expect(kPtlab + " render -q " + scene_with("claim.xml", "claim.png") + " -o " +
+             (dir_ / "d.exr").string(),
+         2, {"claim.xml:", "claim.png: header claims 16000x16000 pixels"});
+}
+
+// Class "--strategies not an output until the end": a --strategies DIR that is a file (the
+// scene, the EXR output) failed only after the render and the image were written; a
+// strategy image named like the -o output was not caught. Now DIR is created and probed, and
+// its images join the output guard, before the render.
+TEST_F(Robustness, StrategiesOutputCheckedFirst) {
+  const std::string scene = Write("scene.xml", kScene);
+  const std::string render = kPtlab + " render -q --integrator bdpt " + scene;
+  Expect(render + " -o " + (dir_ / "a.exr").string() + " --strategies " + scene, 3,
+         {"--strategies: cannot create the output folder '" + scene + "'"});
+  EXPECT_FALSE(fs::exists(dir_ / "a.exr"));
+  EXPECT_EQ(ReadFile(scene), kScene);
+  Expect(render + " -o " + (dir_ / "s1_t2.exr").string() + " --strategies " + dir_.string(), 2,
+         {"s1_t2.exr' (EXR output)", "(--strategies image) are the same file"});
+  EXPECT_FALSE(fs::exists(dir_ / "s1_t2.exr"));
+}
+
+// Class "ambiguous converge variants": a key given twice in one --variant (ptlab's or a
+// peer's) ran with whichever came last, exit 0; now a usage error before any render.
+TEST_F(Robustness, ConvergeDuplicateVariantKeys) {
+  const std::string scene = Write("scene.xml", kScene);
+  const std::string converge = kPtlab + " converge " + scene + " --ref auto --spp 1 --no-plots -o " +
+                               (dir_ / "conv").string() + " --variant ";
+  Expect(converge + "integrator=bdpt,integrator=path_mis", 2,
+         {"key 'integrator' is given twice; expected each key at most once"});
+  Expect(converge + "renderer=mitsuba3,variant=scalar_rgb,variant=llvm_ad_rgb", 2,
+         {"peer key 'variant' is given twice; expected each key at most once"});
+  EXPECT_FALSE(fs::exists(dir_ / "conv" / "converge.csv"));
+}
+
+// Class "a scene's sample count past -s's range": a Mitsuba sample_count (or a Nori
+// sampleCount) of 2e9 in a 600-byte file rendered for hours; now 1..1048576, as -s.
+TEST_F(Robustness, SceneSampleCountRange) {
+  std::string text = Mitsuba("");
+  text.replace(text.find("\"sample_count\" value=\"1\""), 24, "\"sample_count\" value=\"2000000000\"");
+  const std::string scene = Write("spp.xml", text);
+  Expect("timeout 60 " + kPtlab + " render -q " + scene + " -o " + (dir_ / "a.exr").string(), 2,
+         {"spp.xml:", "sample_count 2000000000 is out of range; expected 1..1048576 (as -s)"});
+}
+
 }  // namespace
 }  // namespace ptlab
