@@ -118,17 +118,11 @@ OutputGuard RenderOutputGuard(const RenderArgs& args, const std::vector<std::str
   guard.AddOutput(png, "PNG output");
   guard.AddOutput(var_exr, "--moments variance output");
   guard.AddOutput(tile_times, "--tile-times");
-  // --strategies DIR: every name WriteStrategyImages may write (s<S>_t<T>.exr up to 4 bounces,
-  // longer.exr, figure.png), so none of them replaces an input or another output.
-  if (!args.strategies.empty()) {
-    const std::filesystem::path dir(args.strategies);
-    for (int s = 0; s <= 6; ++s)
-      for (int t = 0; s + t <= 6; ++t)
-        guard.AddOutput((dir / ("s" + std::to_string(s) + "_t" + std::to_string(t) + ".exr")).string(),
-                        "--strategies image");
-    guard.AddOutput((dir / "longer.exr").string(), "--strategies image");
-    guard.AddOutput((dir / "figure.png").string(), "--strategies figure");
-  }
+  // --strategies DIR: every name WriteStrategyImages may write, so none of them replaces an
+  // input or another output.
+  if (!args.strategies.empty())
+    for (const std::string& path : StrategyOutputPaths(args.strategies))
+      guard.AddOutput(path, "--strategies image");
   return guard;
 }
 

@@ -66,6 +66,26 @@ Status WriteImages(const std::string& exr, const std::string& png, const Image& 
 }
 
 // --strategies DIR: each strategy's image, DIR/s<S>_t<T>.exr (each written atomically).
+namespace {
+
+// Paths of up to this many bounces get a --strategies image each; longer ones are summed.
+constexpr int kStrategyImageBounces = 4;
+
+std::string StrategyStem(int s, int t) { return "s" + std::to_string(s) + "_t" + std::to_string(t); }
+
+}  // namespace
+
+std::vector<std::string> StrategyOutputPaths(const std::string& dir) {
+  const std::filesystem::path d(dir);
+  std::vector<std::string> paths;
+  for (int s = 0; s <= kStrategyImageBounces + 1; ++s)
+    for (int t = 1; s + t - 2 <= kStrategyImageBounces; ++t)
+      paths.push_back((d / (StrategyStem(s, t) + ".exr")).string());
+  paths.push_back((d / "longer.exr").string());
+  paths.push_back((d / "figure.png").string());
+  return paths;
+}
+
 Status WriteStrategyImages(const std::string& dir, const Scene& scene, const RenderSetup& setup,
                            uint32_t spp, uint64_t seed,
                            std::vector<std::pair<std::string, std::string>> header) {
@@ -77,7 +97,7 @@ Status WriteStrategyImages(const std::string& dir, const Scene& scene, const Ren
       RenderStrategyImages(scene, setup.bvh(), &setup.kernels(), spp, seed);
   // Paths of up to 4 bounces one image each (Veach's figure shows up to 3); longer ones summed
   // into longer.exr, so the files still add up to the image.
-  constexpr int kMaxBounces = 4;
+  constexpr int kMaxBounces = kStrategyImageBounces;
   // Veach's figure of them, DIR/figure.png (rows: bounces 0-4; columns: light vertices s).
   const Image figure =
       StrategyFigure(images, scene.camera.width, scene.camera.height, kMaxBounces);
@@ -91,8 +111,7 @@ Status WriteStrategyImages(const std::string& dir, const Scene& scene, const Ren
   std::erase_if(images, [](const StrategyImage& im) { return im.s + im.t - 2 > kMaxBounces; });
   if (n_longer > 0) images.push_back({-1, -1, std::move(longer)});
   for (const StrategyImage& im : images) {
-    const std::string name = im.s < 0 ? std::string("longer")
-                                      : "s" + std::to_string(im.s) + "_t" + std::to_string(im.t);
+    const std::string name = im.s < 0 ? std::string("longer") : StrategyStem(im.s, im.t);
     header.emplace_back("ptlab:strategy", name);
     const Status st = WriteExr((std::filesystem::path(dir) / (name + ".exr")).string(), im.image,
                                header);

@@ -69,6 +69,10 @@ Status WriteStrategyImages(const std::string& dir, const Scene& scene, const Ren
                            uint32_t spp, uint64_t seed,
                            std::vector<std::pair<std::string, std::string>> header);
 
+// Every file WriteStrategyImages may write into `dir` (s<S>_t<T>.exr for the strategies of up
+// to kStrategyImageBounces bounces, longer.exr, figure.png), for the output guard.
+std::vector<std::string> StrategyOutputPaths(const std::string& dir);
+
 // --stats: where the thread time of the wavefront went, and how full its packets were.
 void PrintStats(const RenderResult& r, int threads);
 
