@@ -175,7 +175,9 @@ TEST(PtlabCli, StatsReportsLoadTimes) {
                           &total, &files, &bvh, &bvh8),
               4)
         << log;
-    EXPECT_GT(files, 0);
+    // Printed to 1 ms: a 32 x 24 cbox can load in under 0.5 ms on a quiet machine (then 0.000;
+    // `> 0` failed so in 1 of 2 parallel ctest runs).
+    EXPECT_GE(files, 0);
     EXPECT_GE(bvh, 0);
     EXPECT_NEAR(total, files + bvh + bvh8, 2e-3);  // each printed to 1 ms
     if (std::string(flag).empty()) {
