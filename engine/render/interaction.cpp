@@ -16,11 +16,10 @@ namespace {
 
 // A sphere hit: o + t d carries the error of t; re-projected onto the sphere (pbrt-v4,
 // Physically Based Rendering 4th ed., §6.8.5) it is as exact as the surface allows.
-SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit,
-                                     bool with_uv) {
+void SphereInteraction(const Scene& scene, const Ray& ray, const Hit& hit, bool with_uv,
+                       SurfaceInteraction& its) {
   const uint32_t i = SphereHitRow(hit.prim);
   const SphereTable& s = scene.spheres;
-  SurfaceInteraction its;
   Vec3f n;
   its.p = ProjectOntoSphere(ray.At(hit.t), s.Center(i), s.radius[i], &n);
   its.prim = hit.prim;
@@ -33,14 +32,13 @@ SurfaceInteraction SphereInteraction(const Scene& scene, const Ray& ray, const H
                        q[6] * n.x + q[7] * n.y + q[8] * n.z});
   }
   its.material = s.material[i];
-  return its;
 }
 
 // An sdfgrid hit: p = o + t d (t is the cubic's root to double precision, rounded), the
 // normals of SdfGridNormals, uv (0, 0) as Mitsuba's sdfgrid (it has no parameterization).
-SurfaceInteraction SdfGridInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
+void SdfGridInteraction(const Scene& scene, const Ray& ray, const Hit& hit,
+                        SurfaceInteraction& its) {
   const uint32_t i = SdfGridHitRow(hit.prim);
-  SurfaceInteraction its;
   its.p = ray.At(hit.t);
   Vec3f ng, ns;
   SdfGridNormals(scene.sdf_grids, i, its.p, &ng, &ns);
@@ -49,7 +47,6 @@ SurfaceInteraction SdfGridInteraction(const Scene& scene, const Ray& ray, const 
   its.frame = Frame(ns);
   its.uv = {0.0f, 0.0f};
   its.material = scene.sdf_grids.material[i];
-  return its;
 }
 
 }  // namespace
@@ -73,15 +70,16 @@ Vec2f SphereUv(const Vec3f& n) {
 
 namespace {
 
-SurfaceInteraction TriangleInteraction(const Scene& scene, uint32_t tri, const Hit& hit,
-                                       bool with_uv);
+void TriangleInteraction(const Scene& scene, uint32_t tri, const Hit& hit, bool with_uv,
+                         SurfaceInteraction& its);
 
 // A hit on an instanced triangle: the interaction of its group row in group space, then its
 // point through the instance's to_world and both normals through its inverse transpose
 // (renormalized), as Mitsuba transforms them. Groups hold no emitters.
-SurfaceInteraction InstanceInteraction(const Scene& scene, const Hit& hit, bool with_uv) {
+void InstanceInteraction(const Scene& scene, const Hit& hit, bool with_uv,
+                         SurfaceInteraction& its) {
   const InstancedRow at = FindInstancedRow(scene.instances, scene.triangles.size(), hit.prim);
-  SurfaceInteraction its = TriangleInteraction(scene, at.row, hit, with_uv);
+  TriangleInteraction(scene, at.row, hit, with_uv, its);
   const Transform& to_world = scene.instances.to_world[at.instance];
   its.prim = hit.prim;
   its.p = to_world.ApplyPoint(its.p);
@@ -90,14 +88,12 @@ SurfaceInteraction InstanceInteraction(const Scene& scene, const Hit& hit, bool 
   its.ng = ng_len > 0 ? ng / ng_len : Vec3f{0, 0, 1};
   its.frame = Frame(n_len > 0 ? n / n_len : its.ng);
   its.emitter = EmitterRef::None();
-  return its;
 }
 
 // A hit on scene triangle row `tri` (in the space its vertices are stored in).
-SurfaceInteraction TriangleInteraction(const Scene& scene, uint32_t tri, const Hit& hit,
-                                       bool with_uv) {
+void TriangleInteraction(const Scene& scene, uint32_t tri, const Hit& hit, bool with_uv,
+                         SurfaceInteraction& its) {
   const TriangleTable& t = scene.triangles;
-  SurfaceInteraction its;
   its.prim = tri;
   const Vec3f v0 = t.V0(tri), v1 = t.V1(tri), v2 = t.V2(tri);
   its.p = v0 * (1.0f - hit.b1 - hit.b2) + v1 * hit.b1 + v2 * hit.b2;
@@ -108,22 +104,32 @@ SurfaceInteraction TriangleInteraction(const Scene& scene, uint32_t tri, const H
   if (with_uv) its.uv = SurfaceUvAt(scene, tri, hit.b1, hit.b2);
   its.material = scene.shading.material[tri];
   its.emitter = scene.meshes.emitter[scene.shading.mesh[tri]];
-  return its;
 }
 
 }  // namespace
 
+void MakeInteractionAt(const Scene& scene, const Ray& ray, const Hit& hit, bool with_uv,
+                       SurfaceInteraction* its) {
+  // Every field of a default interaction first: each kind sets the fields it has.
+  *its = SurfaceInteraction{};
+  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv, *its);
+  if (IsSdfGridHit(hit.prim)) return SdfGridInteraction(scene, ray, hit, *its);
+  if (IsInstancedHit(hit.prim, scene.triangles.size()))
+    return InstanceInteraction(scene, hit, with_uv, *its);
+  TriangleInteraction(scene, hit.prim, hit, with_uv, *its);
+}
+
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit) {
-  return MakeInteraction(scene, ray, hit, /*with_uv=*/true);
+  SurfaceInteraction its;
+  MakeInteractionAt(scene, ray, hit, /*with_uv=*/true, &its);
+  return its;
 }
 
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit,
                                    bool with_uv) {
-  if (IsSphereHit(hit.prim)) return SphereInteraction(scene, ray, hit, with_uv);
-  if (IsSdfGridHit(hit.prim)) return SdfGridInteraction(scene, ray, hit);
-  if (IsInstancedHit(hit.prim, scene.triangles.size()))
-    return InstanceInteraction(scene, hit, with_uv);
-  return TriangleInteraction(scene, hit.prim, hit, with_uv);
+  SurfaceInteraction its;
+  MakeInteractionAt(scene, ray, hit, with_uv, &its);
+  return its;
 }
 
 }  // namespace ptlab

@@ -51,4 +51,9 @@ SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit
 SurfaceInteraction MakeInteraction(const Scene& scene, const Ray& ray, const Hit& hit,
                                    bool with_uv);
 
+/// MakeInteraction(scene, ray, hit, with_uv) built in place in *its, every field written (the
+/// wavefront's interaction stage fills its rows so, without a copy of the interaction).
+void MakeInteractionAt(const Scene& scene, const Ray& ray, const Hit& hit, bool with_uv,
+                       SurfaceInteraction* its);
+
 }  // namespace ptlab

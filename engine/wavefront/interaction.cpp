@@ -22,7 +22,7 @@ void MakeInteractionBatch(const Scene& scene, const RayPacket8* rays, const HitP
       const Ray ray = GetLaneRay(rays[k], j);
       const size_t q = k * kPacketWidth + size_t(j);
       SurfaceInteraction& its = out.its[q];
-      its = MakeInteraction(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]}, with_uv);
+      MakeInteractionAt(scene, ray, {h.t[j], h.b1[j], h.b2[j], h.prim[j]}, with_uv, &its);
       out.wo[q] = LocalDirectionBack(its.frame, ray.d);
       l.entries[l.hits++] = uint32_t(q);
       if (its.emitter.tag() == EmitterTag::kArea) l.area_entries[l.area_hits++] = uint32_t(q);
