@@ -1,12 +1,16 @@
-// Binned-SAH BVH build (Wald 2007, "On fast construction of SAH-based BVHs"), single-threaded.
+// Binned-SAH BVH build (Wald 2007, "On fast construction of SAH-based BVHs"), on one thread or
+// more (the same tree for any count).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "engine/bvh/bvh.h"
+#include "engine/bvh/bvh_build.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/core/check.h"
 
@@ -16,6 +20,10 @@ namespace {
 constexpr int kBins = 32;
 // Nodes of at least this many triangles are binned into two sets of bins (FindSplit).
 constexpr uint32_t kTwoBinSetsFrom = 256;
+// Trees over fewer triangles are built on one thread whatever the thread count.
+constexpr uint32_t kParallelFrom = 16384;
+// BvhNode::axis of the parallel build's placeholder for a deferred subtree (Builder::Task).
+constexpr uint16_t kTaskMark = 0xffff;
 // Nodes of at most this many triangles always become leaves.
 constexpr uint32_t kAlwaysLeafSize = 4;
 // SAH costs of one node visit and one triangle test, in the same arbitrary unit.
@@ -130,8 +138,25 @@ uint32_t CeilLog2(uint32_t n) {
 }
 
 class Builder {
+ private:
+  // Counts and bounds of the references in each bin of each axis. Kept between calls with
+  // every bin empty (FindSplit empties the bins it used), so a small node does not pay for
+  // clearing all 3 x kBins of them.
+  struct Bins {
+    uint32_t counts[3][kBins] = {};
+    Box4 boxes[3][kBins];
+  };
+
+  // What each thread of the build has of its own: its bins and a count of the triangles its
+  // leaves took.
+  struct Worker {
+    Bins bins[2];
+    uint32_t leaf_triangles = 0;
+  };
+
  public:
-  Builder(const TriangleTable& triangles, Bvh* bvh) : triangles_(triangles), bvh_(bvh) {}
+  Builder(const TriangleTable& triangles, int threads, Bvh* bvh)
+      : triangles_(triangles), threads_(std::max(1, threads)), bvh_(bvh) {}
 
   void Build() {
     const size_t n = triangles_.size();
@@ -161,8 +186,13 @@ class Builder {
     const uint32_t count = static_cast<uint32_t>(refs_.size());
     Box4 bounds, centroids;
     GrowBounds(0, count, &bounds, &centroids);
-    BuildNode(0, count, 0, bounds, centroids, &bvh_->nodes);
-    PTLAB_CHECK(num_leaf_triangles_ == count);
+    Worker main;
+    if (threads_ > 1 && count >= kParallelFrom) {
+      BuildParallel(count, bounds, centroids, &main);
+    } else {
+      BuildNode(0, count, 0, bounds, centroids, &bvh_->nodes, &main, nullptr);
+    }
+    PTLAB_CHECK(main.leaf_triangles == count);
     // The reserve above is a guess (nodes ≈ 2 n / mean leaf size): give back what it or the
     // vector's doubling left unused (1 M-triangle terrain: 1.05 M slots for 0.61 M nodes).
     bvh_->nodes.shrink_to_fit();
@@ -178,18 +208,87 @@ class Builder {
     }
   }
 
+  // A subtree the parallel build defers to a worker thread: its range and what BuildNode
+  // needs for its root; its nodes, indexed from 0, go to `nodes`.
+  struct Task {
+    uint32_t begin, end, depth;
+    Box4 bounds, centroids;
+    std::vector<BvhNode> nodes;
+  };
+
+  // The two-thread (or more) build, the same tree as BuildNode's: the top of the tree is built
+  // here (its large nodes binned by two threads), down to subtrees of at most 1/16 of the
+  // triangles, which become Tasks; worker threads build the Tasks, largest first, into their
+  // own node arrays, and Assemble splices them into bvh_->nodes in depth-first order. Leaves
+  // write their triangles by leaf-order index, and tasks own disjoint ranges of refs_.
+  void BuildParallel(uint32_t count, const Box4& bounds, const Box4& centroids, Worker* main) {
+    task_size_ = std::max(count / 16, kParallelFrom / 4);
+    std::vector<BvhNode> top;
+    std::vector<Task> tasks;
+    BuildNode(0, count, 0, bounds, centroids, &top, main, &tasks);
+    std::vector<uint32_t> order(tasks.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      return tasks[a].end - tasks[a].begin > tasks[b].end - tasks[b].begin;
+    });
+    std::atomic<uint32_t> next{0};
+    std::vector<Worker> workers(static_cast<size_t>(threads_));
+    auto work = [&](Worker* w) {
+      for (uint32_t k; (k = next.fetch_add(1)) < order.size();) {
+        Task& t = tasks[order[k]];
+        BuildNode(t.begin, t.end, t.depth, t.bounds, t.centroids, &t.nodes, w, nullptr);
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads_; ++i) pool.emplace_back(work, &workers[i]);
+    work(&workers[0]);
+    for (std::thread& t : pool) t.join();
+    for (const Worker& w : workers) main->leaf_triangles += w.leaf_triangles;
+    Assemble(top, tasks, 0);
+  }
+
+  // Appends top[i]'s subtree to bvh_->nodes (a task's nodes with their right-child indices
+  // moved by where they land); returns its root's index there.
+  uint32_t Assemble(const std::vector<BvhNode>& top, const std::vector<Task>& tasks, uint32_t i) {
+    std::vector<BvhNode>& out = bvh_->nodes;
+    const uint32_t index = static_cast<uint32_t>(out.size());
+    const BvhNode& n = top[i];
+    if (n.axis == kTaskMark) {
+      for (BvhNode node : tasks[n.offset].nodes) {
+        if (!node.IsLeaf()) node.offset += index;
+        out.push_back(node);
+      }
+      return index;
+    }
+    out.push_back(n);
+    if (n.IsLeaf()) return index;
+    Assemble(top, tasks, i + 1);
+    const uint32_t right = Assemble(top, tasks, n.offset);
+    out[index].offset = right;
+    return index;
+  }
+
   // Emits the subtree over refs_[begin, end) in depth-first order into *nodes; returns its
   // root's index there. `bounds` and `centroids` are the bounds of these triangles and of
-  // their (doubled) centroids, computed by the parent.
+  // their (doubled) centroids, computed by the parent. With `tasks` (the parallel build's top),
+  // a subtree of at most task_size_ triangles becomes a Task and a node marked kTaskMark whose
+  // offset is the task's index.
   uint32_t BuildNode(uint32_t begin, uint32_t end, uint32_t depth, const Box4& bounds,
-                     const Box4& centroids, std::vector<BvhNode>* nodes) {
+                     const Box4& centroids, std::vector<BvhNode>* nodes, Worker* w,
+                     std::vector<Task>* tasks) {
     PTLAB_CHECK(depth < static_cast<uint32_t>(kBvhMaxDepth));
     const uint32_t index = static_cast<uint32_t>(nodes->size());
     nodes->emplace_back();
     (*nodes)[index].bounds_min = bounds.Lo();
     (*nodes)[index].bounds_max = bounds.Hi();
     const uint32_t count = end - begin;
-    if (count <= kAlwaysLeafSize) return MakeLeaf(&(*nodes)[index], index, begin, end);
+    if (tasks != nullptr && count <= task_size_) {
+      (*nodes)[index].axis = kTaskMark;
+      (*nodes)[index].offset = static_cast<uint32_t>(tasks->size());
+      tasks->push_back({begin, end, depth, bounds, centroids, {}});
+      return index;
+    }
+    if (count <= kAlwaysLeafSize) return MakeLeaf(&(*nodes)[index], index, begin, end, w);
 
     uint32_t mid = begin;
     int axis = 0;
@@ -198,11 +297,11 @@ class Builder {
     // Past this depth SAH could exhaust the traversal stack; median splits halve the count,
     // so the remaining ceil(log2(count)) levels always fit.
     const bool depth_limited = depth + CeilLog2(count) + 1 >= static_cast<uint32_t>(kBvhMaxDepth);
-    const Split split = depth_limited ? Split{} : FindSplit(begin, end, bounds, centroids);
+    const Split split = depth_limited ? Split{} : FindSplit(begin, end, bounds, centroids, w, tasks != nullptr);
     if (split.axis >= 0) {
       const float leaf_cost = kTriangleCost * static_cast<float>(count);
       if (count <= static_cast<uint32_t>(kBvhMaxLeafSize) && leaf_cost <= split.cost) {
-        return MakeLeaf(&(*nodes)[index], index, begin, end);
+        return MakeLeaf(&(*nodes)[index], index, begin, end, w);
       }
       axis = split.axis;
       mid = Partition(begin, end, axis, centroids.lo[axis],
@@ -212,7 +311,7 @@ class Builder {
       right_bounds = split.right;
     } else if (count <= static_cast<uint32_t>(kBvhMaxLeafSize)) {
       // All centroids coincide (or cannot be binned), or the depth budget is spent.
-      return MakeLeaf(&(*nodes)[index], index, begin, end);
+      return MakeLeaf(&(*nodes)[index], index, begin, end, w);
     } else {
       // Object median along the widest centroid axis; ties broken by row so the order (and
       // the tree) is deterministic.
@@ -229,8 +328,9 @@ class Builder {
     PTLAB_CHECK(mid > begin && mid < end);
     (*nodes)[index].axis = static_cast<uint16_t>(axis);
     // The left child is always index + 1.
-    BuildNode(begin, mid, depth + 1, left_bounds, left_centroids, nodes);
-    const uint32_t right = BuildNode(mid, end, depth + 1, right_bounds, right_centroids, nodes);
+    BuildNode(begin, mid, depth + 1, left_bounds, left_centroids, nodes, w, tasks);
+    const uint32_t right =
+        BuildNode(mid, end, depth + 1, right_bounds, right_centroids, nodes, w, tasks);
     (*nodes)[index].offset = right;
     return index;
   }
@@ -263,14 +363,6 @@ class Builder {
       ++first;
     }
   }
-
-  // Counts and bounds of the references in each bin of each axis. Kept between calls with
-  // every bin empty (FindSplit empties the bins it used), so a small node does not pay for
-  // clearing all 3 x kBins of them.
-  struct Bins {
-    uint32_t counts[3][kBins] = {};
-    Box4 boxes[3][kBins];
-  };
 
   // Adds refs_[begin, end) to *bins (every axis: a bin index is in range even for an axis
   // that cannot be binned, whose bins the sweep then ignores).
@@ -309,7 +401,10 @@ class Builder {
 
   // Best SAH split over kBins centroid bins on each axis with a non-empty, finitely scalable
   // centroid extent. Cost = traversal + triangle * sum(area_child * count_child) / area.
-  Split FindSplit(uint32_t begin, uint32_t end, const Box4& bounds, const Box4& centroids) {
+  // `two_threads`: bin the first half of the range here and the second on a thread of its own
+  // (the parallel build's top nodes).
+  Split FindSplit(uint32_t begin, uint32_t end, const Box4& bounds, const Box4& centroids,
+                  Worker* w, bool two_threads) {
     float lo[3], scale[3];
     bool binnable[3];
     const Vec3f extent = centroids.Hi() - centroids.Lo();
@@ -321,13 +416,24 @@ class Builder {
     if (!binnable[0] && !binnable[1] && !binnable[2]) return Split{};
     const Float4 lo4 = {lo[0], lo[1], lo[2], 0.0f};
     const Float4 scale4 = {scale[0], scale[1], scale[2], 0.0f};
-    Bins& bins = bins_[0];
+    Bins& bins = w->bins[0];
     const uint32_t count = end - begin;
     if (count < kTwoBinSetsFrom) {
       Bin(refs_.data() + begin, count, lo4, scale4, &bins);
+    } else if (two_threads) {
+      const uint32_t half = count / 2;
+      std::thread helper([&] {
+        BinPairs(refs_.data() + begin + half, count - half, lo4, scale4, &helper_bins_[0],
+                 &helper_bins_[1]);
+      });
+      BinPairs(refs_.data() + begin, half, lo4, scale4, &bins, &w->bins[1]);
+      helper.join();
+      MergeBins(&w->bins[1], &bins);
+      MergeBins(&helper_bins_[0], &bins);
+      MergeBins(&helper_bins_[1], &bins);
     } else {
-      BinPairs(refs_.data() + begin, count, lo4, scale4, &bins, &bins_[1]);
-      MergeBins(&bins_[1], &bins);
+      BinPairs(refs_.data() + begin, count, lo4, scale4, &bins, &w->bins[1]);
+      MergeBins(&w->bins[1], &bins);
     }
     const float area = bounds.HalfArea();
     const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
@@ -398,7 +504,7 @@ class Builder {
 
   // Makes *node (at `index`) the leaf over refs_[begin, end), whose triangles take leaf order
   // [begin, end): the depth-first walk meets the leaves in the order of their ranges.
-  uint32_t MakeLeaf(BvhNode* node, uint32_t index, uint32_t begin, uint32_t end) {
+  uint32_t MakeLeaf(BvhNode* node, uint32_t index, uint32_t begin, uint32_t end, Worker* w) {
     TriangleTable& leaf = bvh_->leaf_triangles;
     node->offset = begin;
     node->count = static_cast<uint16_t>(end - begin);
@@ -411,30 +517,32 @@ class Builder {
       leaf.v2_z[k] = triangles_.v2_z[row];
       bvh_->prim_id[k] = row;
     }
-    num_leaf_triangles_ += end - begin;
+    w->leaf_triangles += end - begin;
     return index;
   }
 
   const TriangleTable& triangles_;
+  const int threads_;
   Bvh* bvh_;
   std::vector<PrimRef> refs_;
-  uint32_t num_leaf_triangles_ = 0;
-  Bins bins_[2];
+  uint32_t task_size_ = 0;
+  Bins helper_bins_[2];  // the second binning thread's (FindSplit with two_threads)
 };
 
 }  // namespace
 
-Bvh BuildBvh(const TriangleTable& triangles) {
+Bvh BuildBvh(const TriangleTable& triangles) { return BuildBvh(triangles, SphereTable{}, 1); }
+
+Bvh BuildBvh(const TriangleTable& triangles, const SphereTable& spheres, int threads) {
+  PTLAB_CHECK(spheres.size() < kMaxSpheres);
   Bvh bvh;
-  Builder(triangles, &bvh).Build();
+  Builder(triangles, threads, &bvh).Build();
+  bvh.spheres = spheres;
   return bvh;
 }
 
 Bvh BuildBvh(const TriangleTable& triangles, const SphereTable& spheres) {
-  PTLAB_CHECK(spheres.size() < kMaxSpheres);
-  Bvh bvh = BuildBvh(triangles);
-  bvh.spheres = spheres;
-  return bvh;
+  return BuildBvh(triangles, spheres, 1);
 }
 
 }  // namespace ptlab
