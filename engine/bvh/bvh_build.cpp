@@ -2,6 +2,7 @@
 // more (the same tree for any count).
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -18,6 +19,7 @@ namespace ptlab {
 namespace {
 
 constexpr int kBins = 32;
+static_assert(kBins <= 32, "Bins::used holds one bit a bin");
 // Nodes of at least this many triangles are binned into two sets of bins (FindSplit).
 constexpr uint32_t kTwoBinSetsFrom = 256;
 // Trees over fewer triangles are built on one thread whatever the thread count.
@@ -145,6 +147,7 @@ class Builder {
   struct Bins {
     uint32_t counts[3][kBins] = {};
     Box4 boxes[3][kBins];
+    uint32_t used[3] = {};  // bit b: bin b is not empty
   };
 
   // What each thread of the build has of its own: its bins and a count of the triangles its
@@ -373,6 +376,7 @@ class Builder {
       for (int a = 0; a < 3; ++a) {
         ++bins->counts[a][b[a]];
         bins->boxes[a][b[a]].Grow(r.box);
+        bins->used[a] |= 1u << b[a];
       }
     }
   }
@@ -392,8 +396,10 @@ class Builder {
       for (int a = 0; a < 3; ++a) {
         ++even->counts[a][b0[a]];
         even->boxes[a][b0[a]].Grow(r0.box);
+        even->used[a] |= 1u << b0[a];
         ++odd->counts[a][b1[a]];
         odd->boxes[a][b1[a]].Grow(r1.box);
+        odd->used[a] |= 1u << b1[a];
       }
     }
     Bin(refs + i, count - i, lo, scale, even);
@@ -444,14 +450,13 @@ class Builder {
       // split after the last non-empty bin before it, which the scan meets first and keeps.
       int used[kBins];
       int num_used = 0;
-      for (int b = 0; b < kBins; ++b) {
-        if (bins.counts[a][b] != 0) used[num_used++] = b;
-      }
+      for (uint32_t m = bins.used[a]; m != 0; m &= m - 1) used[num_used++] = std::countr_zero(m);
       if (binnable[a]) Sweep(bins, a, used, num_used, inv_area, &best);
       for (int k = 0; k < num_used; ++k) {
         bins.counts[a][used[k]] = 0;
         bins.boxes[a][used[k]] = Box4{};
       }
+      bins.used[a] = 0;
     }
     return best;
   }
@@ -459,13 +464,15 @@ class Builder {
   // Moves the bins of *from into *to and empties *from.
   static void MergeBins(Bins* from, Bins* to) {
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < kBins; ++b) {
-        if (from->counts[a][b] == 0) continue;
+      for (uint32_t m = from->used[a]; m != 0; m &= m - 1) {
+        const int b = std::countr_zero(m);
         to->counts[a][b] += from->counts[a][b];
         to->boxes[a][b].Grow(from->boxes[a][b]);
         from->counts[a][b] = 0;
         from->boxes[a][b] = Box4{};
       }
+      to->used[a] |= from->used[a];
+      from->used[a] = 0;
     }
   }
 
