@@ -655,6 +655,59 @@ void RunBuild(benchmark::State& state, const std::string& scene_name, bool embre
   state.counters["threads"] = threads;
 }
 
+// The build against Embree's paired in time, as BM_Pair_Embree pairs traversal: every iteration
+// times one build of ours and one rtcCommitScene (the Embree scene is set up untimed first), in
+// alternating order, on `threads` threads; counters: `ratio`, the median over iterations of
+// Embree's time / ours (above 1: ours is faster), and the medians of each side's time (ms).
+// On a loaded or drifting machine the separate BM_Traverse_Build rows time the two at moments
+// whose speeds differ; the pairs cancel what changes slower than a pair.
+void RunBuildPaired(benchmark::State& state, const std::string& scene_name, int threads) {
+#ifdef PTLAB_HAVE_EMBREE
+  BenchScene* s = GetScene(scene_name);
+  if (!s->error.empty()) {
+    state.SkipWithError(s->error.c_str());
+    return;
+  }
+  using Clock = std::chrono::steady_clock;
+  EmbreeBytes* counter = nullptr;
+  RTCDevice device = BuildDevice(threads, &counter);
+  std::vector<double> ratios, ours_ms, embree_ms;
+  bool ours_first = true;
+  for (auto _ : state) {  // the iteration's time includes the set-up; the counters do not
+    RTCScene scene = MakeEmbreeScene(device, *s->triangles, /*commit=*/false);
+    double seconds[2] = {};  // ours, Embree
+    for (int turn = 0; turn < 2; ++turn) {
+      const bool ours = (turn == 0) == ours_first;
+      const auto t0 = Clock::now();
+      if (ours) {
+        const Bvh bvh = BuildBvh(*s->triangles, SphereTable{}, threads);
+        const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
+        benchmark::DoNotOptimize(bvh8.lines.data());
+      } else {
+        rtcCommitScene(scene);
+      }
+      seconds[ours ? 0 : 1] = std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+    rtcReleaseScene(scene);
+    ratios.push_back(seconds[1] / seconds[0]);
+    ours_ms.push_back(1e3 * seconds[0]);
+    embree_ms.push_back(1e3 * seconds[1]);
+    ours_first = !ours_first;
+  }
+  const auto median = [](std::vector<double>& v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["ratio"] = median(ratios);
+  state.counters["ours_ms"] = median(ours_ms);
+  state.counters["embree_ms"] = median(embree_ms);
+  state.counters["threads"] = threads;
+#else
+  state.SkipWithError("built without Embree");
+#endif
+}
+
 // Rendering throughput, single thread: the Nori table scene with a direct-lighting (or path)
 // integrator at 200 x 150 pixels, 4 samples per pixel, rendered tile by tile (32 x 32) with
 // the scalar loop (RenderTileScalar, one Li per sample) or the wavefront on simd/'s kernels.
@@ -761,6 +814,15 @@ int RegisterAll() {
   }
   for (const char* scene : {"table", "veach", "terrain"}) {
     const std::string sc = scene;
+#ifdef PTLAB_HAVE_EMBREE
+    for (const int threads : {1, 2}) {
+      benchmark::RegisterBenchmark(
+          ("BM_Pair_Build/" + sc + "/threads:" + std::to_string(threads)).c_str(),
+          [sc, threads](benchmark::State& st) { RunBuildPaired(st, sc, threads); })
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(sc == "terrain" ? 10.0 : 2.0);
+    }
+#endif
     // One thread: BM_Traverse_Build/<scene>/ours and /embree (benchmarks/report reads these);
     // two: /ours/threads:2 and /embree/threads:2.
     for (const int threads : {1, 2}) {
