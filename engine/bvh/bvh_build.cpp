@@ -22,6 +22,9 @@ constexpr int kBins = 32;
 static_assert(kBins <= 32, "Bins::used holds one bit a bin");
 // Nodes of at least this many triangles are binned into two sets of bins (FindSplit).
 constexpr uint32_t kTwoBinSetsFrom = 256;
+// The parallel build's top nodes of at least this many triangles are binned by two threads (a
+// thread started for fewer costs about as much as it saves).
+constexpr uint32_t kHelperBinningFrom = 65536;
 // Trees over fewer triangles are built on one thread whatever the thread count.
 constexpr uint32_t kParallelFrom = 16384;
 // BvhNode::axis of the parallel build's placeholder for a deferred subtree (Builder::Task).
@@ -220,7 +223,7 @@ class Builder {
   };
 
   // The two-thread (or more) build, the same tree as BuildNode's: the top of the tree is built
-  // here (its large nodes binned by two threads), down to subtrees of at most 1/16 of the
+  // here (its nodes of kHelperBinningFrom triangles or more binned by two threads), down to subtrees of at most 1/16 of the
   // triangles, which become Tasks; worker threads build the Tasks, largest first, into their
   // own node arrays, and Assemble splices them into bvh_->nodes in depth-first order. Leaves
   // write their triangles by leaf-order index, and tasks own disjoint ranges of refs_.
@@ -426,7 +429,7 @@ class Builder {
     const uint32_t count = end - begin;
     if (count < kTwoBinSetsFrom) {
       Bin(refs_.data() + begin, count, lo4, scale4, &bins);
-    } else if (two_threads) {
+    } else if (two_threads && count >= kHelperBinningFrom) {
       const uint32_t half = count / 2;
       std::thread helper([&] {
         BinPairs(refs_.data() + begin + half, count - half, lo4, scale4, &helper_bins_[0],
