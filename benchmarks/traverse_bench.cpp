@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include "benchmarks/bench_target.h"
 #include "benchmarks/fractal_terrain.h"
 #include "engine/bvh/bvh.h"
+#include "engine/bvh/bvh_build.h"
 #include "engine/bvh/intersect1.h"
 #include "engine/bvh/scene_bvh.h"
 #include "engine/bvh/ray_offset.h"
@@ -574,37 +576,136 @@ void RunCase(benchmark::State& state, const std::string& scene_name, const std::
 }
 
 // BVH build: ours = the oracle's binned SAH build plus the BVH8 collapse; Embree = one
-// rtcCommitScene (geometry set up outside the timed region), both single-threaded.
-void RunBuild(benchmark::State& state, const std::string& scene_name, bool embree) {
+// rtcCommitScene (geometry set up outside the timed region), both on `threads` threads (run
+// the two-thread rows on two cores: taskset -c 0,1). Counter bytes_per_triangle: ours, the
+// BVH8's heap bytes (its nodes and the leaf-packed triangles and scene rows, all that its
+// traversal reads) per triangle, and binary_bytes_per_triangle the oracle's binary BVH kept
+// beside it; Embree's, the bytes its memory monitor counts allocated by rtcCommitScene and
+// still held after it (its BVH: nodes and leaves with their triangle copies; the geometry's
+// vertex and index buffers, 48 bytes a triangle here, are set up before and not counted).
+#ifdef PTLAB_HAVE_EMBREE
+struct EmbreeBytes {
+  std::atomic<int64_t> held{0};
+};
+
+bool CountEmbreeBytes(void* user, ssize_t bytes, bool /*post*/) {
+  static_cast<EmbreeBytes*>(user)->held += bytes;
+  return true;
+}
+
+// One device per thread count for the build rows (the traversal rows' device has one thread),
+// with the memory monitor on.
+RTCDevice BuildDevice(int threads, EmbreeBytes** bytes) {
+  static std::map<int, std::pair<RTCDevice, std::unique_ptr<EmbreeBytes>>> devices;
+  auto it = devices.find(threads);
+  if (it == devices.end()) {
+    const std::string config = "threads=" + std::to_string(threads) + ",set_affinity=0";
+    auto counter = std::make_unique<EmbreeBytes>();
+    RTCDevice device = rtcNewDevice(config.c_str());
+    rtcSetDeviceMemoryMonitorFunction(device, CountEmbreeBytes, counter.get());
+    it = devices.emplace(threads, std::pair{device, std::move(counter)}).first;
+  }
+  *bytes = it->second.second.get();
+  return it->second.first;
+}
+#endif
+
+void RunBuild(benchmark::State& state, const std::string& scene_name, bool embree, int threads) {
   BenchScene* s = GetScene(scene_name);
   if (!s->error.empty()) {
     state.SkipWithError(s->error.c_str());
     return;
   }
+  const double triangles = static_cast<double>(s->triangles->size());
   if (!embree) {
+    double bytes = 0.0, binary_bytes = 0.0;
     for (auto _ : state) {
-      const Bvh bvh = BuildBvh(*s->triangles);
+      const Bvh bvh = BuildBvh(*s->triangles, SphereTable{}, threads);
       const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
       benchmark::DoNotOptimize(bvh8.lines.data());
+      bytes = static_cast<double>(simd::Bvh8Bytes(bvh8));
+      binary_bytes = static_cast<double>(BvhBytes(bvh));
     }
+    state.counters["bytes_per_triangle"] = bytes / triangles;
+    state.counters["binary_bytes_per_triangle"] = binary_bytes / triangles;
   } else {
 #ifdef PTLAB_HAVE_EMBREE
+    EmbreeBytes* counter = nullptr;
+    RTCDevice device = BuildDevice(threads, &counter);
+    int64_t held = 0;
     for (auto _ : state) {
       state.PauseTiming();
-      RTCScene scene = MakeEmbreeScene(s->device, *s->triangles, /*commit=*/false);
+      RTCScene scene = MakeEmbreeScene(device, *s->triangles, /*commit=*/false);
+      const int64_t before = counter->held;
       state.ResumeTiming();
       rtcCommitScene(scene);
       state.PauseTiming();
+      held = counter->held - before;
       rtcReleaseScene(scene);
       state.ResumeTiming();
     }
+    state.counters["bytes_per_triangle"] = static_cast<double>(held) / triangles;
 #else
     state.SkipWithError("built without Embree");
     return;
 #endif
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(s->triangles->size()));
-  SetCounters(state, 0.0, static_cast<double>(s->triangles->size()), 0.0);
+  state.counters["triangles"] = triangles;
+  state.counters["threads"] = threads;
+}
+
+// The build against Embree's paired in time, as BM_Pair_Embree pairs traversal: every iteration
+// times one build of ours and one rtcCommitScene (the Embree scene is set up untimed first), in
+// alternating order, on `threads` threads; counters: `ratio`, the median over iterations of
+// Embree's time / ours (above 1: ours is faster), and the medians of each side's time (ms).
+// On a loaded or drifting machine the separate BM_Traverse_Build rows time the two at moments
+// whose speeds differ; the pairs cancel what changes slower than a pair.
+void RunBuildPaired(benchmark::State& state, const std::string& scene_name, int threads) {
+#ifdef PTLAB_HAVE_EMBREE
+  BenchScene* s = GetScene(scene_name);
+  if (!s->error.empty()) {
+    state.SkipWithError(s->error.c_str());
+    return;
+  }
+  using Clock = std::chrono::steady_clock;
+  EmbreeBytes* counter = nullptr;
+  RTCDevice device = BuildDevice(threads, &counter);
+  std::vector<double> ratios, ours_ms, embree_ms;
+  bool ours_first = true;
+  for (auto _ : state) {  // the iteration's time includes the set-up; the counters do not
+    RTCScene scene = MakeEmbreeScene(device, *s->triangles, /*commit=*/false);
+    double seconds[2] = {};  // ours, Embree
+    for (int turn = 0; turn < 2; ++turn) {
+      const bool ours = (turn == 0) == ours_first;
+      const auto t0 = Clock::now();
+      if (ours) {
+        const Bvh bvh = BuildBvh(*s->triangles, SphereTable{}, threads);
+        const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
+        benchmark::DoNotOptimize(bvh8.lines.data());
+      } else {
+        rtcCommitScene(scene);
+      }
+      seconds[ours ? 0 : 1] = std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+    rtcReleaseScene(scene);
+    ratios.push_back(seconds[1] / seconds[0]);
+    ours_ms.push_back(1e3 * seconds[0]);
+    embree_ms.push_back(1e3 * seconds[1]);
+    ours_first = !ours_first;
+  }
+  const auto median = [](std::vector<double>& v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["ratio"] = median(ratios);
+  state.counters["ours_ms"] = median(ours_ms);
+  state.counters["embree_ms"] = median(embree_ms);
+  state.counters["threads"] = threads;
+#else
+  state.SkipWithError("built without Embree");
+#endif
 }
 
 // Rendering throughput, single thread: the Nori table scene with a direct-lighting (or path)
@@ -713,12 +814,26 @@ int RegisterAll() {
   }
   for (const char* scene : {"table", "veach", "terrain"}) {
     const std::string sc = scene;
-    benchmark::RegisterBenchmark(("BM_Traverse_Build/" + sc + "/ours").c_str(),
-                                 [sc](benchmark::State& st) { RunBuild(st, sc, false); })
-        ->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(("BM_Traverse_Build/" + sc + "/embree").c_str(),
-                                 [sc](benchmark::State& st) { RunBuild(st, sc, true); })
-        ->Unit(benchmark::kMillisecond);
+#ifdef PTLAB_HAVE_EMBREE
+    for (const int threads : {1, 2}) {
+      benchmark::RegisterBenchmark(
+          ("BM_Pair_Build/" + sc + "/threads:" + std::to_string(threads)).c_str(),
+          [sc, threads](benchmark::State& st) { RunBuildPaired(st, sc, threads); })
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(sc == "terrain" ? 10.0 : 2.0);
+    }
+#endif
+    // One thread: BM_Traverse_Build/<scene>/ours and /embree (benchmarks/report reads these);
+    // two: /ours/threads:2 and /embree/threads:2.
+    for (const int threads : {1, 2}) {
+      const std::string suffix = threads == 1 ? "" : "/threads:" + std::to_string(threads);
+      for (const bool embree : {false, true}) {
+        benchmark::RegisterBenchmark(
+            ("BM_Traverse_Build/" + sc + (embree ? "/embree" : "/ours") + suffix).c_str(),
+            [sc, embree, threads](benchmark::State& st) { RunBuild(st, sc, embree, threads); })
+            ->Unit(benchmark::kMillisecond);
+      }
+    }
     for (const char* set : {"coherent", "incoherent", "shadow"}) {
       const std::string st_name = set;
       for (const CaseName& cn : cases) {

@@ -1,11 +1,13 @@
 // BVH build invariants and Intersect1 / Occluded1 against a brute-force loop, exactly.
 #include "engine/bvh/bvh.h"
+#include "engine/bvh/bvh_build.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -372,6 +374,32 @@ TEST(BvhBuild, DegenerateTrianglesAreDroppedAndNeverHit) {
       EXPECT_EQ(hit.prim, 0u);
       EXPECT_TRUE(std::isfinite(hit.t) && std::isfinite(hit.b1) && std::isfinite(hit.b2));
     }
+  }
+}
+
+// The parallel build defers subtrees to threads and splices their nodes back: the tree must
+// be the same bit for bit for any thread count (so renders do not depend on it). The table
+// is large enough to be built in parallel (16,384 triangles or more) and mixes a random soup,
+// 300 copies of one triangle (the object-median fallback) and exponentially spaced ones (the
+// depth limit), all inside subtrees that the threads build.
+TEST(BvhBuild, SameTreeForAnyThreadCount) {
+  Pcg32 rng(9, 4);
+  TriangleTable t = bvh_test::MakeRandomSoup(40000, rng);
+  for (int i = 0; i < 300; ++i) t.Append({0.1f, 0.1f, 0.1f}, {0.2f, 0.1f, 0.1f}, {0.1f, 0.2f, 0.1f});
+  float x = 1.0f;
+  for (int i = 0; i < 60; ++i, x *= 1.7f) t.Append({x, 0, 0}, {x, 1, 0}, {x, 0, 1});
+  const Bvh one = BuildBvh(t, SphereTable{}, 1);
+  CheckStructure(one, t);
+  for (const int threads : {2, 3, 8}) {
+    SCOPED_TRACE(threads);
+    const Bvh many = BuildBvh(t, SphereTable{}, threads);
+    ASSERT_EQ(many.nodes.size(), one.nodes.size());
+    EXPECT_EQ(std::memcmp(many.nodes.data(), one.nodes.data(), one.nodes.size() * sizeof(BvhNode)),
+              0);
+    EXPECT_TRUE(std::equal(one.prim_id.begin(), one.prim_id.end(), many.prim_id.begin(),
+                           many.prim_id.end()));
+    EXPECT_TRUE(std::equal(one.leaf_triangles.v2_z.begin(), one.leaf_triangles.v2_z.end(),
+                           many.leaf_triangles.v2_z.begin(), many.leaf_triangles.v2_z.end()));
   }
 }
 
