@@ -16,13 +16,14 @@ KernelChoice ChooseKernels(bool scalar) {
   return scalar || ForceScalar() ? KernelChoice::kOracle : KernelChoice::kSimd;
 }
 
-RenderSetup::RenderSetup(const Scene& scene, KernelChoice choice) : choice_(choice) {
+RenderSetup::RenderSetup(const Scene& scene, KernelChoice choice, int threads)
+    : choice_(choice) {
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
   auto start = Clock::now();
-  bvh_ = BuildSceneBvh(scene);
+  bvh_ = BuildSceneBvh(scene, threads);
   bvh_seconds_ = seconds_since(start);
   peak_after_bvh_ = PeakResidentBytes();
   oracle_ = OracleWavefrontKernels(bvh_);

@@ -31,8 +31,9 @@ KernelChoice ChooseKernels(bool scalar);
 /// time (Render's `scene` must be the one set up, or one with the same triangles and spheres).
 class RenderSetup {
  public:
-  /// Builds the BVH; with kSimd, also the BVH8 collapsed from it and the triangle rows.
-  RenderSetup(const Scene& scene, KernelChoice choice);
+  /// Builds the BVH (on `threads` threads: the same tree for any count); with kSimd, also the
+  /// BVH8 collapsed from it and the triangle rows.
+  RenderSetup(const Scene& scene, KernelChoice choice, int threads = 1);
   RenderSetup(const RenderSetup&) = delete;
   RenderSetup& operator=(const RenderSetup&) = delete;
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/bvh/bvh_build.h"
 #include "engine/bvh/instance_level.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/core/check.h"
@@ -17,10 +18,10 @@ void AppendRow(const TriangleTable& from, uint32_t row, TriangleTable* to) {
 
 }  // namespace
 
-Bvh BuildSceneBvh(const Scene& scene) {
+Bvh BuildSceneBvh(const Scene& scene, int threads) {
   const InstanceTable& in = scene.instances;
   if (in.groups() == 0) {
-    Bvh bvh = BuildBvh(scene.triangles, scene.spheres);
+    Bvh bvh = BuildBvh(scene.triangles, scene.spheres, threads);
     bvh.sdf_grids = scene.sdf_grids;
     return bvh;
   }
@@ -35,7 +36,7 @@ Bvh BuildSceneBvh(const Scene& scene) {
   std::vector<uint32_t> top_rows;
   for (uint32_t r = 0; r < rows; ++r)
     if (!grouped[r]) AppendRow(all, r, &top), top_rows.push_back(r);
-  Bvh bvh = BuildBvh(top, scene.spheres);
+  Bvh bvh = BuildBvh(top, scene.spheres, threads);
   bvh.sdf_grids = scene.sdf_grids;
   for (uint32_t& p : bvh.prim_id) p = top_rows[p];
   std::vector<GroupBounds> bounds;

@@ -344,7 +344,7 @@ int RunRender(const RenderArgs& args, const mpi::Session& mpi) {
   // --stats: the scene's files read (parse, meshes, textures, flags' maps) before the builds.
   const double scene_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
-  const RenderSetup setup(scene, ChooseKernels(args.scalar));
+  const RenderSetup setup(scene, ChooseKernels(args.scalar), options.threads);
   const std::string traversal = setup.TraversalName();
   if (mpi.root()) std::fprintf(stderr, "ptlab: traversal: %s\n",
                setup.packets() ? ("8-wide packets, Highway target " +
