@@ -152,7 +152,7 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
   if (!hn::AllTrue(d, spec)) SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
   if (!hn::AllFalse(d, hn::And(rough, spec))) {
     V8 mx, my, mz, pm;
-    mf8::Sample(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz, &pm);
+    mf8::Sample(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz, &pm, &g1o);
     V8 rx, ry, rz;
     Reflect(d, ox, oy, oz, mx, my, mz, &rx, &ry, &rz);
     ix = hn::IfThenElse(spec, rx, ix), iy = hn::IfThenElse(spec, ry, iy);
