@@ -117,9 +117,15 @@ inline void ShadePlasticRows(const MaterialTables& m, const uint32_t* /*material
   const auto& dist = t.distribution;
   if (!dist.empty() && dist.size() <= n &&
       std::all_of(dist.begin(), dist.end(), [&dist](uint8_t v) { return v == dist[0]; })) {
-    if (dist[0] != uint8_t(CoatingDistribution::kSmooth)) return ForEachBlock(io, n, block);
-    return ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
-      PlasticBlock(t, b, i, eval, sample);
+    const CoatingDistribution one = static_cast<CoatingDistribution>(dist[0]);
+    if (one == CoatingDistribution::kSmooth) {
+      return ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+        PlasticBlock(t, b, i, eval, sample);
+      });
+    }
+    return ForEachBlock(io, n, [&t, eval, sample, &one](const ShadeIo& b, size_t i) HWY_ATTR {
+      const D8 d;
+      PlasticRoughBlock(t, b, i, hn::Eq(hn::Zero(d), hn::Zero(d)), eval, sample, &one);
     });
   }
   ForEachBlockGrouped(io, n, key, block);
