@@ -327,9 +327,9 @@ TEST(PlasticRough8, MixedBatchEqualsRowsAlone) {
 }
 
 // kern: a plastic table whose rows all have one coating (smooth, Beckmann or GGX) and is no
-// longer than the batch skips the grouping and the per-block coating test (ShadePlasticRows'
-// one-coating path); the same rows in a table that also holds the other coatings go through
-// the general path. Every row's outputs must be the same bits, on every target.
+// longer than the batch skips the grouping (and, rough, the per-block coating gathers:
+// ShadePlasticRows' one-coating path); the same rows in a table that also holds the other
+// coatings go through the general path. Every row's outputs must be the same bits, on every target.
 TEST(PlasticRough8, OneCoatingTableEqualsMixedTable) {
   const Fixture& fx = MakeFixture();
   const PlasticTable& all = fx.m.plastic;
