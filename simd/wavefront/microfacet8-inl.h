@@ -35,8 +35,9 @@ HWY_INLINE V8 ExpArg(D8 d, V8 x) {
   return hn::IfThenElse(hn::Ge(x, low), x, low);
 }
 
-/// ErfApprox (engine/bsdf/erf.h).
-HWY_INLINE V8 Erf(D8 d, V8 x) {
+/// ErfApprox (engine/bsdf/erf.h); *e (when non-null) receives its exp(−x²), which callers
+/// that need e^(−x²) themselves take instead of a second Exp (the same bits: (−x)² = x²).
+HWY_INLINE V8 Erf(D8 d, V8 x, V8* e = nullptr) {
   const V8 a = hn::Abs(x), one = hn::Set(d, 1.0f);
   const V8 t = hn::Div(one, hn::Add(one, hn::Mul(hn::Set(d, 0.3275911f), a)));
   V8 p = hn::Add(hn::Set(d, -1.453152027f), hn::Mul(t, hn::Set(d, 1.061405429f)));
@@ -44,15 +45,14 @@ HWY_INLINE V8 Erf(D8 d, V8 x) {
   p = hn::Add(hn::Set(d, -0.284496736f), hn::Mul(t, p));
   p = hn::Add(hn::Set(d, 0.254829592f), hn::Mul(t, p));
   p = hn::Mul(t, p);
-  const V8 r = hn::Sub(one, hn::Mul(p, hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(a, a))))));
+  const V8 exp_a2 = hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(a, a))));
+  if (e != nullptr) *e = exp_a2;
+  const V8 r = hn::Sub(one, hn::Mul(p, exp_a2));
   return hn::CopySign(r, x);
 }
 
-/// ErfInvApprox (engine/bsdf/erf.h): both of Giles's branches, selected per lane.
-HWY_INLINE V8 ErfInv(D8 d, V8 x) {
-  const V8 one = hn::Set(d, 1.0f), hi = hn::Set(d, kErfInvMaxArg), lo = hn::Neg(hi);
-  x = hn::IfThenElse(hn::Gt(x, lo), hn::Min(x, hi), lo);
-  const V8 w = hn::Neg(hn::Log(d, hn::Mul(hn::Sub(one, x), hn::Add(one, x))));
+/// ErfInvApprox's central branch (w < 5) before the product with x.
+HWY_INLINE V8 ErfInvCentral(D8 d, V8 w) {
   const V8 w1 = hn::Sub(w, hn::Set(d, 2.5f));
   V8 p = hn::Set(d, 2.81022636e-08f);
   p = hn::Add(hn::Set(d, 3.43273939e-07f), hn::Mul(p, w1));
@@ -63,6 +63,11 @@ HWY_INLINE V8 ErfInv(D8 d, V8 x) {
   p = hn::Add(hn::Set(d, -0.00417768164f), hn::Mul(p, w1));
   p = hn::Add(hn::Set(d, 0.246640727f), hn::Mul(p, w1));
   p = hn::Add(hn::Set(d, 1.50140941f), hn::Mul(p, w1));
+  return p;
+}
+
+/// ErfInvApprox's tail branch (w ≥ 5) before the product with x.
+HWY_INLINE V8 ErfInvTail(D8 d, V8 w) {
   const V8 w2 = hn::Sub(hn::Sqrt(w), hn::Set(d, 3.0f));
   V8 q = hn::Set(d, -0.000200214257f);
   q = hn::Add(hn::Set(d, 0.000100950558f), hn::Mul(q, w2));
@@ -73,7 +78,20 @@ HWY_INLINE V8 ErfInv(D8 d, V8 x) {
   q = hn::Add(hn::Set(d, 0.00943887047f), hn::Mul(q, w2));
   q = hn::Add(hn::Set(d, 1.00167406f), hn::Mul(q, w2));
   q = hn::Add(hn::Set(d, 2.83297682f), hn::Mul(q, w2));
-  return hn::Mul(hn::IfThenElse(hn::Lt(w, hn::Set(d, 5.0f)), p, q), x);
+  return q;
+}
+
+/// ErfInvApprox (engine/bsdf/erf.h): Giles's branch selected per lane.
+HWY_INLINE V8 ErfInv(D8 d, V8 x) {
+  const V8 one = hn::Set(d, 1.0f), hi = hn::Set(d, kErfInvMaxArg), lo = hn::Neg(hi);
+  x = hn::IfThenElse(hn::Gt(x, lo), hn::Min(x, hi), lo);
+  const V8 w = hn::Neg(hn::Log(d, hn::Mul(hn::Sub(one, x), hn::Add(one, x))));
+  // Giles's branches, each only where some lane takes it (the tail one, |x| ≳ 0.9966, seldom).
+  const M8 central = hn::Lt(w, hn::Set(d, 5.0f));
+  V8 p = hn::Zero(d), q = p;
+  if (!hn::AllFalse(d, central)) p = ErfInvCentral(d, w);
+  if (!hn::AllTrue(d, central)) q = ErfInvTail(d, w);
+  return hn::Mul(hn::IfThenElse(central, p, q), x);
 }
 
 /// One block's distributions: GGX lanes, visible-sampling lanes, αu, αv (clamped).
@@ -118,9 +136,10 @@ HWY_INLINE V8 G1OverCos(D8 d, const Dist8& f, V8 vx, V8 vy, V8 vz) {
     const M8 tilted = hn::Gt(s2, zero);
     const V8 s = hn::Sqrt(s2);
     const V8 a = hn::IfThenElseZero(tilted, hn::Div(z, s));
-    const V8 den = hn::Add(hn::Mul(z, hn::Add(one, Erf(d, a))),
-                           hn::Mul(hn::Mul(s, hn::Set(d, kInvSqrtPi)),
-                                   hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(a, a))))));
+    V8 exp_a2;  // e^(−a²), from the Erf
+    const V8 erf_a = Erf(d, a, &exp_a2);
+    const V8 den = hn::Add(hn::Mul(z, hn::Add(one, erf_a)),
+                           hn::Mul(hn::Mul(s, hn::Set(d, kInvSqrtPi)), exp_a2));
     r = hn::IfThenElse(tilted, hn::Div(two, den), hn::Div(one, z));
   }
   if (!hn::AllFalse(d, f.ggx)) {
@@ -129,19 +148,25 @@ HWY_INLINE V8 G1OverCos(D8 d, const Dist8& f, V8 vx, V8 vy, V8 vz) {
   return hn::IfThenElseZero(hn::IsFinite(r), r);
 }
 
-/// MicrofacetG1: |v.z| G1OverCos capped at 1, 0 unless (v·m) v.z > 0.
-HWY_INLINE V8 G1(D8 d, const Dist8& f, V8 vx, V8 vy, V8 vz, V8 mx, V8 my, V8 mz) {
+/// MicrofacetG1: |v.z| G1OverCos capped at 1, 0 unless (v·m) v.z > 0. g1_over_cos, when
+/// non-null, is G1OverCos(d, f, v) computed already (for v or −v: the same bits).
+HWY_INLINE V8 G1(D8 d, const Dist8& f, V8 vx, V8 vy, V8 vz, V8 mx, V8 my, V8 mz,
+                 const V8* g1_over_cos = nullptr) {
   const V8 vm = hn::Add(hn::Add(hn::Mul(vx, mx), hn::Mul(vy, my)), hn::Mul(vz, mz));
-  const V8 g = hn::Min(hn::Mul(hn::Abs(vz), G1OverCos(d, f, vx, vy, vz)), hn::Set(d, 1.0f));
+  const V8 goc = g1_over_cos != nullptr ? *g1_over_cos : G1OverCos(d, f, vx, vy, vz);
+  const V8 g = hn::Min(hn::Mul(hn::Abs(vz), goc), hn::Set(d, 1.0f));
   return hn::IfThenElseZero(hn::Gt(hn::Mul(vm, vz), hn::Zero(d)), g);
 }
 
-/// MicrofacetPdf (w.z > 0 lanes; 0 elsewhere).
-HWY_INLINE V8 Pdf(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 mx, V8 my, V8 mz) {
+/// MicrofacetPdf (w.z > 0 lanes; 0 elsewhere). g1_w and d_m, when non-null, are G1OverCos(d,
+/// f, w) and D(d, f, m) computed already by the caller (the same operations: the same bits).
+HWY_INLINE V8 Pdf(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 mx, V8 my, V8 mz,
+                  const V8* g1_w = nullptr, const V8* d_m = nullptr) {
   const V8 zero = hn::Zero(d);
-  const V8 dm = D(d, f, mx, my, mz);
+  const V8 dm = d_m != nullptr ? *d_m : D(d, f, mx, my, mz);
   const V8 wm = hn::Add(hn::Add(hn::Mul(wx, mx), hn::Mul(wy, my)), hn::Mul(wz, mz));
-  const V8 vis = hn::Mul(hn::Mul(dm, G1OverCos(d, f, wx, wy, wz)), wm);
+  const V8 g1 = g1_w != nullptr ? *g1_w : G1OverCos(d, f, wx, wy, wz);
+  const V8 vis = hn::Mul(hn::Mul(dm, g1), wm);
   V8 p = hn::IfThenElse(f.visible, hn::IfThenElseZero(hn::Gt(wm, zero), vis), hn::Mul(dm, mz));
   p = hn::IfThenElseZero(hn::And(hn::Gt(wz, zero), hn::IsFinite(p)), p);
   return p;
@@ -169,9 +194,9 @@ HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8*
   const M8 tilted = hn::Gt(tan_t, zero);
   // cot = ∞ at normal incidence; erf(∞) = 1 and the tail is 0 there, as in the oracle.
   const V8 cot_t = hn::IfThenElse(tilted, hn::Div(cos_t, sin_t), hn::Set(d, 1e30f));
-  const V8 max_x = Erf(d, cot_t);
-  const V8 tail = hn::IfThenElseZero(
-      tilted, hn::Mul(hn::Mul(tan_t, isp), hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(cot_t, cot_t))))));
+  V8 exp_cot2;  // e^(−cot²), from the Erf
+  const V8 max_x = Erf(d, cot_t, &exp_cot2);
+  const V8 tail = hn::IfThenElseZero(tilted, hn::Mul(hn::Mul(tan_t, isp), exp_cot2));
   const V8 target = hn::Mul(ux, hn::Add(hn::Add(one, max_x), tail));
   V8 x = hn::Sub(max_x,
                  hn::Mul(hn::Add(max_x, one), Erf(d, hn::Sqrt(hn::Neg(hn::Log(d, ux))))));
@@ -188,9 +213,10 @@ HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8*
   *sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), uy), one));
 }
 
-/// SampleMicrofacet: sets m and *pdf (0 and m = +z where the oracle returns those).
+/// SampleMicrofacet: sets m and *pdf (0 and m = +z where the oracle returns those). g1_w, when
+/// non-null, is G1OverCos(d, f, w) computed already (Pdf's).
 HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y, V8* mx, V8* my,
-                       V8* mz, V8* pdf) {
+                       V8* mz, V8* pdf, const V8* g1_w = nullptr) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), two_pi = hn::Set(d, 2.0f * kPi);
   V8 x = zero, y = zero, z = one;
   if (!hn::AllTrue(d, f.visible)) {
@@ -259,7 +285,7 @@ HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y
                            hn::And(hn::IsFinite(x), hn::IsFinite(y)));
   x = hn::IfThenElseZero(valid, x), y = hn::IfThenElseZero(valid, y);
   z = hn::IfThenElse(valid, z, one);
-  const V8 p = Pdf(d, f, wx, wy, wz, x, y, z);
+  const V8 p = Pdf(d, f, wx, wy, wz, x, y, z, g1_w);
   *pdf = hn::IfThenElseZero(hn::And(valid, hn::And(hn::Gt(p, zero), hn::IsFinite(p))), p);
   *mx = x, *my = y, *mz = z;
 }

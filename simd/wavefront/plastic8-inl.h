@@ -11,6 +11,8 @@
 #define PTLAB_SIMD_PLASTIC8_INL_H_
 #endif
 
+#include <algorithm>
+
 #include "engine/scene/plastic_table.h"
 #include "hwy/highway.h"
 
@@ -104,12 +106,26 @@ inline void ShadePlasticRows(const MaterialTables& m, const uint32_t* /*material
                              const ShadeIo& io, bool eval, bool sample) {
   const PlasticTable& t = m.plastic;
   const auto key = [&t, &io](size_t r) { return uint32_t(t.distribution[io.index[r]]); };
-  ForEachBlockGrouped(io, n, key, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
+  const auto block = [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const M8 rough = RoughCoatingLanes(d, t, b.index, i);
     if (!hn::AllTrue(d, rough)) PlasticBlock(t, b, i, eval, sample);
     if (!hn::AllFalse(d, rough)) PlasticRoughBlock(t, b, i, rough, eval, sample);
-  });
+  };
+  // A table of one coating (the usual case) has no blocks to group: when it is no longer than
+  // the batch, checking its rows costs less than keying the batch's. A rough one's blocks also
+  // take the distribution as known (no per-block gathers of the coating column).
+  const auto& dist = t.distribution;
+  if (!dist.empty() && dist.size() <= n &&
+      std::all_of(dist.begin(), dist.end(), [&dist](uint8_t v) { return v == dist[0]; })) {
+    const CoatingDistribution one = static_cast<CoatingDistribution>(dist[0]);
+    if (one == CoatingDistribution::kSmooth) return ForEachBlock(io, n, block);
+    return ForEachBlock(io, n, [&t, eval, sample, &one](const ShadeIo& b, size_t i) HWY_ATTR {
+      const D8 d;
+      PlasticRoughBlock(t, b, i, hn::Eq(hn::Zero(d), hn::Zero(d)), eval, sample, &one);
+    });
+  }
+  ForEachBlockGrouped(io, n, key, block);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -47,11 +47,13 @@ struct PlasticRoughLanes {
   hn::Vec<hn::RebindToSigned<D8>> table;  // first entry of the row's T(μ) table
 };
 
+/// `uniform`: the distribution of every row of the table when it has one (else null: gathered).
 HWY_INLINE PlasticRoughLanes GatherPlasticRough(D8 d, const PlasticTable& t, const uint32_t* index,
-                                                size_t i) {
+                                                size_t i, const CoatingDistribution* uniform) {
   const hn::RebindToSigned<D8> di;
   PlasticRoughLanes c;
-  const auto dist = GatherCoatingDistribution(d, t, index, i);
+  const auto dist = uniform != nullptr ? hn::Set(di, int32_t(*uniform))
+                                       : GatherCoatingDistribution(d, t, index, i);
   c.dist.ggx = hn::RebindMask(d, hn::Eq(dist, hn::Set(di, int32_t(CoatingDistribution::kGgx))));
   c.dist.visible = hn::RebindMask(d, hn::Eq(dist, dist));  // MakeMicrofacet's default
   c.dist.au = mf8::ClampAlpha(d, Gather(d, t.alpha, index, i));
@@ -127,12 +129,14 @@ HWY_INLINE void StoreLanes(D8 d, M8 lanes, V8 v, float* col, size_t i) {
 }
 
 /// PlasticRoughEvalPdf / PlasticRoughSample for the `rough` lanes of rows [i, i + Lanes) of the
-/// plastic table (the other lanes' outputs are left as they are).
+/// plastic table (the other lanes' outputs are left as they are). `uniform` as for
+/// GatherPlasticRough.
 HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_t i, M8 rough,
-                                  bool eval, bool sample) {
+                                  bool eval, bool sample,
+                                  const CoatingDistribution* uniform = nullptr) {
   const D8 d;
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-  const PlasticRoughLanes c = GatherPlasticRough(d, t, b.index, i);
+  const PlasticRoughLanes c = GatherPlasticRough(d, t, b.index, i, uniform);
   const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
   const V8 t_o = CoatingTransmittance8(d, t, c, oz);
   const V8 ps = CoatingSpecularProbability(d, t_o, c.ws);
@@ -152,7 +156,7 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
   if (!hn::AllTrue(d, spec)) SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
   if (!hn::AllFalse(d, hn::And(rough, spec))) {
     V8 mx, my, mz, pm;
-    mf8::Sample(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz, &pm);
+    mf8::Sample(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz, &pm, &g1o);
     V8 rx, ry, rz;
     Reflect(d, ox, oy, oz, mx, my, mz, &rx, &ry, &rz);
     ix = hn::IfThenElse(spec, rx, ix), iy = hn::IfThenElse(spec, ry, iy);

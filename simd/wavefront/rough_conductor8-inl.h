@@ -46,15 +46,16 @@ HWY_INLINE void TintedConductorFresnel(D8 d, const RoughConductorLanes& c, V8 co
   *b = hn::Mul(hn::Mul(c.s_b, FresnelConductor(d, cos, c.eta_b, c.k_b)), scale);
 }
 
-/// RoughConductorEval (into *fr, *fg, *fb) and RoughConductorPdf (returned) at (wo, wi).
-HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 ox, V8 oy, V8 oz,
-                                    V8 ix, V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
+/// RoughConductorEval (into *fr, *fg, *fb) and RoughConductorPdf (returned) at (wo, wi); g1o is
+/// G1OverCos(wo), computed once per block for the evaluation and the sample.
+HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 g1o, V8 ox, V8 oy,
+                                    V8 oz, V8 ix, V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
   const V8 zero = hn::Zero(d);
   V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
   mf8::Normalize3(d, &hx, &hy, &hz);
   const M8 above = hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero));
   const V8 dv = mf8::D(d, c.dist, hx, hy, hz);
-  const V8 g = hn::Mul(mf8::G1OverCos(d, c.dist, ox, oy, oz), mf8::G1OverCos(d, c.dist, ix, iy, iz));
+  const V8 g = hn::Mul(g1o, mf8::G1OverCos(d, c.dist, ix, iy, iz));
   const V8 wi_h = hn::Add(hn::Add(hn::Mul(ix, hx), hn::Mul(iy, hy)), hn::Mul(iz, hz));
   const V8 scale = hn::Mul(hn::Mul(hn::Set(d, 0.25f), dv), g);
   V8 r, gg, b;
@@ -62,7 +63,7 @@ HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 ox, V
   const M8 ok = hn::And(above, hn::And(hn::Gt(dv, zero), AllFinite3(d, r, gg, b)));
   *fr = hn::IfThenElseZero(ok, r), *fg = hn::IfThenElseZero(ok, gg),
   *fb = hn::IfThenElseZero(ok, b);
-  const V8 pdf = hn::Div(mf8::Pdf(d, c.dist, ox, oy, oz, hx, hy, hz),
+  const V8 pdf = hn::Div(mf8::Pdf(d, c.dist, ox, oy, oz, hx, hy, hz, &g1o, &dv),
                          hn::Mul(hn::Set(d, 4.0f), wi_h));
   return hn::IfThenElseZero(
       hn::And(above, hn::And(hn::Gt(wi_h, zero), hn::IsFinite(pdf))), pdf);
@@ -92,21 +93,23 @@ inline void ShadeRoughConductor(const ConductorTable& t, const ShadeInputs::Text
     c.s_r = Gather(d, t.specular_r, b.index, i), c.s_g = Gather(d, t.specular_g, b.index, i);
     c.s_b = Gather(d, t.specular_b, b.index, i);
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+    const V8 g1o = mf8::G1OverCos(d, c.dist, ox, oy, oz);
     if (eval) {
       const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
       V8 fr, fg, fb;
-      const V8 pdf_l = RoughConductorEvalPdf(d, c, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      const V8 pdf_l = RoughConductorEvalPdf(d, c, g1o, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
       StoreEval(d, b, i, fr, fg, fb, pdf_l);
     }
     if (!sample) return;
     V8 mx, my, mz, pdf_m;
-    mf8::Sample(d, c.dist, ox, oy, oz, In(d, b, kUX, i), In(d, b, kUY, i), &mx, &my, &mz, &pdf_m);
+    mf8::Sample(d, c.dist, ox, oy, oz, In(d, b, kUX, i), In(d, b, kUY, i), &mx, &my, &mz, &pdf_m,
+                &g1o);
     const V8 wo_m = hn::Add(hn::Add(hn::Mul(ox, mx), hn::Mul(oy, my)), hn::Mul(oz, mz));
     const V8 two_wo_m = hn::Mul(hn::Set(d, 2.0f), wo_m);
     const V8 ix = hn::Sub(hn::Mul(two_wo_m, mx), ox), iy = hn::Sub(hn::Mul(two_wo_m, my), oy),
              iz = hn::Sub(hn::Mul(two_wo_m, mz), oz);
     V8 fr, fg, fb;
-    const V8 pdf = RoughConductorEvalPdf(d, c, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
+    const V8 pdf = RoughConductorEvalPdf(d, c, g1o, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
     V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
     mf8::Normalize3(d, &hx, &hy, &hz);
     // The weight with D cancelled: G1(wi) with visible normals, G (wo·h)/(cos θo h.z) else.
@@ -114,7 +117,7 @@ inline void ShadeRoughConductor(const ConductorTable& t, const ShadeInputs::Text
     V8 g = g1_i;
     if (!hn::AllTrue(d, c.dist.visible)) {
       const V8 wo_h = hn::Add(hn::Add(hn::Mul(ox, hx), hn::Mul(oy, hy)), hn::Mul(oz, hz));
-      const V8 gg = hn::Mul(mf8::G1(d, c.dist, ox, oy, oz, hx, hy, hz), g1_i);
+      const V8 gg = hn::Mul(mf8::G1(d, c.dist, ox, oy, oz, hx, hy, hz, &g1o), g1_i);
       g = hn::IfThenElse(c.dist.visible, g, hn::Div(hn::Mul(gg, wo_h), hn::Mul(oz, hz)));
     }
     const V8 wi_h = hn::Add(hn::Add(hn::Mul(ix, hx), hn::Mul(iy, hy)), hn::Mul(iz, hz));

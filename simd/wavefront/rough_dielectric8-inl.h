@@ -36,9 +36,11 @@ HWY_INLINE mf8::Dist8 SamplingDist(D8 d, const mf8::Dist8& f, V8 cos_o) {
   return r;
 }
 
-/// RoughDielectricEval (into *fr, *fg, *fb) and RoughDielectricPdf (returned).
-HWY_INLINE V8 RoughDielectricEvalPdf(D8 d, const RoughDielectricLanes& c, V8 ox, V8 oy, V8 oz,
-                                     V8 ix, V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
+/// RoughDielectricEval (into *fr, *fg, *fb) and RoughDielectricPdf (returned); g1o is
+/// G1OverCos(wo) of c.dist, computed once per block (the sampling distribution is c.dist where
+/// every lane samples visible normals: then the pdf takes g1o and D too).
+HWY_INLINE V8 RoughDielectricEvalPdf(D8 d, const RoughDielectricLanes& c, V8 g1o, V8 ox, V8 oy,
+                                     V8 oz, V8 ix, V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   // HalfVector.
   const M8 reflect = hn::Gt(hn::Mul(oz, iz), zero);
@@ -64,7 +66,7 @@ HWY_INLINE V8 RoughDielectricEvalPdf(D8 d, const RoughDielectricLanes& c, V8 ox,
   const V8 dv = mf8::D(d, c.dist, hx, hy, hz);
   V8 cos_t;
   const V8 f = FresnelDielectric(d, wo_h, c.eta, &cos_t);
-  const V8 g = hn::Mul(mf8::G1(d, c.dist, ox, oy, oz, hx, hy, hz),
+  const V8 g = hn::Mul(mf8::G1(d, c.dist, ox, oy, oz, hx, hy, hz, &g1o),
                        mf8::G1(d, c.dist, ix, iy, iz, hx, hy, hz));
   const V8 cos_oi = hn::Abs(hn::Mul(oz, iz));
   const V8 denom = hn::Add(wo_h, hn::Mul(eta_r, wi_h));
@@ -87,7 +89,9 @@ HWY_INLINE V8 RoughDielectricEvalPdf(D8 d, const RoughDielectricLanes& c, V8 ox,
   const V8 ux = hn::IfThenElse(below, hn::Mul(ox, hn::Set(d, -1.0f)), ox);
   const V8 uy = hn::IfThenElse(below, hn::Mul(oy, hn::Set(d, -1.0f)), oy);
   const V8 uz = hn::IfThenElse(below, hn::Mul(oz, hn::Set(d, -1.0f)), oz);
-  const V8 pm = mf8::Pdf(d, SamplingDist(d, c.dist, oz), ux, uy, uz, hx, hy, hz);
+  const bool visible = hn::AllTrue(d, c.dist.visible);
+  const V8 pm = visible ? mf8::Pdf(d, c.dist, ux, uy, uz, hx, hy, hz, &g1o, &dv)
+                        : mf8::Pdf(d, SamplingDist(d, c.dist, oz), ux, uy, uz, hx, hy, hz);
   const V8 pdf = hn::Mul(hn::Mul(pm, hn::IfThenElse(reflect, f, hn::Sub(one, f))),
                          hn::IfThenElse(reflect, jac_refl, jac_refr));
   return hn::IfThenElseZero(hn::And(valid, hn::IsFinite(pdf)), pdf);
@@ -121,10 +125,11 @@ inline void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeInput
     c.t_g = Gather(d, t.transmittance_g, b.index, i);
     c.t_b = Gather(d, t.transmittance_b, b.index, i);
     const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+    const V8 g1o = mf8::G1OverCos(d, c.dist, ox, oy, oz);
     if (eval) {
       const V8 lx = In(d, b, kWlX, i), ly = In(d, b, kWlY, i), lz = In(d, b, kWlZ, i);
       V8 fr, fg, fb;
-      const V8 pdf_l = RoughDielectricEvalPdf(d, c, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
+      const V8 pdf_l = RoughDielectricEvalPdf(d, c, g1o, ox, oy, oz, lx, ly, lz, &fr, &fg, &fb);
       StoreEval(d, b, i, fr, fg, fb, pdf_l);
     }
     if (!sample) return;
@@ -133,8 +138,9 @@ inline void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeInput
     const V8 uy = hn::IfThenElse(below, hn::Mul(oy, minus), oy);
     const V8 uz = hn::IfThenElse(below, hn::Mul(oz, minus), oz);
     V8 mx, my, mz, pdf_m;
+    const bool visible = hn::AllTrue(d, c.dist.visible);  // then SamplingDist is c.dist
     mf8::Sample(d, SamplingDist(d, c.dist, oz), ux, uy, uz, In(d, b, kUX, i), In(d, b, kUY, i),
-                &mx, &my, &mz, &pdf_m);
+                &mx, &my, &mz, &pdf_m, visible ? &g1o : nullptr);
     const V8 wo_m = Dot3(ox, oy, oz, mx, my, mz);
     V8 cos_t;
     const V8 f = FresnelDielectric(d, wo_m, c.eta, &cos_t);
@@ -165,7 +171,7 @@ inline void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeInput
     // Weight.
     V8 g = mf8::G1(d, c.dist, ix, iy, iz, mx, my, mz);
     if (!hn::AllTrue(d, c.dist.visible)) {
-      const V8 gg = hn::Mul(mf8::G1(d, c.dist, ox, oy, oz, mx, my, mz), g);
+      const V8 gg = hn::Mul(mf8::G1(d, c.dist, ox, oy, oz, mx, my, mz, &g1o), g);
       const V8 nv = hn::Div(hn::Mul(hn::Mul(mf8::D(d, c.dist, mx, my, mz), gg), hn::Abs(wo_m)),
                             hn::Mul(pdf_m, hn::Abs(oz)));
       g = hn::IfThenElse(c.dist.visible, g, nv);

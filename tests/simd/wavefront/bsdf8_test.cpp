@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -561,6 +562,73 @@ TEST(Shade8, ShadeBatchMatchesOracleForEveryMaterialOnEveryTarget) {
       ShadeResult r1(n);
       simd::ShadeBatch(m, tag, s.index.data(), n, s.View(), r1.Out());
       CheckShadeContract(m, tag, s, r0, r1, target);
+    });
+  }
+}
+
+// kern: a blend batch whose rows all have one first-child kind and one second-child kind takes
+// ShadeBlend's direct path (the children's kernels on the rows as they are, each picked child
+// sampled over every row); a batch mixing child kinds regroups the rows by child tag. Each row's
+// outputs must be the same bits either way: the uniform rows are shaded alone and again
+// interleaved with rows of other child kinds, on every target, for batches where both children
+// are picked, only the first (w = 0) and only the second (w = 1); the uniform batch is also
+// checked against the oracle under the ShadeBatch contract.
+TEST(Shade8, BlendOfUniformChildKindsEqualsRowsInAMixedBatch) {
+  MaterialTables m;
+  Pcg32 rng(31, 4);
+  AddMaterialRows(&m, rng);
+  const uint32_t mixed_rows = uint32_t(m.blend.size());  // blends of every kind of child
+  const uint32_t plastics = uint32_t(m.plastic.size());
+  for (int i = 0; i < 24; ++i) {
+    const float w = i == 0 ? 0.0f : i == 1 ? 1.0f : rng.NextFloat();
+    const MaterialRef b =
+        m.AddBlend(w, MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(i)),
+                   MaterialRef::Make(MaterialTag::kPlastic, uint32_t(i * 7) % plastics));
+    if (i % 6 == 5) m.two_sided.Set(b);
+  }
+  const uint32_t uniform_rows = uint32_t(m.blend.size()) - mixed_rows;
+  // Enough random rows that the hard cases (every third row's grid of grazing directions and
+  // extreme u, all cosine-lobe children here) stay below the contract's 1 in 50 rows whose
+  // validity may differ on a decision boundary.
+  const ShadeData base = MakeShadeData(m, MaterialTag::kBlend, size_t(1) << 16);
+  // rows(k): all uniform rows (k = 2), only the w = 0 row (k = 0), only the w = 1 row (k = 1).
+  for (int k : {2, 0, 1}) {
+    ShadeData s = base;
+    for (uint32_t& row : s.index) row = mixed_rows + (k == 2 ? row % uniform_rows : uint32_t(k));
+    const size_t n = s.index.size();
+    ShadeData mix;  // row i of s at 2i, a row with other child kinds at 2i + 1
+    for (size_t i = 0; i < n; ++i) {
+      for (uint32_t row : {s.index[i], uint32_t(i % mixed_rows)}) {
+        mix.index.push_back(row);
+        mix.wo.Push(s.wo[i]), mix.wl.Push(s.wl[i]);
+        mix.u_lobe.push_back(s.u_lobe[i]), mix.u_x.push_back(s.u_x[i]);
+        mix.u_y.push_back(s.u_y[i]);
+      }
+    }
+    ShadeResult r0(n);
+    ptlab::ShadeBatch(m, MaterialTag::kBlend, s.index.data(), n, s.View(), r0.Out());
+    ForEachTarget([&](const char* target) {
+      ShadeResult alone(n), mixed(2 * n);
+      simd::ShadeBatch(m, MaterialTag::kBlend, s.index.data(), n, s.View(), alone.Out());
+      simd::ShadeBatch(m, MaterialTag::kBlend, mix.index.data(), 2 * n, mix.View(), mixed.Out());
+      for (size_t i = 0; i < n; ++i) {
+        const size_t j = 2 * i;
+        const auto same = [](float a, float b) {
+          return std::memcmp(&a, &b, sizeof(float)) == 0;
+        };
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_TRUE(same(alone.f[c][i], mixed.f[c][j])) << target << " k " << k << " row " << i;
+          ASSERT_TRUE(same(alone.weight[c][i], mixed.weight[c][j])) << target << " row " << i;
+        }
+        ASSERT_TRUE(same(alone.pdf_l[i], mixed.pdf_l[j])) << target << " row " << i;
+        ASSERT_TRUE(same(alone.wi.x[i], mixed.wi.x[j]) && same(alone.wi.y[i], mixed.wi.y[j]) &&
+                    same(alone.wi.z[i], mixed.wi.z[j]))
+            << target << " row " << i;
+        ASSERT_TRUE(same(alone.pdf[i], mixed.pdf[j]) && same(alone.eta[i], mixed.eta[j]) &&
+                    same(alone.delta[i], mixed.delta[j]))
+            << target << " row " << i;
+      }
+      if (k == 2) CheckShadeContract(m, MaterialTag::kBlend, s, r0, alone, target);
     });
   }
 }

@@ -326,5 +326,42 @@ TEST(PlasticRough8, MixedBatchEqualsRowsAlone) {
   });
 }
 
+// kern: a plastic table whose rows all have one coating (smooth, Beckmann or GGX) and is no
+// longer than the batch skips the grouping (and, rough, the per-block coating gathers:
+// ShadePlasticRows' one-coating path); the same rows in a table that also holds the other
+// coatings go through the general path. Every row's outputs must be the same bits, on every target.
+TEST(PlasticRough8, OneCoatingTableEqualsMixedTable) {
+  const Fixture& fx = MakeFixture();
+  const PlasticTable& all = fx.m.plastic;
+  for (CoatingDistribution dist : {CoatingDistribution::kSmooth, CoatingDistribution::kBeckmann,
+                                   CoatingDistribution::kGgx}) {
+    MaterialTables one, mixed;  // mixed: the same rows first, then every other row
+    std::vector<float> alpha;
+    for (size_t k = 0; k < all.size(); ++k) {
+      if (all.Row(k).distribution != dist) continue;
+      one.AddPlastic(all.Row(k)), mixed.AddPlastic(all.Row(k));
+      alpha.push_back(fx.alpha[k]);
+    }
+    const uint32_t rows = uint32_t(one.plastic.size());
+    ASSERT_GT(rows, 8u);
+    for (size_t k = 0; k < all.size(); ++k)
+      if (all.Row(k).distribution != dist) mixed.AddPlastic(all.Row(k));
+    Fixture sub;
+    sub.alpha = alpha;
+    const Rows r = MakeRows(sub, rows, 2000);
+    ASSERT_GE(r.size(), one.plastic.size());  // the one-coating path's condition
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
+      Out a(r.size()), b(r.size());
+      simd::ShadeBatch(one, MaterialTag::kPlastic, r.index.data(), r.size(), r.In(), a.Outputs());
+      simd::ShadeBatch(mixed, MaterialTag::kPlastic, r.index.data(), r.size(), r.In(),
+                       b.Outputs());
+      size_t differ = 0;
+      for (int c = 0; c < 13; ++c)
+        differ += std::memcmp(a.v[c].data(), b.v[c].data(), r.size() * sizeof(float)) != 0;
+      EXPECT_EQ(differ, 0u) << target << " coating " << int(dist);
+    });
+  }
+}
+
 }  // namespace
 }  // namespace ptlab
