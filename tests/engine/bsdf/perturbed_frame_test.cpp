@@ -64,8 +64,11 @@ TEST(PerturbedFrame, IdentityNormalMapIsTheUvAlignedFrame) {
   Pcg32 rng(5, 3);
   int nonzero = 0;
   for (int i = 0; i < 500; ++i) {
-    const Vec3f wo = bsdf_test::DirectionWithCos(0.05f + 0.95f * rng.NextFloat(), 6.28f * rng.NextFloat());
-    const Vec3f wi = bsdf_test::DirectionWithCos(0.05f + 0.95f * rng.NextFloat(), 6.28f * rng.NextFloat());
+    // Named draws (a call's arguments are evaluated in an unspecified order).
+    const float co = 0.05f + 0.95f * rng.NextFloat(), po = 6.28f * rng.NextFloat();
+    const float ci = 0.05f + 0.95f * rng.NextFloat(), pi = 6.28f * rng.NextFloat();
+    const Vec3f wo = bsdf_test::DirectionWithCos(co, po);
+    const Vec3f wi = bsdf_test::DirectionWithCos(ci, pi);
     const Color3f f = BsdfEval(s.m, row, wo, wi, s.Site());
     const Color3f g = BsdfEval(s.m, plain, rotate(wo), rotate(wi));
     const float pf = BsdfPdf(s.m, row, wo, wi, s.Site()), pg = BsdfPdf(s.m, plain, rotate(wo), rotate(wi));
@@ -174,7 +177,8 @@ TEST(PerturbedFrame, AdversarialInputsGiveFiniteOrthonormalFrames) {
             EXPECT_NEAR(Dot(p.n, p.s), 0.0f, 1e-5f);
             EXPECT_NEAR(Dot(p.n, p.t), 0.0f, 1e-5f);
             for (int i = 0; i < 20; ++i) {
-              const Vec3f wi = bsdf_test::DirectionWithCos(2 * rng.NextFloat() - 1, 6.28f * rng.NextFloat());
+              const float cos_i = 2 * rng.NextFloat() - 1, phi = 6.28f * rng.NextFloat();
+              const Vec3f wi = bsdf_test::DirectionWithCos(cos_i, phi);
               float pdf;
               const Color3f f = BsdfEvalPdf(s.m, row, wo, wi, &pdf, s.Site({0.3f, 0.7f}));
               ASSERT_TRUE(std::isfinite(f.r) && f.r >= 0 && std::isfinite(pdf) && pdf >= 0);

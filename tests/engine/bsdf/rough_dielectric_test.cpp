@@ -114,8 +114,11 @@ TEST(RoughDielectric, GeneralisedReciprocity) {
     int compared = 0;
     for (int i = 0; i < 4000; ++i) {
       // cos θ ≥ 0.1: at grazing angles the half vector, and so D, is ill-conditioned.
-      const Vec3f a = bsdf_test::DirectionWithCos(0.1f + 0.9f * rng.NextFloat(), 6 * rng.NextFloat());
-      Vec3f b = bsdf_test::DirectionWithCos(0.1f + 0.9f * rng.NextFloat(), 6 * rng.NextFloat());
+      // Named draws (a call's arguments are evaluated in an unspecified order).
+      const float ca = 0.1f + 0.9f * rng.NextFloat(), pa = 6 * rng.NextFloat();
+      const float cb = 0.1f + 0.9f * rng.NextFloat(), pb = 6 * rng.NextFloat();
+      const Vec3f a = bsdf_test::DirectionWithCos(ca, pa);
+      Vec3f b = bsdf_test::DirectionWithCos(cb, pb);
       if (i % 2) b.z = -b.z;
       const Color3f fab = RoughDielectricEval(p, a, b), fba = RoughDielectricEval(p, b, a);
       if (!(fab.r > 1e-6f)) continue;

@@ -37,8 +37,10 @@ void WriteBytes(const std::string& path, const std::string& bytes) {
 Image TestImage(int w, int h, uint64_t seed) {
   Pcg32 rng(seed, 7);
   Image img(w, h);
-  for (float& v : img.rgb)
-    v = (rng.NextFloat() - 0.25f) * std::ldexp(1.0f, int(rng.NextUint() % 40) - 20);
+  for (float& v : img.rgb) {
+    const float mantissa = rng.NextFloat() - 0.25f;  // first: operands are unsequenced
+    v = mantissa * std::ldexp(1.0f, int(rng.NextUint() % 40) - 20);
+  }
   img.rgb[0] = std::numeric_limits<float>::denorm_min();
   img.rgb[1] = -0.0f;
   img.rgb[2] = std::numeric_limits<float>::max();

@@ -122,7 +122,8 @@ TEST(EnvironmentMapRadiance, OneByOneMapIsConstant) {
   const EnvironmentMapTable t = MakeTable(image);
   Pcg32 rng(1, 1);
   for (int k = 0; k < 100; ++k) {
-    const Vec3f w = Dir(rng.NextFloat(), rng.NextFloat());
+    const float u = rng.NextFloat(), v = rng.NextFloat();  // not in Dir's arguments: unsequenced
+    const Vec3f w = Dir(u, v);
     const Color3f c = EnvironmentRadiance(t, 0, w);
     EXPECT_FLOAT_EQ(c.r, 0.25f);
     EXPECT_FLOAT_EQ(c.g, 0.5f);
@@ -366,8 +367,10 @@ TEST(EnvironmentMapRadiance, RadianceAndPdfTogetherAreBothBitForBit) {
                              {0, 0, 1},  {0, 0, -1}, {1e-30f, 1, 0},   {0, 1, -1e-30f},
                              {-1e-7f, 0, -1}, {1e-7f, 0, -1}};
   Pcg32 rng(24, 2);
-  for (int k = 0; k < 2000; ++k)
-    dirs.push_back(Dir(rng.NextFloat(), rng.NextFloat()));
+  for (int k = 0; k < 2000; ++k) {
+    const float u = rng.NextFloat(), v = rng.NextFloat();  // not in Dir's arguments: unsequenced
+    dirs.push_back(Dir(u, v));
+  }
   for (const EnvironmentMapTable& t : tables) {
     for (const Vec3f& w : dirs) {
       Color3f L;

@@ -106,8 +106,13 @@ Rows MakeRows(const Scene& scene, size_t random, Pcg32& rng) {
     return Vec3f{lo.x + (hi.x - lo.x) * rng.NextFloat(), lo.y + (hi.y - lo.y) * rng.NextFloat(),
                  lo.z + (hi.z - lo.z) * rng.NextFloat()};
   };
-  for (size_t i = 0; i < random; ++i)
-    r.Push(rng.NextUint() % lights, in_box(), rng.NextFloat(), rng.NextFloat());
+  for (size_t i = 0; i < random; ++i) {
+    // Named draws: a call's arguments are evaluated in an unspecified order.
+    const uint32_t light = rng.NextUint() % lights;
+    const Vec3f p = in_box();
+    const float u_x = rng.NextFloat(), u_y = rng.NextFloat();
+    r.Push(light, p, u_x, u_y);
+  }
   const float edges[] = {0.0f, 0x1.fffffep-1f, 0.5f, 1e-30f};
   for (uint32_t l = 0; l < lights; ++l) {
     const uint32_t mesh = scene.area_lights.mesh[l];

@@ -43,6 +43,13 @@ namespace {
 //   (wo·m + η wi·m)² = |wo + η_r wi|², which vanishes as η → 1 for light passing straight
 //   through): there only finiteness is required (the random cosines are log-uniform down to
 //   1e-4, so such rows are many; the contract is checked on more than 1/3 of the samples);
+// - a row whose sample misses the two bounds above must sit where the oracle itself is
+//   ill-conditioned: there the SIMD may differ by as much as the oracle moves when the sines
+//   and cosines it takes move by hwy's and libm's error bounds (OracleSpread). Such rows are
+//   few (< 1 in 1000). Seen: GGX with αu = 1, αv = 100, wo.z = 0.038 (stretched cos θo 5e-4),
+//   u_x = 0.99922 (the edge of the visible disk, where pz = √(1 − p1² − p2²) cancels): one ulp
+//   of cos 2πu_y moves the oracle's wi by 7e-5, and there the non-FMA targets' hwy::Cos and
+//   Sin (faithful, as libm's) are one ulp from libm's;
 // - everything finite, f, pdf, weight ≥ 0.
 struct Rows {
   std::vector<uint32_t> index;
@@ -70,9 +77,9 @@ struct Bound {
   size_t checked = 0, failures = 0;
   double worst = 0, worst_simd = 0, worst_oracle = 0;
   size_t worst_i = 0;
-  void Check(size_t i, double simd, double oracle, double rel, double abs) {
+  void Check(size_t i, double simd, double oracle, double rel, double abs, double spread = 0) {
     ++checked;
-    const double allowed = rel * std::fabs(oracle) + abs;
+    const double allowed = rel * std::fabs(oracle) + abs + spread;
     const double ratio = std::isfinite(simd) ? std::fabs(simd - oracle) / allowed : 1e30;
     if (ratio > 1) ++failures;
     if (ratio > worst) worst = ratio, worst_i = i, worst_simd = simd, worst_oracle = oracle;
@@ -161,7 +168,11 @@ Rows MakeRows(const std::vector<float>& amin, MaterialTag tag, size_t random_cou
     Vec3f wl = i % 2 ? bsdf_test::NearSpecularPartner(std::max(amin[row], 1e-3f), wo, rng)
                      : bsdf_test::RandomUpperDirection(rng);
     if (i % 6 == 1) wl.z = -wl.z;  // transmission pairs for the dielectric
-    r.Push(row, amin[row], wo, wl, rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+    // Drawn in named steps: the order of a call's arguments is unspecified (GCC evaluates
+    // them right to left, clang left to right), so draws inside the call gave each compiler
+    // other rows.
+    const float u_lobe = rng.NextFloat(), u_x = rng.NextFloat(), u_y = rng.NextFloat();
+    r.Push(row, amin[row], wo, wl, u_lobe, u_x, u_y);
   }
   const std::vector<Vec3f> dirs = bsdf_test::HardDirections(false);
   const std::vector<float> us = bsdf_test::HardUs();
@@ -189,6 +200,44 @@ bool NearLobeBoundary(const Fixture& fx, MaterialTag tag, const Rows& r, size_t 
   return false;
 }
 
+bool Within(double simd, double oracle, double rel, double abs) {
+  return std::fabs(simd - oracle) <= rel * std::fabs(oracle) + abs;
+}
+
+// How far the oracle's sample (wi, pdf, weight) moves when its point (cos 2πu_y, sin 2πu_y) of
+// radius √u_x moves by δ = 4√2 · 2⁻²⁴ along or across the circle: hwy::Cos and Sin are within
+// 3 ulp of the true value, libm's within 1, so their (cos, sin) pairs differ by at most 4 ulp
+// each, δ in length (max(|cos|, |sin|) ≥ 1/√2, an ulp 2⁻²⁴ there). Across: u_x · (1 ± 2δ);
+// along: u_y ± δ / 2π. Nudges that change the sample's validity or side are left out.
+struct SampleSpread {
+  double wi[3] = {}, pdf = 0, weight[3] = {};
+};
+
+SampleSpread OracleSpread(const Fixture& fx, MaterialTag tag, const Rows& r, size_t i,
+                          const Out& o0) {
+  SampleSpread s;
+  const MaterialRef ref = MaterialRef::Make(tag, r.index[i]);
+  const Vec3f wo{r.wo[0][i], r.wo[1][i], r.wo[2][i]};
+  const float ux = r.u_x[i], uy = r.u_y[i];
+  const float delta = 4.0f * std::sqrt(2.0f) * 0x1p-24f, along = delta / (2.0f * kPi);
+  const Vec2f nudged[] = {{ux * (1.0f - 2.0f * delta), uy},
+                          {ux * (1.0f + 2.0f * delta), uy},
+                          {ux, uy - along},
+                          {ux, uy + along}};
+  for (const Vec2f& u : nudged) {
+    BsdfSample b;
+    if (!BsdfSampleDirection(fx.m, ref, wo, r.u_lobe[i], u, &b) || !(b.pdf > 0)) continue;
+    if ((b.wi.z * wo.z > 0) != (o0.v[6][i] * wo.z > 0)) continue;
+    const float wi[3] = {b.wi.x, b.wi.y, b.wi.z}, weight[3] = {b.weight.r, b.weight.g, b.weight.b};
+    for (int c = 0; c < 3; ++c) {
+      s.wi[c] = std::max(s.wi[c], std::fabs(double(wi[c]) - o0.v[4 + c][i]));
+      s.weight[c] = std::max(s.weight[c], std::fabs(double(weight[c]) - o0.v[7 + c][i]));
+    }
+    s.pdf = std::max(s.pdf, std::fabs(double(b.pdf) - o0.v[10][i]));
+  }
+  return s;
+}
+
 void Compare(const Fixture& fx, MaterialTag tag, const Rows& r, const Out& o0, const Out& o1,
              const char* target) {
   const bool dielectric = tag == MaterialTag::kRoughDielectric;
@@ -197,7 +246,7 @@ void Compare(const Fixture& fx, MaterialTag tag, const Rows& r, const Out& o0, c
                                                          : "rough conductor";
   Bound f{name + " f"}, pl{name + " pdf(wo,wl)"}, wi{name + " wi"}, pdf{name + " sample pdf"},
       w{name + " sample weight"};
-  size_t mismatched = 0, valid = 0, conditioned = 0;
+  size_t mismatched = 0, valid = 0, conditioned = 0, ill_conditioned = 0;
   for (size_t i = 0; i < r.size(); ++i) {
     for (int c = 0; c < 12; ++c) ASSERT_TRUE(std::isfinite(o1.v[c][i])) << name << " " << i;
     for (int c : {0, 1, 2, 3, 7, 8, 9, 10}) ASSERT_GE(o1.v[c][i], 0.0f) << name << " " << i;
@@ -221,24 +270,38 @@ void Compare(const Fixture& fx, MaterialTag tag, const Rows& r, const Out& o0, c
       ++mismatched;
       continue;
     }
-    for (int c = 4; c < 7; ++c) wi.Check(i, o1.v[c][i], o0.v[c][i], 0, 5e-5);
     EXPECT_EQ(o1.v[11][i], o0.v[11][i]) << name << " eta at " << i;
     // Grazing rows and near pass-through refraction: finiteness only (see the contract).
-    if (std::fabs(r.wo[2][i]) < 0.02f || std::fabs(o1.v[6][i]) < 0.02f) continue;
-    if (dielectric && o0.v[6][i] * r.wo[2][i] < 0) {
+    bool graze = std::fabs(r.wo[2][i]) < 0.02f || std::fabs(o1.v[6][i]) < 0.02f;
+    if (!graze && dielectric && o0.v[6][i] * r.wo[2][i] < 0) {
       const auto& t = fx.m.rough_dielectric;
       const float eta = t.int_ior[r.index[i]] / t.ext_ior[r.index[i]];
       const float eta_r = r.wo[2][i] > 0 ? eta : 1.0f / eta;
       const Vec3f sum{r.wo[0][i] + eta_r * o0.v[4][i], r.wo[1][i] + eta_r * o0.v[5][i],
                       r.wo[2][i] + eta_r * o0.v[6][i]};
-      if (!(Length(sum) >= 0.1f)) continue;
+      graze = !(Length(sum) >= 0.1f);
     }
-    ++conditioned;
     const double rel = 1e-4 + 4e-7 / (double(r.alpha_min[i]) * r.alpha_min[i]);
-    pdf.Check(i, o1.v[10][i], o0.v[10][i], tag == MaterialTag::kMirror ? 2e-6 : rel, 1e-30);
-    for (int c = 7; c < 10; ++c) w.Check(i, o1.v[c][i], o0.v[c][i], rel, 1e-20);
+    const double pdf_rel = tag == MaterialTag::kMirror ? 2e-6 : rel;
+    bool within = true;
+    for (int c = 4; c < 7; ++c) within = within && Within(o1.v[c][i], o0.v[c][i], 0, 5e-5);
+    if (!graze) {
+      within = within && Within(o1.v[10][i], o0.v[10][i], pdf_rel, 1e-30);
+      for (int c = 7; c < 10; ++c) within = within && Within(o1.v[c][i], o0.v[c][i], rel, 1e-20);
+    }
+    // Only where a bound is missed: the oracle's own spread under the trig functions' error.
+    const SampleSpread sp = within ? SampleSpread{} : OracleSpread(fx, tag, r, i, o0);
+    ill_conditioned += !within;
+    for (int c = 4; c < 7; ++c) wi.Check(i, o1.v[c][i], o0.v[c][i], 0, 5e-5, sp.wi[c - 4]);
+    if (graze) continue;
+    ++conditioned;
+    pdf.Check(i, o1.v[10][i], o0.v[10][i], pdf_rel, 1e-30, sp.pdf);
+    for (int c = 7; c < 10; ++c) w.Check(i, o1.v[c][i], o0.v[c][i], rel, 1e-20, sp.weight[c - 7]);
   }
   for (const Bound* b : {&f, &pl, &wi, &pdf, &w}) b->Report(target, r);
+  std::printf("[%s] %-32s %zu of %zu rows within the oracle's spread only\n", target, name.c_str(),
+              ill_conditioned, r.size());
+  EXPECT_LT(ill_conditioned, r.size() / 1000) << name;
   EXPECT_LT(mismatched, r.size() / 50) << name;
   EXPECT_GT(valid, r.size() / 5) << name;
   EXPECT_GT(conditioned, valid / 3) << name;

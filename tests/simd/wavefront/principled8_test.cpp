@@ -184,7 +184,10 @@ void AddInputs(Fixture* fx, size_t random_count) {
     Vec3f wl = i % 2 ? bsdf_test::NearSpecularPartner(bsdf_test::RandomAlpha(rng), wo, rng)
                      : bsdf_test::RandomUpperDirection(rng);
     if (i % 6 == 1) wl.z = -wl.z;  // transmission pairs
-    fx->rows.Push(row, wo, wl, rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+    // Named draws: a call's arguments are evaluated in an unspecified order (GCC right to
+    // left, clang left to right), which gave each compiler other rows.
+    const float u_lobe = rng.NextFloat(), u_x = rng.NextFloat(), u_y = rng.NextFloat();
+    fx->rows.Push(row, wo, wl, u_lobe, u_x, u_y);
   }
   const std::vector<Vec3f> dirs = bsdf_test::HardDirections(false);
   const std::vector<float> us = bsdf_test::HardUs();

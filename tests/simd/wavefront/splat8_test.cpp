@@ -37,7 +37,10 @@ Columns MakeSamples(const FilmBlock& block, size_t random_count, Pcg32& rng) {
   };
   const float x0 = float(block.x0()) - 10.0f, y0 = float(block.y0()) - 10.0f;
   const float w = float(block.width()) + 20.0f, h = float(block.height()) + 20.0f;
-  for (size_t i = 0; i < random_count; ++i) push(x0 + w * rng.NextFloat(), y0 + h * rng.NextFloat());
+  for (size_t i = 0; i < random_count; ++i) {
+    const float sx = x0 + w * rng.NextFloat(), sy = y0 + h * rng.NextFloat();  // in this order
+    push(sx, sy);
+  }
   for (int y = block.y0() - 9; y <= block.y0() + block.height() + 9; ++y)
     for (int x = block.x0() - 9; x <= block.x0() + block.width() + 9; ++x)
       for (const float f : {0.0f, 0.5f, 0.25f}) {

@@ -109,8 +109,10 @@ Wave RandomWave(Pcg32& rng, size_t queue, size_t n, bool hard, int samples = 1) 
   w.eta.resize(paths), w.sampler.resize(paths), w.throughput.resize(paths);
   w.nee_throughput.assign(paths, Color3f{kGarbage, kGarbage, kGarbage});
   for (size_t i = 0; i < paths; ++i) {
-    w.sampler[i] = PathSampler(SamplerType::kIndependent,
-                               (uint64_t(rng.NextUint()) << 32) | rng.NextUint(), rng.NextUint());
+    // Named draws (operands and arguments are evaluated in an unspecified order).
+    const uint64_t hi = rng.NextUint(), lo = rng.NextUint();
+    const uint32_t sample_index = rng.NextUint();
+    w.sampler[i] = PathSampler(SamplerType::kIndependent, (hi << 32) | lo, sample_index);
     // Advance some streams a few steps, as paths deeper in their life are.
     for (uint32_t s = rng.NextUint() % 6; s > 0; --s) w.sampler[i].Get1D(0);
     const bool odd = hard && rng.NextUint() % 3 == 0;
