@@ -360,15 +360,23 @@ int64_t PacketPass(const simd::Bvh8& bvh8, const RaySet& set, bool occluded,
   return hits;
 }
 
-// Times run_a and run_b once each per iteration, in alternating order, and returns the median
-// over iterations of b's time / a's (above 1: a is faster). On a VM whose speed drifts over
-// minutes, pairs this close in time compare where separate benchmarks did not.
-template <class RunA, class RunB>
-double PairedRatio(benchmark::State& state, RunA run_a, RunB run_b) {
+// The medians of a paired run (PairedTimes): b's time / a's, and each side's time (ms).
+struct Paired {
+  double ratio = 0.0, a_ms = 0.0, b_ms = 0.0;
+};
+
+// Times run_a and run_b once each per iteration, in alternating order, after an untimed
+// prepare() (for what each pair must start from, e.g. an uncommitted scene), and returns the
+// medians over iterations of b's time / a's (above 1: a is faster) and of each side's time. On
+// a VM whose speed drifts over minutes, pairs this close in time compare where separate
+// benchmarks did not.
+template <class RunA, class RunB, class Prepare>
+Paired PairedTimes(benchmark::State& state, RunA run_a, RunB run_b, Prepare prepare) {
   using Clock = std::chrono::steady_clock;
-  std::vector<double> ratios;
+  std::vector<double> ratios, a_ms, b_ms;
   bool a_first = true;
-  for (auto _ : state) {
+  for (auto _ : state) {  // the iteration's time includes prepare(); the medians do not
+    prepare();
     double seconds[2] = {};  // a, b
     for (int turn = 0; turn < 2; ++turn) {
       const bool a = (turn == 0) == a_first;
@@ -377,11 +385,21 @@ double PairedRatio(benchmark::State& state, RunA run_a, RunB run_b) {
       seconds[a ? 0 : 1] = std::chrono::duration<double>(Clock::now() - t0).count();
     }
     ratios.push_back(seconds[1] / seconds[0]);
+    a_ms.push_back(1e3 * seconds[0]), b_ms.push_back(1e3 * seconds[1]);
     a_first = !a_first;
   }
-  if (ratios.empty()) return 0.0;
-  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  return ratios[ratios.size() / 2];
+  const auto median = [](std::vector<double>& v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  return {median(ratios), median(a_ms), median(b_ms)};
+}
+
+// PairedTimes' ratio, with nothing to prepare.
+template <class RunA, class RunB>
+double PairedRatio(benchmark::State& state, RunA run_a, RunB run_b) {
+  return PairedTimes(state, run_a, run_b, [] {}).ratio;
 }
 
 #ifdef PTLAB_HAVE_EMBREE
@@ -610,6 +628,20 @@ RTCDevice BuildDevice(int threads, EmbreeBytes** bytes) {
 }
 #endif
 
+// Our build, timed by both build benchmarks: the binned SAH build on `threads` threads and the
+// collapse to the BVH8.
+struct BuiltOurs {
+  Bvh bvh;
+  simd::Bvh8 bvh8;
+};
+BuiltOurs BuildOurs(const TriangleTable& triangles, int threads) {
+  BuiltOurs b;
+  b.bvh = BuildBvh(triangles, SphereTable{}, threads);
+  b.bvh8 = simd::BuildBvh8(b.bvh);
+  benchmark::DoNotOptimize(b.bvh8.lines.data());
+  return b;
+}
+
 void RunBuild(benchmark::State& state, const std::string& scene_name, bool embree, int threads) {
   BenchScene* s = GetScene(scene_name);
   if (!s->error.empty()) {
@@ -620,11 +652,9 @@ void RunBuild(benchmark::State& state, const std::string& scene_name, bool embre
   if (!embree) {
     double bytes = 0.0, binary_bytes = 0.0;
     for (auto _ : state) {
-      const Bvh bvh = BuildBvh(*s->triangles, SphereTable{}, threads);
-      const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
-      benchmark::DoNotOptimize(bvh8.lines.data());
-      bytes = static_cast<double>(simd::Bvh8Bytes(bvh8));
-      binary_bytes = static_cast<double>(BvhBytes(bvh));
+      const BuiltOurs b = BuildOurs(*s->triangles, threads);
+      bytes = static_cast<double>(simd::Bvh8Bytes(b.bvh8));
+      binary_bytes = static_cast<double>(BvhBytes(b.bvh));
     }
     state.counters["bytes_per_triangle"] = bytes / triangles;
     state.counters["binary_bytes_per_triangle"] = binary_bytes / triangles;
@@ -668,40 +698,19 @@ void RunBuildPaired(benchmark::State& state, const std::string& scene_name, int 
     state.SkipWithError(s->error.c_str());
     return;
   }
-  using Clock = std::chrono::steady_clock;
   EmbreeBytes* counter = nullptr;
   RTCDevice device = BuildDevice(threads, &counter);
-  std::vector<double> ratios, ours_ms, embree_ms;
-  bool ours_first = true;
-  for (auto _ : state) {  // the iteration's time includes the set-up; the counters do not
-    RTCScene scene = MakeEmbreeScene(device, *s->triangles, /*commit=*/false);
-    double seconds[2] = {};  // ours, Embree
-    for (int turn = 0; turn < 2; ++turn) {
-      const bool ours = (turn == 0) == ours_first;
-      const auto t0 = Clock::now();
-      if (ours) {
-        const Bvh bvh = BuildBvh(*s->triangles, SphereTable{}, threads);
-        const simd::Bvh8 bvh8 = simd::BuildBvh8(bvh);
-        benchmark::DoNotOptimize(bvh8.lines.data());
-      } else {
-        rtcCommitScene(scene);
-      }
-      seconds[ours ? 0 : 1] = std::chrono::duration<double>(Clock::now() - t0).count();
-    }
-    rtcReleaseScene(scene);
-    ratios.push_back(seconds[1] / seconds[0]);
-    ours_ms.push_back(1e3 * seconds[0]);
-    embree_ms.push_back(1e3 * seconds[1]);
-    ours_first = !ours_first;
-  }
-  const auto median = [](std::vector<double>& v) {
-    if (v.empty()) return 0.0;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  state.counters["ratio"] = median(ratios);
-  state.counters["ours_ms"] = median(ours_ms);
-  state.counters["embree_ms"] = median(embree_ms);
+  RTCScene scene = nullptr;  // a fresh, uncommitted one for each pair
+  const Paired p = PairedTimes(
+      state, [&] { BuildOurs(*s->triangles, threads); }, [&] { rtcCommitScene(scene); },
+      [&] {
+        if (scene != nullptr) rtcReleaseScene(scene);
+        scene = MakeEmbreeScene(device, *s->triangles, /*commit=*/false);
+      });
+  if (scene != nullptr) rtcReleaseScene(scene);
+  state.counters["ratio"] = p.ratio;
+  state.counters["ours_ms"] = p.a_ms;
+  state.counters["embree_ms"] = p.b_ms;
   state.counters["threads"] = threads;
 #else
   state.SkipWithError("built without Embree");

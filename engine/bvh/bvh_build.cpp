@@ -374,14 +374,16 @@ class Builder {
   // that cannot be binned, whose bins the sweep then ignores).
   static void Bin(const PrimRef* refs, uint32_t count, Float4 lo, Float4 scale, Bins* bins) {
     for (uint32_t i = 0; i < count; ++i) {
-      const PrimRef& r = refs[i];
-      const Int4 b = BinOf4(r.Centroid2(), lo, scale);
-      for (int a = 0; a < 3; ++a) {
-        ++bins->counts[a][b[a]];
-        bins->boxes[a][b[a]].Grow(r.box);
-        bins->used[a] |= 1u << b[a];
-      }
+      const Int4 b = BinOf4(refs[i].Centroid2(), lo, scale);
+      for (int a = 0; a < 3; ++a) AddToBin(refs[i], a, b[a], bins);
     }
+  }
+
+  // Adds reference r to bin b of axis a.
+  static void AddToBin(const PrimRef& r, int a, int b, Bins* bins) {
+    ++bins->counts[a][b];
+    bins->boxes[a][b].Grow(r.box);
+    bins->used[a] |= 1u << b;
   }
 
   // Bin with two sets of bins, even references into *even and odd ones into *odd, so that
@@ -396,14 +398,7 @@ class Builder {
       const PrimRef& r1 = refs[i + 1];
       const Int4 b0 = BinOf4(r0.Centroid2(), lo, scale);
       const Int4 b1 = BinOf4(r1.Centroid2(), lo, scale);
-      for (int a = 0; a < 3; ++a) {
-        ++even->counts[a][b0[a]];
-        even->boxes[a][b0[a]].Grow(r0.box);
-        even->used[a] |= 1u << b0[a];
-        ++odd->counts[a][b1[a]];
-        odd->boxes[a][b1[a]].Grow(r1.box);
-        odd->used[a] |= 1u << b1[a];
-      }
+      for (int a = 0; a < 3; ++a) AddToBin(r0, a, b0[a], even), AddToBin(r1, a, b1[a], odd);
     }
     Bin(refs + i, count - i, lo, scale, even);
   }
