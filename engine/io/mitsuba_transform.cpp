@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/io/lookat_range.h"
 #include "engine/io/mitsuba_values.h"
 #include "engine/io/text_parsing.h"
 
@@ -62,6 +63,8 @@ Status ParseMitsubaTransform(const MitsubaNode& node, Transform* result) {
       PTLAB_RETURN_IF_ERROR(ParseVec3Attribute(step, "origin", &origin));
       PTLAB_RETURN_IF_ERROR(ParseVec3Attribute(step, "target", &target));
       if (step.Attribute("up")) PTLAB_RETURN_IF_ERROR(ParseVec3Attribute(step, "up", &up));
+      if (const std::string range = LookatRangeError(origin, target, up); !range.empty())
+        return step.Error(range);
       if (!(Length(target - origin) > 0))
         return step.Error("degenerate <lookat>: expected target != origin");
       const Vec3f dir = Normalize(target - origin);

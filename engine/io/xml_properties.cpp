@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iterator>
 
+#include "engine/io/lookat_range.h"
 #include "engine/io/text_parsing.h"
 
 namespace ptlab::internal {
@@ -146,6 +147,8 @@ Status ParseTransform(const Locator& at, const pugi::xml_node& node, Transform* 
       PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "origin", &origin));
       PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "target", &target));
       PTLAB_RETURN_IF_ERROR(ParseVec3(at, step, "up", &up));
+      if (const std::string range = LookatRangeError(origin, target, up); !range.empty())
+        return at.Error(step, range);
       if (!(Length(target - origin) > 0))
         return at.Error(step, "degenerate <lookat>: expected target != origin");
       if (!(Length(up) > 0)) return at.Error(step, "degenerate <lookat>: expected a non-zero 'up'");

@@ -205,6 +205,31 @@ TEST_F(MitsubaLoader, TransformStepsApplyInOrder) {
             std::string::npos);
 }
 
+TEST_F(MitsubaLoader, LookatOutsideTheWorldNamesTheRange) {
+  const auto lookat = [&](const std::string& attributes) {
+    return Error(Scene("<sensor type=\"perspective\"><transform name=\"to_world\"><lookat " +
+                       attributes + "/></transform></sensor>"));
+  };
+  std::string e = lookat("origin=\"3e38, 0, 0\" target=\"0, 0, 0\" up=\"0, 1, 0\"");
+  EXPECT_NE(e.find("scene.xml:2:55: "), std::string::npos) << e;
+  EXPECT_NE(e.find("<lookat> origin (3e+38, 0, 0) is out of range; expected components within "
+                   "+-1e+12"),
+            std::string::npos)
+      << e;
+  e = lookat("origin=\"0, 0, 0\" target=\"-5e12, 0, 0\" up=\"0, 1, 0\"");
+  EXPECT_NE(e.find("<lookat> target (-5e+12, 0, 0) is out of range"), std::string::npos) << e;
+  e = lookat("origin=\"0, 0, 0\" target=\"1, 0, 0\" up=\"0, 1e30, 0\"");
+  EXPECT_NE(e.find("<lookat> up (0, 1e+30, 0) is out of range; expected components within "
+                   "+-1e+18"),
+            std::string::npos)
+      << e;
+  // Inside the range the step is accepted (a camera 1e12 away looking at the origin).
+  EXPECT_TRUE(Load(Scene("<sensor type=\"perspective\"><transform name=\"to_world\"><lookat "
+                         "origin=\"1e12, 0, 0\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>"
+                         "</transform></sensor>"))
+                  .ok());
+}
+
 TEST_F(MitsubaLoader, SensorLookatFovAxesAndFilm) {
   const auto sensor = [&](const std::string& props, int w, int h) {
     return Load(Scene("<sensor type=\"perspective\">" + props +

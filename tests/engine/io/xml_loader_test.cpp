@@ -642,6 +642,19 @@ TEST(SceneLoader, OutOfRangeValues) {
       "<shape type=\"cube\"><transform name=\"toWorld\">\n"
       "<lookat origin=\"0 0 0\" target=\"0 2 0\" up=\"0 1 0\"/></transform></shape>\n",
       5, {"degenerate <lookat>", "not parallel"});
+  // A camera far outside the world (the direction's length overflows): the range, not "parallel".
+  ExpectParseError(
+      "<shape type=\"cube\"><transform name=\"toWorld\">\n"
+      "<lookat origin=\"3e38 0 0\" target=\"0 0 0\" up=\"0 1 0\"/></transform></shape>\n",
+      5, {"<lookat> origin (3e+38, 0, 0) is out of range", "within +-1e+12"});
+  ExpectParseError(
+      "<shape type=\"cube\"><transform name=\"toWorld\">\n"
+      "<lookat origin=\"0 0 0\" target=\"0 0 2e12\" up=\"0 1 0\"/></transform></shape>\n",
+      5, {"<lookat> target (0, 0, 2e+12) is out of range", "within +-1e+12"});
+  ExpectParseError(
+      "<shape type=\"cube\"><transform name=\"toWorld\">\n"
+      "<lookat origin=\"0 0 0\" target=\"0 0 1\" up=\"0 3e19 0\"/></transform></shape>\n",
+      5, {"<lookat> up (0, 3e+19, 0) is out of range", "within +-1e+18"});
   ExpectParseError(
       "<shape type=\"cube\"><transform name=\"toWorld\">\n"
       "<rotate axis=\"0 0 0\" angle=\"5\"/></transform></shape>\n",
