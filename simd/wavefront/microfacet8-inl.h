@@ -29,11 +29,23 @@ using M8 = hn::Mask<D8>;
 // argument to an integer before range checks, which is undefined for NaN and ±∞ on the EMU128
 // target: every argument is made finite first (the oracle's libm gives the same value there).
 
-/// max(x, −200) with NaN → −200: an argument for hwy::Exp (exp(−200) = 0 in float).
+/// max(x, −200) with NaN → −200: an argument for hwy::Exp (exp(−200) = 0 in float). Only
+/// the targets that convert with a C++ cast (EMU128, SCALAR) need it: the SIMD targets'
+/// conversions are defined for every input, and hwy::Exp returns 0 below −104 and for NaN
+/// (Ge fails) either way, so there x itself gives the same bits.
 HWY_INLINE V8 ExpArg(D8 d, V8 x) {
+#if HWY_TARGET == HWY_EMU128 || HWY_TARGET == HWY_SCALAR
   const V8 low = hn::Set(d, -200.0f);
   return hn::IfThenElse(hn::Ge(x, low), x, low);
+#else
+  (void)d;
+  return x;
+#endif
 }
+
+/// hwy::Log for x ≥ FLT_MIN (no lane subnormal): hwy's own operations without its subnormal
+/// rescale, which leaves a normal x as it is, so the bits are Log's.
+HWY_INLINE V8 LogOfNormal(D8 d, V8 x) { return hn::impl::Log<D8, V8, false>(d, x); }
 
 /// ErfApprox (engine/bsdf/erf.h); *e (when non-null) receives its exp(−x²), which callers
 /// that need e^(−x²) themselves take instead of a second Exp (the same bits: (−x)² = x²).
@@ -85,7 +97,8 @@ HWY_INLINE V8 ErfInvTail(D8 d, V8 w) {
 HWY_INLINE V8 ErfInv(D8 d, V8 x) {
   const V8 one = hn::Set(d, 1.0f), hi = hn::Set(d, kErfInvMaxArg), lo = hn::Neg(hi);
   x = hn::IfThenElse(hn::Gt(x, lo), hn::Min(x, hi), lo);
-  const V8 w = hn::Neg(hn::Log(d, hn::Mul(hn::Sub(one, x), hn::Add(one, x))));
+  // (1 − x)(1 + x) ≥ 2⁻²⁴ (x clamped within an ulp of ±1): a normal float.
+  const V8 w = hn::Neg(LogOfNormal(d, hn::Mul(hn::Sub(one, x), hn::Add(one, x))));
   // Giles's branches, each only where some lane takes it (the tail one, |x| ≳ 0.9966, seldom).
   const M8 central = hn::Lt(w, hn::Set(d, 5.0f));
   V8 p = hn::Zero(d), q = p;
@@ -140,7 +153,9 @@ HWY_INLINE V8 G1OverCos(D8 d, const Dist8& f, V8 vx, V8 vy, V8 vz) {
     const V8 erf_a = Erf(d, a, &exp_a2);
     const V8 den = hn::Add(hn::Mul(z, hn::Add(one, erf_a)),
                            hn::Mul(hn::Mul(s, hn::Set(d, kInvSqrtPi)), exp_a2));
-    r = hn::IfThenElse(tilted, hn::Div(two, den), hn::Div(one, z));
+    // 1/z only where some lane is untilted (v = ±z).
+    r = hn::AllTrue(d, tilted) ? hn::Div(two, den)
+                               : hn::IfThenElse(tilted, hn::Div(two, den), hn::Div(one, z));
   }
   if (!hn::AllFalse(d, f.ggx)) {
     r = hn::IfThenElse(f.ggx, hn::Div(two, hn::Add(z, hn::Sqrt(hn::Add(hn::Mul(z, z), s2)))), r);
@@ -198,8 +213,8 @@ HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8*
   const V8 max_x = Erf(d, cot_t, &exp_cot2);
   const V8 tail = hn::IfThenElseZero(tilted, hn::Mul(hn::Mul(tan_t, isp), exp_cot2));
   const V8 target = hn::Mul(ux, hn::Add(hn::Add(one, max_x), tail));
-  V8 x = hn::Sub(max_x,
-                 hn::Mul(hn::Add(max_x, one), Erf(d, hn::Sqrt(hn::Neg(hn::Log(d, ux))))));
+  V8 x = hn::Sub(max_x, hn::Mul(hn::Add(max_x, one),
+                                Erf(d, hn::Sqrt(hn::Neg(LogOfNormal(d, ux))))));  // ux ≥ 1e-6
   for (int i = 0; i < 3; ++i) {
     const V8 slope = ErfInv(d, x);
     const V8 value = hn::Sub(
@@ -213,10 +228,10 @@ HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8*
   *sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), uy), one));
 }
 
-/// SampleMicrofacet: sets m and *pdf (0 and m = +z where the oracle returns those). g1_w, when
-/// non-null, is G1OverCos(d, f, w) computed already (Pdf's).
-HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y, V8* mx, V8* my,
-                       V8* mz, V8* pdf, const V8* g1_w = nullptr) {
+/// SampleMicrofacet's normal: sets m (+z where the oracle returns that) and returns the lanes
+/// where it is valid (w.z > 0, m.z > 0, m finite); Sample adds the pdf.
+HWY_INLINE M8 SampleNormal(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y, V8* mx,
+                           V8* my, V8* mz) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), two_pi = hn::Set(d, 2.0f * kPi);
   V8 x = zero, y = zero, z = one;
   if (!hn::AllTrue(d, f.visible)) {
@@ -285,9 +300,45 @@ HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y
                            hn::And(hn::IsFinite(x), hn::IsFinite(y)));
   x = hn::IfThenElseZero(valid, x), y = hn::IfThenElseZero(valid, y);
   z = hn::IfThenElse(valid, z, one);
-  const V8 p = Pdf(d, f, wx, wy, wz, x, y, z, g1_w);
-  *pdf = hn::IfThenElseZero(hn::And(valid, hn::And(hn::Gt(p, zero), hn::IsFinite(p))), p);
   *mx = x, *my = y, *mz = z;
+  return valid;
+}
+
+/// SampleMicrofacet: sets m and *pdf (0 and m = +z where the oracle returns those). g1_w, when
+/// non-null, is G1OverCos(d, f, w) computed already (Pdf's).
+HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y, V8* mx, V8* my,
+                       V8* mz, V8* pdf, const V8* g1_w = nullptr) {
+  const V8 zero = hn::Zero(d);
+  const M8 valid = SampleNormal(d, f, wx, wy, wz, u_x, u_y, mx, my, mz);
+  const V8 p = Pdf(d, f, wx, wy, wz, *mx, *my, *mz, g1_w);
+  *pdf = hn::IfThenElseZero(hn::And(valid, hn::And(hn::Gt(p, zero), hn::IsFinite(p))), p);
+}
+
+/// The lanes where Sample's *pdf > 0, for m = SampleNormal's (valid: its mask) and g1_w =
+/// G1OverCos(d, f, w), without computing D(m) where that is sure: in a lane with
+///   (m.x αv)² + (m.y αu)² < 32 (αu αv m.z)²   (tan²θm in α units, D's exponent, below 32),
+///   m.z > 1e-3, and (visible sampling) w·m > 1e-10 and 1e-10 < g1_w < 1e18,
+/// D(m) = e^(−q)/(π αu αv m.z⁴) with q < 32 (+ rounding) and π αu αv ≤ π 10⁴ (α ≤ 100) is
+/// ≥ 1.2e-14 / 3.2e4 > 3e-19, so D m.z > 1e-20 (D's cut) and D ≤ 1/(π 10⁻⁸ 10⁻¹²) < 4e19: D(m)
+/// g1_w (w·m) lies in [1e-39, 4e37], positive and finite. The visible samplers' slopes are
+/// erf⁻¹ of clamped arguments (|slope| ≤ 3.82 per axis, q ≤ 29.2), so every sampled lane but
+/// the degenerate ones passes; where a lane of `needed` does not, Pdf decides the block.
+HWY_INLINE M8 SamplePdfPositive(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 mx, V8 my, V8 mz,
+                                M8 valid, M8 needed, V8 g1_w) {
+  const V8 zero = hn::Zero(d), tiny = hn::Set(d, 1e-10f);
+  const V8 ex = hn::Mul(mx, f.av), ey = hn::Mul(my, f.au);
+  const V8 scale = hn::Mul(hn::Mul(f.au, f.av), mz);
+  const M8 d_sure =
+      hn::And(hn::Lt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)),
+                     hn::Mul(hn::Set(d, 32.0f), hn::Mul(scale, scale))),
+              hn::Gt(mz, hn::Set(d, 1e-3f)));
+  const V8 wm = hn::Add(hn::Add(hn::Mul(wx, mx), hn::Mul(wy, my)), hn::Mul(wz, mz));
+  const M8 vis_sure = hn::And(hn::Gt(wm, tiny),
+                              hn::And(hn::Gt(g1_w, tiny), hn::Lt(g1_w, hn::Set(d, 1e18f))));
+  const M8 sure = hn::And(d_sure, hn::Or(hn::Not(f.visible), vis_sure));
+  if (hn::AllFalse(d, hn::AndNot(sure, hn::And(valid, needed)))) return valid;
+  const V8 p = Pdf(d, f, wx, wy, wz, mx, my, mz, &g1_w);
+  return hn::And(valid, hn::And(hn::Gt(p, zero), hn::IsFinite(p)));
 }
 
 }  // namespace mf8

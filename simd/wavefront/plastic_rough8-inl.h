@@ -44,6 +44,7 @@ HWY_INLINE M8 RoughCoatingLanes(D8 d, const PlasticTable& t, const uint32_t* ind
 struct PlasticRoughLanes {
   mf8::Dist8 dist;
   V8 eta, ws, base_r, base_g, base_b, s_r, s_g, s_b;
+  V8 eta2_m1, eta2;  // η clamped (ClampRelIor): (η − 1)(η + 1) rounded, η²
   hn::Vec<hn::RebindToSigned<D8>> table;  // first entry of the row's T(μ) table
 };
 
@@ -58,7 +59,10 @@ HWY_INLINE PlasticRoughLanes GatherPlasticRough(D8 d, const PlasticTable& t, con
   c.dist.visible = hn::RebindMask(d, hn::Eq(dist, dist));  // MakeMicrofacet's default
   c.dist.au = mf8::ClampAlpha(d, Gather(d, t.alpha, index, i));
   c.dist.av = c.dist.au;
-  c.eta = Gather(d, t.eta, index, i);
+  c.eta = ClampRelIor(d, Gather(d, t.eta, index, i));
+  const V8 one = hn::Set(d, 1.0f);
+  c.eta2_m1 = RoundedMul(d, hn::Sub(c.eta, one), hn::Add(c.eta, one));
+  c.eta2 = hn::Mul(c.eta, c.eta);
   c.ws = Gather(d, t.specular_sampling_weight, index, i);
   c.base_r = Gather(d, t.base_r, index, i), c.base_g = Gather(d, t.base_g, index, i);
   c.base_b = Gather(d, t.base_b, index, i);
@@ -84,6 +88,22 @@ HWY_INLINE V8 CoatingTransmittance8(D8 d, const PlasticTable& t, const PlasticRo
   return hn::Add(hn::Mul(t0, hn::Sub(one, f)), hn::Mul(t1, f));
 }
 
+/// FresnelDielectric(cos_i, c.eta) where cos_i > 0 (the lobe's wo·h; F is not used in the other
+/// lanes): its operations, less the η clamp, the 1/η for cos_i < 0 and the transmitted cosine,
+/// with the η terms taken once per block (GatherPlasticRough).
+HWY_INLINE V8 CoatingFresnelAbove(D8 d, const PlasticRoughLanes& c, V8 cos_i) {
+  const V8 one = hn::Set(d, 1.0f);
+  const V8 cc = ClampCos(d, cos_i);
+  const V8 p = hn::Add(c.eta2_m1, RoundedMul(d, cc, cc));
+  const M8 refracts = hn::Gt(p, hn::Zero(d));
+  const V8 eta_ct = hn::Sqrt(hn::IfThenElseZero(refracts, p));
+  const V8 ct_over_eta = hn::Div(eta_ct, c.eta2);
+  const V8 rs = hn::Div(hn::Sub(cc, eta_ct), hn::Add(cc, eta_ct));
+  const V8 rp = hn::Div(hn::Sub(cc, ct_over_eta), hn::Add(cc, ct_over_eta));
+  const V8 f = hn::Mul(hn::Set(d, 0.5f), hn::Add(hn::Mul(rs, rs), hn::Mul(rp, rp)));
+  return hn::IfThenElse(refracts, f, one);
+}
+
 /// PlasticRoughEvalPdf: f into *fr, *fg, *fb, the pdf returned (both 0 unless wo.z, wi.z > 0).
 /// t_o: the coating's transmittance at wo.z, ps: CoatingSpecularProbability of it, g1o:
 /// G1OverCos(wo) (the three depend on wo only: computed once for eval and sample).
@@ -105,8 +125,7 @@ HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRou
   const V8 dv = mf8::D(d, c.dist, hx, hy, hz);
   const V8 wo_h = hn::Add(hn::Add(hn::Mul(ox, hx), hn::Mul(oy, hy)), hn::Mul(oz, hz));
   const M8 lobe = hn::And(has_h, hn::And(hn::Gt(dv, zero), hn::Gt(wo_h, zero)));
-  V8 cos_t;
-  const V8 fresnel = FresnelDielectric(d, wo_h, c.eta, &cos_t);
+  const V8 fresnel = CoatingFresnelAbove(d, c, wo_h);
   const V8 g1i = mf8::G1OverCos(d, c.dist, ix, iy, iz);
   const V8 s = hn::Mul(hn::Mul(fresnel, dv), hn::Mul(hn::Mul(quarter, g1o), g1i));
   const M8 add = hn::And(lobe, hn::And(hn::IsFinite(s), hn::Gt(s, zero)));
@@ -122,10 +141,11 @@ HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRou
   return hn::IfThenElseZero(hn::And(above, hn::IsFinite(pdf)), pdf);
 }
 
-/// Stores v into rows [i, i + Lanes) of col where `lanes`, keeping the others.
-HWY_INLINE void StoreLanes(D8 d, M8 lanes, V8 v, float* col, size_t i) {
+/// Stores v into rows [i, i + Lanes) of col where `lanes` (every lane when `all`), keeping the
+/// others.
+HWY_INLINE void StoreLanes(D8 d, bool all, M8 lanes, V8 v, float* col, size_t i) {
   if (col == nullptr) return;
-  Store(d, hn::IfThenElse(lanes, v, Load(d, col, i)), col, i);
+  Store(d, all ? v : hn::IfThenElse(lanes, v, Load(d, col, i)), col, i);
 }
 
 /// PlasticRoughEvalPdf / PlasticRoughSample for the `rough` lanes of rows [i, i + Lanes) of the
@@ -136,6 +156,7 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
                                   const CoatingDistribution* uniform = nullptr) {
   const D8 d;
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const bool all = hn::AllTrue(d, rough);
   const PlasticRoughLanes c = GatherPlasticRough(d, t, b.index, i, uniform);
   const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
   const V8 t_o = CoatingTransmittance8(d, t, c, oz);
@@ -145,8 +166,8 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
     V8 fr, fg, fb;
     const V8 pdf_l = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, In(d, b, kWlX, i),
                                           In(d, b, kWlY, i), In(d, b, kWlZ, i), &fr, &fg, &fb);
-    StoreLanes(d, rough, fr, b.out[kFR], i), StoreLanes(d, rough, fg, b.out[kFG], i);
-    StoreLanes(d, rough, fb, b.out[kFB], i), StoreLanes(d, rough, pdf_l, b.out[kPdfL], i);
+    StoreLanes(d, all, rough, fr, b.out[kFR], i), StoreLanes(d, all, rough, fg, b.out[kFG], i);
+    StoreLanes(d, all, rough, fb, b.out[kFB], i), StoreLanes(d, all, rough, pdf_l, b.out[kPdfL], i);
   }
   if (!sample) return;
   const V8 ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
@@ -155,13 +176,16 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
   M8 drawn = hn::Not(spec);  // the cosine lobe always draws; the specular one where pm > 0
   if (!hn::AllTrue(d, spec)) SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
   if (!hn::AllFalse(d, hn::And(rough, spec))) {
-    V8 mx, my, mz, pm;
-    mf8::Sample(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz, &pm, &g1o);
+    // Only pm > 0 of the sampler's pdf is used: SamplePdfPositive skips D(m) where it is sure.
+    V8 mx, my, mz;
+    const M8 valid = mf8::SampleNormal(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz);
+    const M8 pm_pos = mf8::SamplePdfPositive(d, c.dist, ox, oy, oz, mx, my, mz, valid,
+                                             hn::And(rough, spec), g1o);
     V8 rx, ry, rz;
     Reflect(d, ox, oy, oz, mx, my, mz, &rx, &ry, &rz);
     ix = hn::IfThenElse(spec, rx, ix), iy = hn::IfThenElse(spec, ry, iy);
     iz = hn::IfThenElse(spec, rz, iz);
-    drawn = hn::Or(drawn, hn::And(spec, hn::Gt(pm, zero)));
+    drawn = hn::Or(drawn, hn::And(spec, pm_pos));
   }
   V8 fr, fg, fb;
   const V8 pdf = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, ix, iy, iz, &fr, &fg,
@@ -170,15 +194,15 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
   const V8 wr = hn::Mul(fr, scale), wg = hn::Mul(fg, scale), wb = hn::Mul(fb, scale);
   const M8 ok = hn::And(hn::And(drawn, hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero))),
                         hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
-  StoreLanes(d, rough, hn::IfThenElseZero(ok, ix), b.out[kWiX], i);
-  StoreLanes(d, rough, hn::IfThenElseZero(ok, iy), b.out[kWiY], i);
-  StoreLanes(d, rough, hn::IfThenElseZero(ok, iz), b.out[kWiZ], i);
-  StoreLanes(d, rough, hn::IfThenElseZero(ok, wr), b.out[kWR], i);
-  StoreLanes(d, rough, hn::IfThenElseZero(ok, wg), b.out[kWG], i);
-  StoreLanes(d, rough, hn::IfThenElseZero(ok, wb), b.out[kWB], i);
-  StoreLanes(d, rough, hn::IfThenElseZero(ok, pdf), b.out[kPdf], i);
-  StoreLanes(d, rough, one, b.out[kEta], i);
-  StoreLanes(d, rough, zero, b.out[kDelta], i);
+  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, ix), b.out[kWiX], i);
+  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, iy), b.out[kWiY], i);
+  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, iz), b.out[kWiZ], i);
+  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, wr), b.out[kWR], i);
+  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, wg), b.out[kWG], i);
+  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, wb), b.out[kWB], i);
+  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, pdf), b.out[kPdf], i);
+  StoreLanes(d, all, rough, one, b.out[kEta], i);
+  StoreLanes(d, all, rough, zero, b.out[kDelta], i);
 }
 
 }  // namespace HWY_NAMESPACE
