@@ -199,33 +199,93 @@ HWY_INLINE void Normalize3(D8 d, V8* x, V8* y, V8* z) {
   *x = hn::Mul(*x, inv), *y = hn::Mul(*y, inv), *z = hn::Mul(*z, inv);
 }
 
-/// SampleBeckmannVisibleSlope.
-HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8* sy) {
+/// SampleBeckmannVisibleSlope, in steps: Start, three Steps, Finish (BeckmannVisibleSlope).
+/// The Newton steps are one long chain of dependent operations (erf⁻¹'s Log and polynomial,
+/// Exp, a division): SampleNormal2 runs two blocks' steps alternately, so that out-of-order
+/// execution overlaps their chains. The operations and their order per lane are the same.
+struct BeckmannSlopeSearch {
+  V8 x, tan_t, tan_isp, target, sy;
+};
+
+HWY_INLINE BeckmannSlopeSearch BeckmannSlopeStart(D8 d, V8 cos_t, V8 u_x, V8 u_y) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), lo = hn::Set(d, 1e-6f),
            hi = hn::Set(d, 1.0f - 1e-6f), isp = hn::Set(d, kInvSqrtPi);
   const V8 ux = hn::Min(hn::Max(u_x, lo), hi), uy = hn::Min(hn::Max(u_y, lo), hi);
   const V8 sin_t = hn::Sqrt(hn::Max(zero, hn::Mul(hn::Sub(one, cos_t), hn::Add(one, cos_t))));
-  const V8 tan_t = hn::Div(sin_t, cos_t);
-  const M8 tilted = hn::Gt(tan_t, zero);
+  BeckmannSlopeSearch s;
+  s.tan_t = hn::Div(sin_t, cos_t);
+  s.tan_isp = hn::Mul(s.tan_t, isp);
+  const M8 tilted = hn::Gt(s.tan_t, zero);
   // cot = ∞ at normal incidence; erf(∞) = 1 and the tail is 0 there, as in the oracle.
   const V8 cot_t = hn::IfThenElse(tilted, hn::Div(cos_t, sin_t), hn::Set(d, 1e30f));
   V8 exp_cot2;  // e^(−cot²), from the Erf
   const V8 max_x = Erf(d, cot_t, &exp_cot2);
-  const V8 tail = hn::IfThenElseZero(tilted, hn::Mul(hn::Mul(tan_t, isp), exp_cot2));
-  const V8 target = hn::Mul(ux, hn::Add(hn::Add(one, max_x), tail));
-  V8 x = hn::Sub(max_x, hn::Mul(hn::Add(max_x, one),
-                                Erf(d, hn::Sqrt(hn::Neg(LogOfNormal(d, ux))))));  // ux ≥ 1e-6
-  for (int i = 0; i < 3; ++i) {
-    const V8 slope = ErfInv(d, x);
-    const V8 value = hn::Sub(
-        hn::Add(hn::Add(one, x),
-                hn::Mul(hn::Mul(tan_t, isp), hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(slope, slope)))))),
-        target);
-    const V8 derivative = hn::Sub(one, hn::Mul(slope, tan_t));
-    x = hn::Sub(x, hn::Div(value, derivative));
-  }
-  *sx = ErfInv(d, x);
-  *sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), uy), one));
+  const V8 tail = hn::IfThenElseZero(tilted, hn::Mul(s.tan_isp, exp_cot2));
+  s.target = hn::Mul(ux, hn::Add(hn::Add(one, max_x), tail));
+  s.x = hn::Sub(max_x, hn::Mul(hn::Add(max_x, one),
+                               Erf(d, hn::Sqrt(hn::Neg(LogOfNormal(d, ux))))));  // ux ≥ 1e-6
+  s.sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), uy), one));
+  return s;
+}
+
+HWY_INLINE void BeckmannSlopeStep(D8 d, BeckmannSlopeSearch* s) {
+  const V8 one = hn::Set(d, 1.0f);
+  const V8 slope = ErfInv(d, s->x);
+  const V8 value = hn::Sub(
+      hn::Add(hn::Add(one, s->x),
+              hn::Mul(s->tan_isp, hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(slope, slope)))))),
+      s->target);
+  const V8 derivative = hn::Sub(one, hn::Mul(slope, s->tan_t));
+  s->x = hn::Sub(s->x, hn::Div(value, derivative));
+}
+
+inline constexpr int kBeckmannSlopeSteps = 3;
+
+/// SampleBeckmannVisibleSlope.
+HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8* sy) {
+  BeckmannSlopeSearch s = BeckmannSlopeStart(d, cos_t, u_x, u_y);
+  for (int i = 0; i < kBeckmannSlopeSteps; ++i) BeckmannSlopeStep(d, &s);
+  *sx = ErfInv(d, s.x), *sy = s.sy;
+}
+
+/// The visible-normal samplers' w stretched to α = 1 (v = Normalize(αu w.x, αv w.y, w.z)) and
+/// 1/|v.xy| (0 where v.xy = 0: not tilted).
+struct StretchedView {
+  V8 vx, vy, vz, inv_r;
+  M8 tilted;
+};
+
+HWY_INLINE StretchedView Stretch(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz) {
+  StretchedView v;
+  v.vx = hn::Mul(f.au, wx), v.vy = hn::Mul(f.av, wy), v.vz = wz;
+  Normalize3(d, &v.vx, &v.vy, &v.vz);
+  const V8 r2 = hn::Add(hn::Mul(v.vx, v.vx), hn::Mul(v.vy, v.vy));
+  v.tilted = hn::Gt(r2, hn::Zero(d));
+  v.inv_r = hn::IfThenElseZero(v.tilted, hn::Div(hn::Set(d, 1.0f), hn::Sqrt(r2)));
+  return v;
+}
+
+/// The Beckmann visible normal from its α = 1 slopes: rotated to v's azimuth, unstretched,
+/// normalised.
+HWY_INLINE void BeckmannVisibleNormal(D8 d, const Dist8& f, const StretchedView& v, V8 sx, V8 sy,
+                                      V8* bx, V8* by, V8* bz) {
+  const V8 one = hn::Set(d, 1.0f);
+  const V8 cos_phi = hn::IfThenElse(v.tilted, hn::Mul(v.vx, v.inv_r), one);
+  const V8 sin_phi = hn::IfThenElseZero(v.tilted, hn::Mul(v.vy, v.inv_r));
+  const V8 rx = hn::Mul(hn::Sub(hn::Mul(cos_phi, sx), hn::Mul(sin_phi, sy)), f.au);
+  const V8 ry = hn::Mul(hn::Add(hn::Mul(sin_phi, sx), hn::Mul(cos_phi, sy)), f.av);
+  *bx = hn::Neg(rx), *by = hn::Neg(ry), *bz = one;
+  Normalize3(d, bx, by, bz);
+}
+
+/// SampleMicrofacet's validity (w.z > 0, m.z > 0, m finite): m = +z elsewhere.
+HWY_INLINE M8 ValidNormal(D8 d, V8 wz, V8* x, V8* y, V8* z) {
+  const V8 zero = hn::Zero(d);
+  const M8 valid = hn::And(hn::And(hn::Gt(wz, zero), hn::Gt(*z, zero)),
+                           hn::And(hn::IsFinite(*x), hn::IsFinite(*y)));
+  *x = hn::IfThenElseZero(valid, *x), *y = hn::IfThenElseZero(valid, *y);
+  *z = hn::IfThenElse(valid, *z, hn::Set(d, 1.0f));
+  return valid;
 }
 
 /// SampleMicrofacet's normal: sets m (+z where the oracle returns that) and returns the lanes
@@ -250,11 +310,9 @@ HWY_INLINE M8 SampleNormal(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8
     z = cos_t;
   }
   if (!hn::AllFalse(d, f.visible)) {
-    V8 vx = hn::Mul(f.au, wx), vy = hn::Mul(f.av, wy), vz = wz;
-    Normalize3(d, &vx, &vy, &vz);
-    const V8 r2 = hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy));
-    const M8 tilted = hn::Gt(r2, zero);
-    const V8 inv_r = hn::IfThenElseZero(tilted, hn::Div(one, hn::Sqrt(r2)));
+    const StretchedView v = Stretch(d, f, wx, wy, wz);
+    const V8 vx = v.vx, vy = v.vy, vz = v.vz, inv_r = v.inv_r;
+    const M8 tilted = v.tilted;
     const M8 vis_ggx = hn::And(f.visible, f.ggx), vis_beck = hn::AndNot(f.ggx, f.visible);
     V8 gx = zero, gy = zero, gz = one;
     if (!hn::AllFalse(d, vis_ggx)) {
@@ -283,25 +341,43 @@ HWY_INLINE M8 SampleNormal(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8
     }
     V8 bx = zero, by = zero, bz = one;
     if (!hn::AllFalse(d, vis_beck)) {
-      const V8 cos_phi = hn::IfThenElse(tilted, hn::Mul(vx, inv_r), one);
-      const V8 sin_phi = hn::IfThenElseZero(tilted, hn::Mul(vy, inv_r));
       V8 sx, sy;
       BeckmannVisibleSlope(d, vz, u_x, u_y, &sx, &sy);
-      const V8 rx = hn::Mul(hn::Sub(hn::Mul(cos_phi, sx), hn::Mul(sin_phi, sy)), f.au);
-      const V8 ry = hn::Mul(hn::Add(hn::Mul(sin_phi, sx), hn::Mul(cos_phi, sy)), f.av);
-      bx = hn::Neg(rx), by = hn::Neg(ry), bz = one;
-      Normalize3(d, &bx, &by, &bz);
+      BeckmannVisibleNormal(d, f, v, sx, sy, &bx, &by, &bz);
     }
     x = hn::IfThenElse(f.visible, hn::IfThenElse(f.ggx, gx, bx), x);
     y = hn::IfThenElse(f.visible, hn::IfThenElse(f.ggx, gy, by), y);
     z = hn::IfThenElse(f.visible, hn::IfThenElse(f.ggx, gz, bz), z);
   }
-  const M8 valid = hn::And(hn::And(hn::Gt(wz, zero), hn::Gt(z, zero)),
-                           hn::And(hn::IsFinite(x), hn::IsFinite(y)));
-  x = hn::IfThenElseZero(valid, x), y = hn::IfThenElseZero(valid, y);
-  z = hn::IfThenElse(valid, z, one);
+  const M8 valid = ValidNormal(d, wz, &x, &y, &z);
   *mx = x, *my = y, *mz = z;
   return valid;
+}
+
+/// SampleNormal for two blocks (a, b): where both are visible Beckmann in every lane, their
+/// slope searches' steps alternate (BeckmannSlopeSearch); otherwise one block after the other.
+/// The same operations per lane as SampleNormal, so the same bits.
+HWY_INLINE void SampleNormal2(D8 d, const Dist8& fa, V8 wax, V8 way, V8 waz, V8 uax, V8 uay,
+                              V8* max, V8* may, V8* maz, M8* valid_a, const Dist8& fb, V8 wbx,
+                              V8 wby, V8 wbz, V8 ubx, V8 uby, V8* mbx, V8* mby, V8* mbz,
+                              M8* valid_b) {
+  const M8 beck_a = hn::AndNot(fa.ggx, fa.visible), beck_b = hn::AndNot(fb.ggx, fb.visible);
+  if (!hn::AllTrue(d, beck_a) || !hn::AllTrue(d, beck_b)) {
+    *valid_a = SampleNormal(d, fa, wax, way, waz, uax, uay, max, may, maz);
+    *valid_b = SampleNormal(d, fb, wbx, wby, wbz, ubx, uby, mbx, mby, mbz);
+    return;
+  }
+  const StretchedView va = Stretch(d, fa, wax, way, waz), vb = Stretch(d, fb, wbx, wby, wbz);
+  BeckmannSlopeSearch sa = BeckmannSlopeStart(d, va.vz, uax, uay);
+  BeckmannSlopeSearch sb = BeckmannSlopeStart(d, vb.vz, ubx, uby);
+  for (int i = 0; i < kBeckmannSlopeSteps; ++i) {
+    BeckmannSlopeStep(d, &sa);
+    BeckmannSlopeStep(d, &sb);
+  }
+  BeckmannVisibleNormal(d, fa, va, ErfInv(d, sa.x), sa.sy, max, may, maz);
+  BeckmannVisibleNormal(d, fb, vb, ErfInv(d, sb.x), sb.sy, mbx, mby, mbz);
+  *valid_a = ValidNormal(d, waz, max, may, maz);
+  *valid_b = ValidNormal(d, wbz, mbx, mby, mbz);
 }
 
 /// SampleMicrofacet: sets m and *pdf (0 and m = +z where the oracle returns those). g1_w, when

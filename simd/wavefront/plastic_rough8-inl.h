@@ -148,51 +148,82 @@ HWY_INLINE void StoreLanes(D8 d, bool all, M8 lanes, V8 v, float* col, size_t i)
   Store(d, all ? v : hn::IfThenElse(lanes, v, Load(d, col, i)), col, i);
 }
 
-/// PlasticRoughEvalPdf / PlasticRoughSample for the `rough` lanes of rows [i, i + Lanes) of the
-/// plastic table (the other lanes' outputs are left as they are). `uniform` as for
-/// GatherPlasticRough.
-HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_t i, M8 rough,
-                                  bool eval, bool sample,
-                                  const CoatingDistribution* uniform = nullptr) {
+/// One block's inputs and the terms that depend on wo only (PlasticRoughBlock's first part).
+struct PlasticRoughStart {
+  PlasticRoughLanes c;
+  V8 ox, oy, oz, t_o, ps, g1o, ux, uy;
+  M8 rough, spec;
+  bool all;    // every lane rough
+  bool micro;  // a rough lane samples the specular lobe: the microfacet sampler runs
+};
+
+HWY_INLINE PlasticRoughStart StartPlasticRough(const PlasticTable& t, const ShadeIo& b, size_t i,
+                                               M8 rough, bool sample,
+                                               const CoatingDistribution* uniform) {
+  const D8 d;
+  PlasticRoughStart s;
+  s.rough = rough;
+  s.all = hn::AllTrue(d, rough);
+  s.c = GatherPlasticRough(d, t, b.index, i, uniform);
+  s.ox = In(d, b, kWoX, i), s.oy = In(d, b, kWoY, i), s.oz = In(d, b, kWoZ, i);
+  s.t_o = CoatingTransmittance8(d, t, s.c, s.oz);
+  s.ps = CoatingSpecularProbability(d, s.t_o, s.c.ws);
+  s.g1o = mf8::G1OverCos(d, s.c.dist, s.ox, s.oy, s.oz);
+  s.ux = hn::Zero(d), s.uy = s.ux;
+  s.spec = hn::FirstN(d, 0);  // none (eval only)
+  s.micro = false;
+  if (sample) {
+    s.ux = In(d, b, kUX, i), s.uy = In(d, b, kUY, i);
+    s.spec = hn::Lt(In(d, b, kULobe, i), s.ps);
+    s.micro = !hn::AllFalse(d, hn::And(rough, s.spec));
+  }
+  return s;
+}
+
+/// PlasticRoughBlock's second part, given the sampled microfacet normal m (valid: its lanes;
+/// used where s.micro): the sampled direction, the evals at the light direction and at it, the
+/// outputs. The light's eval follows the sampler in program order: it does not depend on the
+/// sampler's long chain, which out-of-order execution overlaps with it.
+HWY_INLINE void FinishPlasticRough(const PlasticTable& t, const ShadeIo& b, size_t i,
+                                   const PlasticRoughStart& s, M8 valid, V8 mx, V8 my, V8 mz,
+                                   bool eval, bool sample) {
   const D8 d;
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-  const bool all = hn::AllTrue(d, rough);
-  const PlasticRoughLanes c = GatherPlasticRough(d, t, b.index, i, uniform);
-  const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
-  const V8 t_o = CoatingTransmittance8(d, t, c, oz);
-  const V8 ps = CoatingSpecularProbability(d, t_o, c.ws);
-  const V8 g1o = mf8::G1OverCos(d, c.dist, ox, oy, oz);
+  const PlasticRoughLanes& c = s.c;
+  const M8 rough = s.rough, spec = s.spec;
+  const bool all = s.all;
+  V8 ix = zero, iy = zero, iz = zero;
+  M8 drawn = hn::Not(spec);  // the cosine lobe always draws; the specular one where pm > 0
+  if (sample) {
+    if (s.micro) {
+      // Only pm > 0 of the sampler's pdf is used: SamplePdfPositive skips D(m) where it is sure.
+      const M8 pm_pos = mf8::SamplePdfPositive(d, c.dist, s.ox, s.oy, s.oz, mx, my, mz, valid,
+                                               hn::And(rough, spec), s.g1o);
+      Reflect(d, s.ox, s.oy, s.oz, mx, my, mz, &ix, &iy, &iz);
+      drawn = hn::Or(drawn, hn::And(spec, pm_pos));
+    }
+    if (!hn::AllTrue(d, spec)) {
+      V8 cx, cy, cz;
+      SampleCosineHemisphere(d, s.ux, s.uy, &cx, &cy, &cz);
+      ix = hn::IfThenElse(spec, ix, cx), iy = hn::IfThenElse(spec, iy, cy);
+      iz = hn::IfThenElse(spec, iz, cz);
+    }
+  }
   if (eval) {
     V8 fr, fg, fb;
-    const V8 pdf_l = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, In(d, b, kWlX, i),
-                                          In(d, b, kWlY, i), In(d, b, kWlZ, i), &fr, &fg, &fb);
+    const V8 pdf_l =
+        PlasticRoughEvalPdf8(d, t, c, s.t_o, s.ps, s.g1o, s.ox, s.oy, s.oz, In(d, b, kWlX, i),
+                             In(d, b, kWlY, i), In(d, b, kWlZ, i), &fr, &fg, &fb);
     StoreLanes(d, all, rough, fr, b.out[kFR], i), StoreLanes(d, all, rough, fg, b.out[kFG], i);
     StoreLanes(d, all, rough, fb, b.out[kFB], i), StoreLanes(d, all, rough, pdf_l, b.out[kPdfL], i);
   }
   if (!sample) return;
-  const V8 ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
-  const M8 spec = hn::Lt(In(d, b, kULobe, i), ps);
-  V8 ix = zero, iy = zero, iz = zero;
-  M8 drawn = hn::Not(spec);  // the cosine lobe always draws; the specular one where pm > 0
-  if (!hn::AllTrue(d, spec)) SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
-  if (!hn::AllFalse(d, hn::And(rough, spec))) {
-    // Only pm > 0 of the sampler's pdf is used: SamplePdfPositive skips D(m) where it is sure.
-    V8 mx, my, mz;
-    const M8 valid = mf8::SampleNormal(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz);
-    const M8 pm_pos = mf8::SamplePdfPositive(d, c.dist, ox, oy, oz, mx, my, mz, valid,
-                                             hn::And(rough, spec), g1o);
-    V8 rx, ry, rz;
-    Reflect(d, ox, oy, oz, mx, my, mz, &rx, &ry, &rz);
-    ix = hn::IfThenElse(spec, rx, ix), iy = hn::IfThenElse(spec, ry, iy);
-    iz = hn::IfThenElse(spec, rz, iz);
-    drawn = hn::Or(drawn, hn::And(spec, pm_pos));
-  }
   V8 fr, fg, fb;
-  const V8 pdf = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, ix, iy, iz, &fr, &fg,
-                                      &fb);
+  const V8 pdf = PlasticRoughEvalPdf8(d, t, c, s.t_o, s.ps, s.g1o, s.ox, s.oy, s.oz, ix, iy, iz,
+                                      &fr, &fg, &fb);
   const V8 scale = hn::Div(iz, hn::IfThenElse(hn::Gt(pdf, zero), pdf, one));
   const V8 wr = hn::Mul(fr, scale), wg = hn::Mul(fg, scale), wb = hn::Mul(fb, scale);
-  const M8 ok = hn::And(hn::And(drawn, hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero))),
+  const M8 ok = hn::And(hn::And(drawn, hn::And(hn::Gt(s.oz, zero), hn::Gt(iz, zero))),
                         hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
   StoreLanes(d, all, rough, hn::IfThenElseZero(ok, ix), b.out[kWiX], i);
   StoreLanes(d, all, rough, hn::IfThenElseZero(ok, iy), b.out[kWiY], i);
@@ -203,6 +234,69 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
   StoreLanes(d, all, rough, hn::IfThenElseZero(ok, pdf), b.out[kPdf], i);
   StoreLanes(d, all, rough, one, b.out[kEta], i);
   StoreLanes(d, all, rough, zero, b.out[kDelta], i);
+}
+
+/// PlasticRoughEvalPdf / PlasticRoughSample for the `rough` lanes of rows [i, i + Lanes) of the
+/// plastic table (the other lanes' outputs are left as they are). `uniform` as for
+/// GatherPlasticRough.
+HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_t i, M8 rough,
+                                  bool eval, bool sample,
+                                  const CoatingDistribution* uniform = nullptr) {
+  const D8 d;
+  const PlasticRoughStart s = StartPlasticRough(t, b, i, rough, sample, uniform);
+  V8 mx = hn::Zero(d), my = mx, mz = mx;
+  M8 valid = hn::FirstN(d, 0);
+  if (s.micro) valid = mf8::SampleNormal(d, s.c.dist, s.ox, s.oy, s.oz, s.ux, s.uy, &mx, &my, &mz);
+  FinishPlasticRough(t, b, i, s, valid, mx, my, mz, eval, sample);
+}
+
+/// PlasticRoughBlock for every lane of rows [i, i + 2 Lanes): two blocks, whose microfacet
+/// samplers run together (mf8::SampleNormal2); each block's outputs are PlasticRoughBlock's.
+HWY_INLINE void PlasticRoughBlockPair(const PlasticTable& t, const ShadeIo& b, size_t i,
+                                      bool eval, bool sample, const CoatingDistribution* uniform) {
+  const D8 d;
+  const M8 every = hn::Eq(hn::Zero(d), hn::Zero(d));
+  const size_t j = i + hn::Lanes(d);
+  const PlasticRoughStart sa = StartPlasticRough(t, b, i, every, sample, uniform);
+  const PlasticRoughStart sb = StartPlasticRough(t, b, j, every, sample, uniform);
+  V8 max = hn::Zero(d), may = max, maz = max, mbx = max, mby = max, mbz = max;
+  M8 valid_a = hn::FirstN(d, 0), valid_b = valid_a;
+  if (sa.micro && sb.micro) {
+    mf8::SampleNormal2(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may, &maz,
+                       &valid_a, sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby, &mbz,
+                       &valid_b);
+  } else {
+    if (sa.micro)
+      valid_a = mf8::SampleNormal(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may,
+                                  &maz);
+    if (sb.micro)
+      valid_b = mf8::SampleNormal(d, sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby,
+                                  &mbz);
+  }
+  FinishPlasticRough(t, b, i, sa, valid_a, max, may, maz, eval, sample);
+  FinishPlasticRough(t, b, j, sb, valid_b, mbx, mby, mbz, eval, sample);
+}
+
+/// The plastic batch of a table whose rows are all rough with one distribution (`uniform`):
+/// pairs of blocks (PlasticRoughBlockPair), then ForEachBlock over the rest.
+inline void ShadePlasticRoughUniform(const PlasticTable& t, const ShadeIo& io, size_t n,
+                                     bool eval, bool sample, const CoatingDistribution& uniform) {
+  const D8 d;
+  const size_t pair = 2 * hn::Lanes(d);
+  size_t i = 0;
+  for (; i + pair <= n; i += pair) PlasticRoughBlockPair(t, io, i, eval, sample, &uniform);
+  if (i == n) return;
+  ShadeIo rest = io;  // rows [i, n)
+  rest.index = io.index + i;
+  if (io.entry != nullptr) rest.entry = io.entry + i;
+  for (auto& c : rest.in)
+    if (c != nullptr) c += i;
+  for (auto& c : rest.out)
+    if (c != nullptr) c += i;
+  ForEachBlock(rest, n - i, [&t, eval, sample, &uniform](const ShadeIo& b, size_t k) HWY_ATTR {
+    const D8 d8;
+    PlasticRoughBlock(t, b, k, hn::Eq(hn::Zero(d8), hn::Zero(d8)), eval, sample, &uniform);
+  });
 }
 
 }  // namespace HWY_NAMESPACE
