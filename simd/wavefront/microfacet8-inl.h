@@ -204,15 +204,16 @@ HWY_INLINE void Normalize3(D8 d, V8* x, V8* y, V8* z) {
 /// Exp, a division): SampleNormal2 runs two blocks' steps alternately, so that out-of-order
 /// execution overlaps their chains. The operations and their order per lane are the same.
 struct BeckmannSlopeSearch {
-  V8 x, tan_t, tan_isp, target, sy;
+  V8 x, tan_t, tan_isp, target, uy;  // uy clamped
 };
 
 HWY_INLINE BeckmannSlopeSearch BeckmannSlopeStart(D8 d, V8 cos_t, V8 u_x, V8 u_y) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), lo = hn::Set(d, 1e-6f),
            hi = hn::Set(d, 1.0f - 1e-6f), isp = hn::Set(d, kInvSqrtPi);
-  const V8 ux = hn::Min(hn::Max(u_x, lo), hi), uy = hn::Min(hn::Max(u_y, lo), hi);
+  const V8 ux = hn::Min(hn::Max(u_x, lo), hi);
   const V8 sin_t = hn::Sqrt(hn::Max(zero, hn::Mul(hn::Sub(one, cos_t), hn::Add(one, cos_t))));
   BeckmannSlopeSearch s;
+  s.uy = hn::Min(hn::Max(u_y, lo), hi);
   s.tan_t = hn::Div(sin_t, cos_t);
   s.tan_isp = hn::Mul(s.tan_t, isp);
   const M8 tilted = hn::Gt(s.tan_t, zero);
@@ -224,7 +225,6 @@ HWY_INLINE BeckmannSlopeSearch BeckmannSlopeStart(D8 d, V8 cos_t, V8 u_x, V8 u_y
   s.target = hn::Mul(ux, hn::Add(hn::Add(one, max_x), tail));
   s.x = hn::Sub(max_x, hn::Mul(hn::Add(max_x, one),
                                Erf(d, hn::Sqrt(hn::Neg(LogOfNormal(d, ux))))));  // ux ≥ 1e-6
-  s.sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), uy), one));
   return s;
 }
 
@@ -241,11 +241,17 @@ HWY_INLINE void BeckmannSlopeStep(D8 d, BeckmannSlopeSearch* s) {
 
 inline constexpr int kBeckmannSlopeSteps = 3;
 
+/// The slopes once the steps are done.
+HWY_INLINE void BeckmannSlopeFinish(D8 d, const BeckmannSlopeSearch& s, V8* sx, V8* sy) {
+  *sx = ErfInv(d, s.x);
+  *sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), s.uy), hn::Set(d, 1.0f)));
+}
+
 /// SampleBeckmannVisibleSlope.
 HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8* sy) {
   BeckmannSlopeSearch s = BeckmannSlopeStart(d, cos_t, u_x, u_y);
   for (int i = 0; i < kBeckmannSlopeSteps; ++i) BeckmannSlopeStep(d, &s);
-  *sx = ErfInv(d, s.x), *sy = s.sy;
+  BeckmannSlopeFinish(d, s, sx, sy);
 }
 
 /// The visible-normal samplers' w stretched to α = 1 (v = Normalize(αu w.x, αv w.y, w.z)) and
@@ -374,8 +380,11 @@ HWY_INLINE void SampleNormal2(D8 d, const Dist8& fa, V8 wax, V8 way, V8 waz, V8 
     BeckmannSlopeStep(d, &sa);
     BeckmannSlopeStep(d, &sb);
   }
-  BeckmannVisibleNormal(d, fa, va, ErfInv(d, sa.x), sa.sy, max, may, maz);
-  BeckmannVisibleNormal(d, fb, vb, ErfInv(d, sb.x), sb.sy, mbx, mby, mbz);
+  V8 sax, say, sbx, sby;
+  BeckmannSlopeFinish(d, sa, &sax, &say);
+  BeckmannSlopeFinish(d, sb, &sbx, &sby);
+  BeckmannVisibleNormal(d, fa, va, sax, say, max, may, maz);
+  BeckmannVisibleNormal(d, fb, vb, sbx, sby, mbx, mby, mbz);
   *valid_a = ValidNormal(d, waz, max, may, maz);
   *valid_b = ValidNormal(d, wbz, mbx, mby, mbz);
 }
