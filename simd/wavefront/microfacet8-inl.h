@@ -401,7 +401,7 @@ HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y
 ///   m.z > 1e-3, and (visible sampling) w·m > 1e-10 and 1e-10 < g1_w < 1e18,
 /// D(m) = e^(−q)/(π αu αv m.z⁴) with q < 32 (+ rounding) and π αu αv ≤ π 10⁴ (α ≤ 100) is
 /// ≥ 1.2e-14 / 3.2e4 > 3e-19, so D m.z > 1e-20 (D's cut) and D ≤ 1/(π 10⁻⁸ 10⁻¹²) < 4e19: D(m)
-/// g1_w (w·m) lies in [1e-39, 4e37], positive and finite. The visible samplers' slopes are
+/// g1_w (w·m) lies in [3e-39, 4e37], positive and finite. The visible samplers' slopes are
 /// erf⁻¹ of clamped arguments (|slope| ≤ 3.82 per axis, q ≤ 29.2), so every sampled lane but
 /// the degenerate ones passes; where a lane of `needed` does not, Pdf decides the block.
 HWY_INLINE M8 SamplePdfPositive(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 mx, V8 my, V8 mz,
