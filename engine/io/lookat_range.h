@@ -2,11 +2,11 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <utility>
 
 #include "engine/core/vec.h"
+#include "engine/io/xml_properties.h"
 #include "engine/scene/scene_limits.h"
 
 namespace ptlab {
@@ -19,18 +19,20 @@ inline constexpr float kMaxLookatUp = 1e18f;
 /// ranges a length overflows float, and the step used to be reported as "up parallel to
 /// target - origin", which named neither the cause nor the limit.
 inline std::string LookatRangeError(const Vec3f& origin, const Vec3f& target, const Vec3f& up) {
-  const auto number = [](float v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof(buffer), "%g", double(v));
-    return std::string(buffer);
-  };
-  const std::pair<const char*, Vec3f> points[] = {{"origin", origin}, {"target", target}, {"up", up}};
-  for (const auto& [name, v] : points) {
-    const float limit = std::string(name) == "up" ? kMaxLookatUp : kMaxWorldCoordinate;
-    if (std::abs(v.x) <= limit && std::abs(v.y) <= limit && std::abs(v.z) <= limit) continue;
-    return "<lookat> " + std::string(name) + " (" + number(v.x) + ", " + number(v.y) + ", " +
-           number(v.z) + ") is out of range; expected components within +-" + number(limit);
-  }
+  using internal::FormatNumber;
+  const std::pair<const char*, Vec3f> points[] = {{"origin", origin}, {"target", target}};
+  for (const auto& [name, v] : points)
+    if (!(std::abs(v.x) <= kMaxWorldCoordinate && std::abs(v.y) <= kMaxWorldCoordinate &&
+          std::abs(v.z) <= kMaxWorldCoordinate))
+      return "<lookat> " + std::string(name) + " (" + FormatNumber(v.x) + ", " +
+             FormatNumber(v.y) + ", " + FormatNumber(v.z) +
+             ") is out of range; expected components within +-" +
+             FormatNumber(kMaxWorldCoordinate);
+  if (!(std::abs(up.x) <= kMaxLookatUp && std::abs(up.y) <= kMaxLookatUp &&
+        std::abs(up.z) <= kMaxLookatUp))
+    return "<lookat> up (" + FormatNumber(up.x) + ", " + FormatNumber(up.y) + ", " +
+           FormatNumber(up.z) + ") is out of range; expected components within +-" +
+           FormatNumber(kMaxLookatUp);
   return "";
 }
 
