@@ -81,12 +81,25 @@ HWY_INLINE hn::Vec<D> EvalFilter(D d, const PixelFilter& filter, hn::Vec<D> x) {
   return hn::IfThenElseZero(inside, hn::Add(lo, hn::Mul(frac, hn::Sub(hi, lo))));
 }
 
-/// Adds c to the first `floats` accumulators at `sums` (all of a vector's lanes or fewer: the
-/// rest of memory untouched). Add(sum, c) as FilmBlock::Splat's `sum += w * L`.
+/// Adds c to the first `floats` accumulators at `sums` (a multiple of 4, all of a vector's
+/// lanes or fewer: the rest of memory untouched). Add(sum, c) as FilmBlock::Splat's
+/// `sum += w * L`. Whole loads and stores of 16, 8 or 4 floats, never masked ones: the box
+/// filter's samples of one pixel come in a row, each adding to the accumulators the one before
+/// stored, and a masked store does not forward to the next load (the CPU waits for it to
+/// reach the cache).
 template <class D>
 HWY_INLINE void AccumulateRow(D d, hn::Vec<D> c, size_t floats, float* sums) {
   if (floats == hn::Lanes(d)) {
     hn::StoreU(hn::Add(hn::LoadU(d, sums), c), d, sums);
+    return;
+  }
+  if constexpr (hn::MaxLanes(D()) > 4) {
+    const hn::Half<D> dh;
+    const size_t half = hn::Lanes(dh);
+    const auto lo = hn::LowerHalf(dh, c);
+    if (floats < half) return AccumulateRow(dh, lo, floats, sums);
+    hn::StoreU(hn::Add(hn::LoadU(dh, sums), lo), dh, sums);
+    if (floats > half) AccumulateRow(dh, hn::UpperHalf(dh, c), floats - half, sums + half);
   } else {
     const auto m = hn::FirstN(d, floats);
     hn::BlendedStore(hn::Add(hn::MaskedLoad(m, d, sums), c), m, d, sums);
