@@ -58,9 +58,10 @@ class PathSampler {
   /// Same type, stream, seed and index: the two draw the same numbers from here on.
   bool operator==(const PathSampler&) const = default;
 
-  /// Its bytes, which kernels that store whole rows of samplers rely on (simd/camera_paths8):
-  /// four 64-bit words, the stream's state and increment, then pixel_seed32 | index << 32,
-  /// then the type in the low byte (the rest is padding).
+  /// Its bytes, which kernels that read or store whole rows of samplers rely on
+  /// (simd/wavefront/camera_paths8, simd/wavefront/vertices8): four 64-bit words, the stream's
+  /// state and increment, then pixel_seed32 | index << 32, then the type in the low byte (the
+  /// rest is padding).
   static constexpr bool RowLayoutHolds() {
     return Pcg32::StateThenIncrement() && offsetof(PathSampler, rng_) == 0 &&
            offsetof(PathSampler, pixel_seed32_) == 16 && offsetof(PathSampler, index_) == 20 &&

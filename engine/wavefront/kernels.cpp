@@ -42,6 +42,7 @@ WavefrontKernels OracleWavefrontKernels(const Bvh& bvh) {
           .occluded8 = OracleOccluded8,
           .sobol2d = ScrambledSobol2DBatch,
           .sobol1d = ScrambledSobol1DBatch,
+          .camera_paths = StartCameraPaths,
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
           .area_light = OracleAreaLight,

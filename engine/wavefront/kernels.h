@@ -15,6 +15,7 @@
 #include "engine/wavefront/area_light.h"
 #include "engine/wavefront/area_request.h"
 #include "engine/wavefront/bsdf.h"
+#include "engine/wavefront/camera_paths.h"
 #include "engine/wavefront/continuation.h"
 #include "engine/wavefront/distant_disk.h"
 #include "engine/wavefront/emission.h"
@@ -64,6 +65,12 @@ struct WavefrontKernels {
                   float* x, float* y) = nullptr;
   void (*sobol1d)(const uint32_t* pixel_seed, const uint32_t* index, uint32_t dim, size_t n,
                   float* x) = nullptr;
+  // Sampling stage, the camera paths: each new path's PathSampler and (independent sampler)
+  // its film and lens numbers, one call per wave, before the camera rays (engine/wavefront/
+  // camera_paths.h). Oracle: ptlab::StartCameraPaths; SIMD: simd::StartCameraPaths,
+  // bit-identical (simd/wavefront/camera_paths8.h).
+  void (*camera_paths)(SamplerType type, uint64_t seed, uint64_t width, size_t n,
+                       const CameraPathInputs& in, const CameraPathOutputs& out) = nullptr;
 
   // BSDF stage: one material's kernel over a contiguous batch of rows that all have tag `tag`
   // (the wavefront writes each continuing entry's row into its tag's group of rows and calls

@@ -69,7 +69,7 @@ void Wavefront::RenderTile(const RenderContext& ctx, const WavefrontKernels& ker
 }
 
 size_t Wavefront::Bytes() const {
-  size_t bytes = VectorsBytes(sampler_, gen_px_, gen_py_, gen_sx_, gen_sy_, jitter_, lens_,
+  size_t bytes = VectorsBytes(sampler_, gen_px_, gen_py_, gen_s_, gen_sx_, gen_sy_, jitter_, lens_,
                               all_paths_, continuing_, roulette_, bsdf_lobe_, light_point_,
                               bsdf_direction_, draw_seed_, draw_index_, draw_x_, draw_y_);
   bytes += VectorsBytes(L_, throughput_, nee_throughput_, eta_, prev_pdf_, prev_p_, specular_,

@@ -426,8 +426,10 @@ class alignas(kColumnAlignment) Wavefront {
   // Path state (SoA, by path id).
   std::vector<PathSampler> sampler_;
   bool sobol_ = false;
-  // Generation scratch and the Sobol' numbers of the current vertex (sobol_ only).
-  std::vector<int> gen_px_, gen_py_;
+  // Generation scratch (each path's pixel and sample index, film position, lens point) and
+  // the Sobol' numbers of the current vertex (sobol_ only).
+  std::vector<int32_t> gen_px_, gen_py_;
+  std::vector<uint32_t> gen_s_;
   std::vector<float> gen_sx_, gen_sy_;
   std::vector<Vec2f> jitter_, lens_;
   std::vector<uint32_t> all_paths_, continuing_;

@@ -19,7 +19,7 @@ void Wavefront::Generate(const Camera& camera, int x0, int y0, int x1, int y1, u
   GrowColumns(room, &sampler_, &L_, &throughput_, &nee_throughput_, &eta_, &prev_pdf_, &prev_p_,
               &specular_, &gen_sx_, &gen_sy_, &lens_);
   path_of_slot_.assign(n, kNoPath);
-  if (sobol_) GrowColumns(room, &gen_px_, &gen_py_);
+  GrowColumns(room, &gen_px_, &gen_py_, &gen_s_);
   uint32_t id = 0;
   for (int y = y0; y < y1; y += 2) {
     for (int bx = x0; bx < x1; bx += 4) {
@@ -29,26 +29,21 @@ void Wavefront::Generate(const Camera& camera, int x0, int y0, int x1, int y1, u
           if (px >= x1 || py >= y1) continue;
           const uint64_t pixel = uint64_t(py) * width + uint64_t(px);
           if (pixels && pixels->active && !pixels->active[pixel]) continue;
-          PathSampler& sampler = sampler_[id];
-          sampler = PathSampler(scene_->sampler.type, PixelSeed(seed, pixel), s);
+          gen_px_[id] = px, gen_py_[id] = py, gen_s_[id] = s;
           const size_t pixel_slot = (size_t(py - y0) * tile_w + size_t(px - x0)) * samples;
           path_of_slot_[pixel_slot + (s - s_begin)] = id;
           L_[id] = Color3f{}, throughput_[id] = Color3f{1, 1, 1};
           eta_[id] = 1.0f, prev_pdf_[id] = 0.0f;
           specular_[id] = 1;  // the camera ray counts as specular: emission is always seen
-          if (sobol_) {
-            gen_px_[id] = px, gen_py_[id] = py;
-          } else {
-            // Film, then lens position: the path's stream in the scalar order.
-            const Vec2f jitter = sampler.Get2D(kDimensionPixel);
-            gen_sx_[id] = float(px) + jitter.x, gen_sy_[id] = float(py) + jitter.y;
-            lens_[id] = sampler.Get2D(kDimensionLens);
-          }
           ++id;
         }
       }
     }
   }
+  // Each path's stream and, with the independent sampler, its film and lens numbers.
+  kernels_->camera_paths(scene_->sampler.type, seed, width, id,
+                         {gen_px_.data(), gen_py_.data(), gen_s_.data()},
+                         {sampler_.data(), gen_sx_.data(), gen_sy_.data(), lens_.data()});
   // With `sobol`, film and lens positions as one batch draw per dimension for all the paths.
   if (sobol_) {
     all_paths_.resize(id), jitter_.resize(id);

@@ -1,6 +1,8 @@
 // Per-target kernel of simd/wavefront/area_request8.h (re-included once per Highway target):
 // integrator::AreaEmitterSampleRequest's operations in its order, eight rows per vector, with
-// the BSDF evaluated by simd/wavefront/bsdf8-inl.h's kernel of the batch's material.
+// the BSDF evaluated by the shading stage's dispatched kernel (simd::ShadeBatch, bsdf8.h) of the
+// batch's material: the shading kernels have one home, bsdf8.cpp, and are not instantiated again
+// here (one indirect call per chunk of 64 rows).
 
 #if defined(PTLAB_SIMD_AREA_REQUEST8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_AREA_REQUEST8_INL_H_
@@ -20,8 +22,9 @@
 #include "engine/scene/scene.h"
 #include "hwy/highway.h"
 #include "simd/light_pdf8-inl.h"
-#include "simd/wavefront/bsdf8-inl.h"
 #include "simd/shading_point8-inl.h"
+#include "simd/wavefront/bsdf8.h"
+#include "simd/wavefront/lanes8-inl.h"  // D8, V8, M8, AllFinite3
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -224,7 +227,7 @@ inline void AreaEmitterRequestBatchKernel(const Scene& scene, MaterialTag tag, b
       ShadeOutputs bsdf_out;
       bsdf_out.f = {c.e_r, c.e_g, c.e_b};
       bsdf_out.pdf_l = c.e_pdf;
-      ShadeBatchKernel(scene.materials, tag, c.index, c.rows, bsdf_in, bsdf_out);
+      simd::ShadeBatch(scene.materials, tag, c.index, c.rows, bsdf_in, bsdf_out);
       for (size_t k = 0; k < c.rows; ++k) {
         const int32_t j = c.row[k];
         c.f_r[j] = c.e_r[k], c.f_g[j] = c.e_g[k], c.f_b[j] = c.e_b[k];

@@ -23,6 +23,7 @@
 #include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 #include "simd/texture/texture8-inl.h"
+#include "simd/wavefront/lanes8-inl.h"  // D8, V8, M8, AllFinite3
 
 HWY_BEFORE_NAMESPACE();
 namespace ptlab::simd {
@@ -30,9 +31,6 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-using D8 = hn::CappedTag<float, 8>;
-using V8 = hn::Vec<D8>;
-using M8 = hn::Mask<D8>;
 
 // ------------------------------------------------------------------------------ clamps
 
@@ -68,10 +66,6 @@ HWY_INLINE V8 RoundedMul(D8 d, V8 a, V8 b) { return hn::Or(hn::Mul(a, b), hn::Ze
 /// Dot product with RoundedMul terms, summed in the order of Dot() in engine/core/vec.h.
 HWY_INLINE V8 RoundedDot(D8 d, V8 ax, V8 ay, V8 az, V8 bx, V8 by, V8 bz) {
   return hn::Add(hn::Add(RoundedMul(d, ax, bx), RoundedMul(d, ay, by)), RoundedMul(d, az, bz));
-}
-
-HWY_INLINE M8 AllFinite3(D8, V8 a, V8 b, V8 c) {
-  return hn::And(hn::IsFinite(a), hn::And(hn::IsFinite(b), hn::IsFinite(c)));
 }
 
 // ------------------------------------------------------------------------------ Fresnel

@@ -1,4 +1,5 @@
-// simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/wavefront/sobol8, simd/wavefront/bsdf8,
+// simd/'s table of the wavefront's stage kernels: simd/traverse8, simd/wavefront/sobol8,
+// simd/wavefront/camera_paths8, simd/wavefront/bsdf8,
 // simd/wavefront/splat8, simd/wavefront/area_light8, simd/wavefront/area_request8, simd/wavefront/environment8, simd/wavefront/distant_disk8,
 // simd/wavefront/interaction8, simd/wavefront/spawn8, simd/wavefront/vertices8, simd/wavefront/continuation8, simd/wavefront/shadow_rows8,
 // simd/wavefront/emission8.
@@ -14,6 +15,7 @@
 #include "simd/wavefront/interaction8.h"
 #include "simd/wavefront/sobol8.h"
 #include "simd/wavefront/bsdf8.h"
+#include "simd/wavefront/camera_paths8.h"
 #include "simd/wavefront/shadow_rows8.h"
 #include "simd/wavefront/spawn8.h"
 #include "simd/wavefront/splat8.h"
@@ -51,6 +53,7 @@ WavefrontKernels SimdWavefrontKernels(const Bvh8& bvh8, const TriangleRows& rows
           .occluded8 = SimdOccluded8,
           .sobol2d = ScrambledSobol2DBatch,
           .sobol1d = ScrambledSobol1DBatch,
+          .camera_paths = StartCameraPaths,
           .bsdf = ShadeBatch,
           .splat = SplatSamples,
           .area_light = SimdAreaLight,

@@ -1,5 +1,6 @@
-// Per-target kernel of simd/wavefront/splat8.h (re-included once per Highway target): the operations of
-// FilmBlock::Splat, a sample's x and y taps in one vector and a footprint row per vector.
+// Per-target kernel of simd/wavefront/splat8.h (re-included once per Highway target): the
+// operations of FilmBlock::Splat, a sample's x and y taps in one vector and a footprint row per
+// vector.
 
 #if defined(PTLAB_SIMD_SPLAT8_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef PTLAB_SIMD_SPLAT8_INL_H_
@@ -81,12 +82,25 @@ HWY_INLINE hn::Vec<D> EvalFilter(D d, const PixelFilter& filter, hn::Vec<D> x) {
   return hn::IfThenElseZero(inside, hn::Add(lo, hn::Mul(frac, hn::Sub(hi, lo))));
 }
 
-/// Adds c to the first `floats` accumulators at `sums` (all of a vector's lanes or fewer: the
-/// rest of memory untouched). Add(sum, c) as FilmBlock::Splat's `sum += w * L`.
+/// Adds c to the first `floats` accumulators at `sums` (a multiple of 4, all of a vector's
+/// lanes or fewer: the rest of memory untouched). Add(sum, c) as FilmBlock::Splat's
+/// `sum += w * L`. Whole loads and stores of 16, 8 or 4 floats, never masked ones: the box
+/// filter's samples of one pixel come in a row, each adding to the accumulators the one before
+/// stored, and a masked store does not forward to the next load (the CPU waits for it to
+/// reach the cache).
 template <class D>
 HWY_INLINE void AccumulateRow(D d, hn::Vec<D> c, size_t floats, float* sums) {
   if (floats == hn::Lanes(d)) {
     hn::StoreU(hn::Add(hn::LoadU(d, sums), c), d, sums);
+    return;
+  }
+  if constexpr (hn::MaxLanes(D()) > 4) {
+    const hn::Half<D> dh;
+    const size_t half = hn::Lanes(dh);
+    const auto lo = hn::LowerHalf(dh, c);
+    if (floats < half) return AccumulateRow(dh, lo, floats, sums);
+    hn::StoreU(hn::Add(hn::LoadU(dh, sums), lo), dh, sums);
+    if (floats > half) AccumulateRow(dh, hn::UpperHalf(dh, c), floats - half, sums + half);
   } else {
     const auto m = hn::FirstN(d, floats);
     hn::BlendedStore(hn::Add(hn::MaskedLoad(m, d, sums), c), m, d, sums);
@@ -167,6 +181,31 @@ HWY_INLINE void SplatGroup(D d, const PixelFilter& filter, const FilmSamples& sa
   hn::Store(ix0, dti, x0), hn::Store(iy0, dti, y0);
   hn::Store(hn::Add(hn::Sub(ix1, ix0), hn::Set(dti, 1)), dti, nx);
   hn::Store(hn::Add(hn::Sub(iy1, iy0), hn::Set(dti, 1)), dti, ny);
+  // All eight samples on one pixel (the box filter's samples come pixel by pixel): their
+  // contributions added in order in a register, one load and one store of the pixel's
+  // accumulators; the same operations as AddFootprint's, sample after sample.
+  const auto one = hn::Set(dti, 1);
+  const auto one_pixel =
+      hn::And(hn::And(hn::Eq(hn::Load(dti, nx), one), hn::Eq(hn::Load(dti, ny), one)),
+              hn::And(hn::Eq(ix0, hn::Set(dti, x0[0])), hn::Eq(iy0, hn::Set(dti, y0[0]))));
+  if (hn::AllTrue(dti, one_pixel)) {
+    // Their only taps: tap 0 on each axis.
+    HWY_ALIGN float wx0[kGroup], wy0[kGroup];
+    hn::Store(EvalFilter(dt, filter, hn::Sub(hn::Add(hn::ConvertTo(dt, ix0), half), sx)), dt, wx0);
+    hn::Store(EvalFilter(dt, filter, hn::Sub(hn::Add(hn::ConvertTo(dt, iy0), half), sy)), dt, wy0);
+    const hn::CappedTag<float, 4> d4;
+    float* sums = block->PixelSums(x0[0], y0[0]);
+    auto acc = hn::LoadU(d4, sums);
+    for (size_t s = 0; s < kGroup; ++s) {
+      if (wy0[s] == 0.0f) continue;
+      const size_t row = i + s;
+      const float rgb1[4] = {samples.r[row], samples.g[row], samples.b[row], 1.0f};
+      const auto w = hn::Mul(hn::Set(d4, wx0[s]), hn::Set(d4, wy0[s]));
+      acc = hn::Add(acc, hn::Mul(w, hn::LoadU(d4, rgb1)));
+    }
+    hn::StoreU(acc, d4, sums);
+    return;
+  }
   // Tap t of every sample: offset float(i0 + t) + 0.5f - s, as FilmBlock::Splat computes it.
   HWY_ALIGN float wx[kTaps][kGroup], wy[kTaps][kGroup];
   for (size_t t = 0; t < kTaps; ++t) {

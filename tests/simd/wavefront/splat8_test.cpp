@@ -1,8 +1,6 @@
 // simd::SplatSamples against its oracle ptlab::SplatSamples: bit-identical film sums on every
 // compiled target, for every filter shape and radius, samples inside, on the edges of and
 // outside the block, in random and in the wavefront's order, with extreme radiance.
-#include "simd/targets.h"  // first: the same target policy as simd/
-#include "simd/dispatched_target.h"
 #include "simd/wavefront/splat8.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +12,8 @@
 #include "engine/core/rng.h"
 #include "engine/render/filter.h"
 #include "engine/wavefront/splat.h"
+#include "simd/dispatched_target.h"
+#include "simd/targets.h"  // first: the same target policy as simd/
 #include "tests/simd/for_each_target.h"
 
 namespace ptlab {
@@ -54,11 +54,18 @@ Columns MakeSamples(const FilmBlock& block, size_t random_count, Pcg32& rng) {
 TEST(Splat8, MatchesOracleBitForBitOnEveryTarget) {
   using T = FilterDesc::Type;
   const std::vector<FilterDesc> filters = {
-      {T::kGaussian, 2.0f, 0.5f}, {T::kGaussian, 3.0f, 1.0f}, {T::kGaussian, 8.0f, 2.0f},
-      {T::kGaussian, 0.5f, 0.25f}, {T::kTent, 1.0f, 0},       {T::kTent, 2.5f, 0},
-      {T::kBox, 0.5f, 0},          {T::kBox, 1.5f, 0},        {T::kBox, 0.0f, 0},
+      {T::kGaussian, 2.0f, 0.5f},
+      {T::kGaussian, 3.0f, 1.0f},
+      {T::kGaussian, 8.0f, 2.0f},
+      {T::kGaussian, 0.5f, 0.25f},
+      {T::kTent, 1.0f, 0},
+      {T::kTent, 2.5f, 0},
+      {T::kBox, 0.5f, 0},
+      {T::kBox, 1.5f, 0},
+      {T::kBox, 0.0f, 0},
       // Mitsuba's staircase (FilterDesc::steps), as Mitsuba scenes splat.
-      {T::kGaussian, 2.0f, 0.5f, 31}, {T::kTent, 1.0f, 0, 31}};
+      {T::kGaussian, 2.0f, 0.5f, 31},
+      {T::kTent, 1.0f, 0, 31}};
   Pcg32 rng(5, 11);
   for (const FilterDesc& desc : filters) {
     const PixelFilter filter(desc);
@@ -122,6 +129,37 @@ TEST(Splat8, MatchesOracleInWaveOrderWithExtremeRadianceOnEveryTarget) {
       for (size_t i = 0; i < block.sums().size(); ++i)
         differ += std::memcmp(&block.sums()[i], &oracle.sums()[i], sizeof(float)) != 0;
       EXPECT_EQ(differ, 0u) << target << " radius " << desc.radius;
+    });
+  }
+}
+
+// The box filter's common case: runs of 8 and 16 samples inside one pixel (each 8-sample group
+// on one pixel: the kernel adds the group in a register), groups that straddle two pixels
+// (runs of 12), with ordinary and extreme radiance.
+TEST(Splat8, BoxRunsOnOnePixelMatchOracleOnEveryTarget) {
+  const PixelFilter filter(FilterDesc{FilterDesc::Type::kBox, 0.5f, 0});
+  const float radiance[] = {0.0f, 1e-41f, 0.25f, 0.5f, 7.0f, 1e30f, 3e38f};
+  for (int run : {8, 16, 12}) {
+    Pcg32 rng(23, uint64_t(run));
+    Columns c;
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 10; ++x)
+        for (int s = 0; s < run; ++s) {
+          c.sx.push_back(float(x) + rng.NextFloat()), c.sy.push_back(float(y) + rng.NextFloat());
+          const bool extreme = rng.NextFloat() < 0.1f;
+          c.r.push_back(extreme ? radiance[rng.NextUint() % 7] : rng.NextFloat());
+          c.g.push_back(rng.NextFloat()),
+              c.b.push_back(extreme ? radiance[rng.NextUint() % 7] : 1.0f);
+        }
+    FilmBlock oracle(0, 0, 10, 6);
+    SplatSamples(filter, c.View(), &oracle);
+    test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
+      FilmBlock block(0, 0, 10, 6);
+      simd::SplatSamples(filter, c.View(), &block);
+      size_t differ = 0;
+      for (size_t i = 0; i < block.sums().size(); ++i)
+        differ += std::memcmp(&block.sums()[i], &oracle.sums()[i], sizeof(float)) != 0;
+      EXPECT_EQ(differ, 0u) << target << " run " << run;
     });
   }
 }
