@@ -51,6 +51,14 @@ Columns MakeSamples(const FilmBlock& block, size_t random_count, Pcg32& rng) {
   return c;
 }
 
+/// How many accumulators of the two blocks differ in their bits.
+size_t DifferentSums(const FilmBlock& a, const FilmBlock& b) {
+  size_t differ = 0;
+  for (size_t i = 0; i < a.sums().size(); ++i)
+    differ += std::memcmp(&a.sums()[i], &b.sums()[i], sizeof(float)) != 0;
+  return differ;
+}
+
 TEST(Splat8, MatchesOracleBitForBitOnEveryTarget) {
   using T = FilterDesc::Type;
   const std::vector<FilterDesc> filters = {
@@ -79,10 +87,7 @@ TEST(Splat8, MatchesOracleBitForBitOnEveryTarget) {
       FilmBlock block(-3, 5, 37, 21);
       simd::SplatSamples(filter, samples.View(), &block);
       ASSERT_EQ(block.sums().size(), oracle.sums().size());
-      size_t differ = 0;
-      for (size_t i = 0; i < block.sums().size(); ++i)
-        differ += std::memcmp(&block.sums()[i], &oracle.sums()[i], sizeof(float)) != 0;
-      EXPECT_EQ(differ, 0u) << target;
+      EXPECT_EQ(DifferentSums(block, oracle), 0u) << target;
     });
     double total = 0;
     for (const float v : oracle.sums()) total += v;
@@ -125,10 +130,7 @@ TEST(Splat8, MatchesOracleInWaveOrderWithExtremeRadianceOnEveryTarget) {
     test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
       FilmBlock block(1, 2, 17, 9);
       simd::SplatSamples(filter, c.View(), &block);
-      size_t differ = 0;
-      for (size_t i = 0; i < block.sums().size(); ++i)
-        differ += std::memcmp(&block.sums()[i], &oracle.sums()[i], sizeof(float)) != 0;
-      EXPECT_EQ(differ, 0u) << target << " radius " << desc.radius;
+      EXPECT_EQ(DifferentSums(block, oracle), 0u) << target << " radius " << desc.radius;
     });
   }
 }
@@ -148,18 +150,15 @@ TEST(Splat8, BoxRunsOnOnePixelMatchOracleOnEveryTarget) {
           c.sx.push_back(float(x) + rng.NextFloat()), c.sy.push_back(float(y) + rng.NextFloat());
           const bool extreme = rng.NextFloat() < 0.1f;
           c.r.push_back(extreme ? radiance[rng.NextUint() % 7] : rng.NextFloat());
-          c.g.push_back(rng.NextFloat()),
-              c.b.push_back(extreme ? radiance[rng.NextUint() % 7] : 1.0f);
+          c.g.push_back(rng.NextFloat());
+          c.b.push_back(extreme ? radiance[rng.NextUint() % 7] : 1.0f);
         }
     FilmBlock oracle(0, 0, 10, 6);
     SplatSamples(filter, c.View(), &oracle);
     test::ForEachTarget(simd::DispatchedTargetName, [&](const char* target) {
       FilmBlock block(0, 0, 10, 6);
       simd::SplatSamples(filter, c.View(), &block);
-      size_t differ = 0;
-      for (size_t i = 0; i < block.sums().size(); ++i)
-        differ += std::memcmp(&block.sums()[i], &oracle.sums()[i], sizeof(float)) != 0;
-      EXPECT_EQ(differ, 0u) << target << " run " << run;
+      EXPECT_EQ(DifferentSums(block, oracle), 0u) << target << " run " << run;
     });
   }
 }
