@@ -225,6 +225,37 @@ void BM_Shade8_ShadeBatch(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kBatch);
 }
 
+// The two calls a render makes, each on its own: sampling only (the wavefront's bsdf slot:
+// range(1) = 0) and evaluation only at a light direction (its area_request slot: range(1) =
+// 1), for material tag range(0): plastic (7) and blend (9).
+template <bool kSimd>
+void BM_Shade8_RenderCall(benchmark::State& state) {
+  const Inputs& in = GetInputs();
+  const MaterialTag tag = static_cast<MaterialTag>(state.range(0));
+  const bool sample = state.range(1) == 0;
+  state.SetLabel(std::string(tag == MaterialTag::kBlend ? "blend" : "plastic") +
+                 (sample ? " sample" : " eval"));
+  ShadeInputs call = in.Shade();
+  if (sample) {
+    call.wl = {};
+  } else {
+    call.u_lobe = call.u_x = call.u_y = nullptr;
+  }
+  Outputs out;
+  const ShadeOutputs o = out.Shade();
+  const uint32_t* index = in.index[state.range(0)].data();
+  for (auto _ : state) {
+    if (kSimd) {
+      simd::ShadeBatch(in.tables, tag, index, kBatch, call, o);
+    } else {
+      ptlab::ShadeBatch(in.tables, tag, index, kBatch, call, o);
+    }
+    benchmark::DoNotOptimize(out.v[10].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+
 // The whole shading stage on hits with mixed materials: partition, per-tag batches, scatter.
 template <bool kSimd>
 void BM_Shade8_ShadeHitsMixed(benchmark::State& state) {
@@ -259,6 +290,12 @@ BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd"
 // matB: plastic (7), thin dielectric (8), blend (9).
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, false)->Name("BM_Shade8_ShadeBatch/scalar")->DenseRange(7, 9);
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeBatch, true)->Name("BM_Shade8_ShadeBatch/simd")->DenseRange(7, 9);
+BENCHMARK_TEMPLATE(BM_Shade8_RenderCall, false)
+    ->Name("BM_Shade8_RenderCall/scalar")
+    ->ArgsProduct({{7, 9}, {0, 1}});
+BENCHMARK_TEMPLATE(BM_Shade8_RenderCall, true)
+    ->Name("BM_Shade8_RenderCall/simd")
+    ->ArgsProduct({{7, 9}, {0, 1}});
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, false)->Name("BM_Shade8_ShadeHitsMixed/scalar");
 BENCHMARK_TEMPLATE(BM_Shade8_ShadeHitsMixed, true)->Name("BM_Shade8_ShadeHitsMixed/simd");
 
