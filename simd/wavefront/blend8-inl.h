@@ -356,7 +356,7 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
 /// children's numbers, the outputs) stay in the core's caches between the passes over them.
 /// Every row's outputs depend on its own inputs only, so chunking changes no result.
 inline constexpr size_t kBlendChunk = 256;
-inline void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, size_t n,
+inline HWY_NOINLINE void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, size_t n,
                        const ShadeInputs& in, const ShadeOutputs& out) {
   const auto at = [](auto* p, size_t i) { return p != nullptr ? p + i : p; };
   for (size_t i = 0; i < n; i += kBlendChunk) {

@@ -46,7 +46,7 @@ HWY_INLINE V8 ConductorEvalPdf(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 o
 }
 
 /// ConductorEval / ConductorPdf / ConductorSample (engine/bsdf/conductor.h).
-inline void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n, bool eval,
+inline HWY_NOINLINE void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n, bool eval,
                            bool sample) {
   ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;

@@ -29,7 +29,7 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
                              const ShadeOutputs& out);
 
 /// MaskEval / MaskPdf / MaskSample for rows of MaskTable.
-inline void ShadeMask(const MaterialTables& m, const uint32_t* material_index, size_t n,
+inline HWY_NOINLINE void ShadeMask(const MaterialTables& m, const uint32_t* material_index, size_t n,
                       const ShadeInputs& in, const ShadeOutputs& out) {
   const MaskTable& t = m.mask;
   const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;

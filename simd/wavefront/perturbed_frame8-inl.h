@@ -328,7 +328,7 @@ inline void ShadeBatchKernelInFrame(const MaterialTables& m, MaterialTag tag,
 
 /// The shade step of a tag some of whose rows are perturbed, in chunks of kChunk rows on stack
 /// copies of wo and wl in the rows' perturbed frames (rows that are not perturbed keep theirs).
-inline void ShadePerturbed(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
+inline HWY_NOINLINE void ShadePerturbed(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
                            size_t n, const ShadeInputs& in, const ShadeOutputs& out) {
   using namespace perturbed8;
   PTLAB_CHECK(in.texture.textures != nullptr);

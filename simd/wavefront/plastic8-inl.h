@@ -101,7 +101,7 @@ namespace HWY_NAMESPACE {
 /// The plastic tag's batch, smooth (`plastic`) and rough (`roughplastic`) rows: grouped by the
 /// coating's distribution (ForEachBlockGrouped), each 8-wide block runs PlasticBlock where it
 /// has smooth rows and PlasticRoughBlock where it has rough ones (both for a mixed block).
-inline void ShadePlasticRows(const MaterialTables& m, const uint32_t* /*material_index*/,
+inline HWY_NOINLINE void ShadePlasticRows(const MaterialTables& m, const uint32_t* /*material_index*/,
                              size_t n, const ShadeInputs& /*in*/, const ShadeOutputs& /*out*/,
                              const ShadeIo& io, bool eval, bool sample) {
   const PlasticTable& t = m.plastic;

@@ -91,7 +91,7 @@ HWY_INLINE void StoreWeightedSample(D d, const ShadeIo& b, size_t i, hn::Mask<D>
 }
 
 /// PrincipledThinEvalPdf / PrincipledThinSample for rows of MaterialTables::principled_thin.
-inline void ShadePrincipledThin(const PrincipledTable& t, const ShadeInputs::Textures& tex,
+inline HWY_NOINLINE void ShadePrincipledThin(const PrincipledTable& t, const ShadeInputs::Textures& tex,
                                 const ShadeIo& io, size_t n, bool eval, bool sample) {
   ForEachBlock(io, n, [&t, &tex, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
@@ -117,7 +117,7 @@ inline void ShadePrincipledThin(const PrincipledTable& t, const ShadeInputs::Tex
 }
 
 /// PrincipledEvalPdf / PrincipledSample for rows of MaterialTables::principled.
-inline void ShadePrincipled(const PrincipledTable& t, const ShadeInputs::Textures& tex,
+inline HWY_NOINLINE void ShadePrincipled(const PrincipledTable& t, const ShadeInputs::Textures& tex,
                             const ShadeIo& io, size_t n, bool eval, bool sample) {
   ForEachBlock(io, n, [&t, &tex, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;

@@ -72,7 +72,7 @@ HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 g1o, 
 /// RoughConductorEval / RoughConductorPdf / RoughConductorSample for a ConductorTable in its
 /// Mitsuba form (ConductorTable::microfacet()).
 /// mask: `tex` for the textured αu, αv (TexturedFloat8, then clamped as MakeMicrofacet does).
-inline void ShadeRoughConductor(const ConductorTable& t, const ShadeInputs::Textures& tex,
+inline HWY_NOINLINE void ShadeRoughConductor(const ConductorTable& t, const ShadeInputs::Textures& tex,
                                 const ShadeIo& io, size_t n, bool eval, bool sample) {
   const bool textured = tex.textures != nullptr && t.textured();
   ForEachBlock(io, n, [&t, &tex, textured, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {

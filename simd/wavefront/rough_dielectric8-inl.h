@@ -99,7 +99,7 @@ HWY_INLINE V8 RoughDielectricEvalPdf(D8 d, const RoughDielectricLanes& c, V8 g1o
 
 /// RoughDielectricEval / RoughDielectricPdf / RoughDielectricSample.
 /// `tex` for the textured αu, αv (TexturedFloat8, then clamped as MakeMicrofacet does).
-inline void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeInputs::Textures& tex,
+inline HWY_NOINLINE void ShadeRoughDielectric(const RoughDielectricTable& t, const ShadeInputs::Textures& tex,
                                  const ShadeIo& io, size_t n, bool eval, bool sample) {
   const bool textured = tex.textures != nullptr && t.textured();
   // Rows grouped by distribution and sampling (a block mixing Beckmann and GGX rows runs both).
