@@ -94,12 +94,15 @@ inline float FresnelConductor(float cos_i, float eta, float k) {
   const float b2 = b * b;
   const float am = a - c, ap = a + c;
   const float num_s = am * am + b2, den_s = ap * ap + b2;
-  const float rs = den_s > 0 ? num_s / den_s : 1.0f;
   const float ac = a * c, bc = b * c;
   const float pm = ac - s2, pp = ac + s2;
   const float num_p = pm * pm + bc * bc, den_p = pp * pp + bc * bc;
-  const float rp = rs * (den_p > 0 ? num_p / den_p : 1.0f);
-  return 0.5f * (rs + rp);
+  // (Rs + Rp)/2 with Rs = num_s/den_s and Rp = Rs·num_p/den_p, as one quotient (a zero
+  // denominator makes its ratio 1). With η, κ ≤ 1e4 neither product leaves float's range.
+  const bool s_ok = den_s > 0, p_ok = den_p > 0;
+  const float ns = s_ok ? num_s : 1.0f, ds = s_ok ? den_s : 1.0f;
+  const float np = p_ok ? num_p : 1.0f, dp = p_ok ? den_p : 1.0f;
+  return (0.5f * ns) * (dp + np) / (ds * dp);
 }
 
 /// FresnelConductor per RGB channel.

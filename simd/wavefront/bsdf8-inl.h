@@ -119,13 +119,15 @@ HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
   const V8 b2 = hn::Mul(b, b);
   const V8 am = hn::Sub(a, c), ap = hn::Add(a, c);
   const V8 num_s = hn::Add(hn::Mul(am, am), b2), den_s = hn::Add(hn::Mul(ap, ap), b2);
-  const V8 rs = hn::IfThenElse(hn::Gt(den_s, zero), hn::Div(num_s, den_s), one);
   const V8 ac = RoundedMul(d, a, c), bc = hn::Mul(b, c);
   const V8 pm = hn::Sub(ac, s2), pp = hn::Add(ac, s2);
   const V8 bc2 = hn::Mul(bc, bc);
   const V8 num_p = hn::Add(hn::Mul(pm, pm), bc2), den_p = hn::Add(hn::Mul(pp, pp), bc2);
-  const V8 rp = hn::Mul(rs, hn::IfThenElse(hn::Gt(den_p, zero), hn::Div(num_p, den_p), one));
-  return hn::Mul(half, hn::Add(rs, rp));
+  // (Rs + Rp)/2 as the oracle's one quotient.
+  const M8 s_ok = hn::Gt(den_s, zero), p_ok = hn::Gt(den_p, zero);
+  const V8 ns = hn::IfThenElse(s_ok, num_s, one), ds = hn::IfThenElse(s_ok, den_s, one);
+  const V8 np = hn::IfThenElse(p_ok, num_p, one), dp = hn::IfThenElse(p_ok, den_p, one);
+  return hn::Div(hn::Mul(hn::Mul(half, ns), hn::Add(dp, np)), hn::Mul(ds, dp));
 }
 
 // ------------------------------------------------------------------------------ Beckmann
