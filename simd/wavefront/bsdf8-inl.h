@@ -113,8 +113,8 @@ HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
   const M8 pos = hn::Gt(t, zero);
   const V8 root =
       hn::Sqrt(hn::Mul(half, hn::IfThenElse(pos, hn::Add(abs_z, t), hn::Sub(abs_z, t))));
-  const V8 other = hn::Div(ek, root);
-  const V8 a = hn::IfThenElse(pos, root, hn::IfThenElseZero(hn::Gt(root, zero), other));
+  const V8 other = hn::IfThenElseZero(hn::Gt(root, zero), hn::Div(ek, root));
+  const V8 a = hn::IfThenElse(pos, root, other);
   const V8 b = hn::IfThenElse(pos, other, root);
   const V8 b2 = hn::Mul(b, b);
   const V8 am = hn::Sub(a, c), ap = hn::Add(a, c);
@@ -124,7 +124,8 @@ HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
   const V8 bc2 = hn::Mul(bc, bc);
   const V8 num_p = hn::Add(hn::Mul(pm, pm), bc2), den_p = hn::Add(hn::Mul(pp, pp), bc2);
   // (Rs + Rp)/2 as the oracle's one quotient.
-  const M8 s_ok = hn::Gt(den_s, zero), p_ok = hn::Gt(den_p, zero);
+  const V8 tiny = hn::Set(d, 1e-30f);
+  const M8 s_ok = hn::Gt(den_s, tiny), p_ok = hn::Gt(den_p, tiny);
   const V8 ns = hn::IfThenElse(s_ok, num_s, one), ds = hn::IfThenElse(s_ok, den_s, one);
   const V8 np = hn::IfThenElse(p_ok, num_p, one), dp = hn::IfThenElse(p_ok, den_p, one);
   return hn::Div(hn::Mul(hn::Mul(half, ns), hn::Add(dp, np)), hn::Mul(ds, dp));

@@ -31,6 +31,29 @@ TEST(Conductor, FresnelAtNormalAndGrazingIncidence) {
   EXPECT_EQ(FresnelConductor(1.0f, 0.0f, 0.0f), 1.0f);
 }
 
+TEST(Conductor, FresnelIsInUnitRangeOnExtremeInputs) {
+  // Tiny, zero and clamped η, κ and cosines, denormals included: no NaN or Inf, never above 1
+  // by more than rounding. (ds·dp of the one-quotient form must not underflow to 0.)
+  const float values[] = {0.0f,  1e-45f, 1e-38f, 1e-30f, 1e-23f, 1e-15f, 1e-8f,
+                          1e-3f, 0.5f,   1.0f,   3.0f,   1e4f,   1e30f};
+  for (float c : values)
+    for (float eta : values)
+      for (float k : values) {
+        if (c > 1.0f) continue;
+        const float f = FresnelConductor(c, eta, k);
+        ASSERT_TRUE(std::isfinite(f)) << c << " " << eta << " " << k;
+        EXPECT_GE(f, 0.0f) << c << " " << eta << " " << k;
+        EXPECT_LE(f, 1.0f + 1e-6f) << c << " " << eta << " " << k;
+      }
+  // η, κ ~ 1e-23 at normal incidence (found by a random search): Re z is float's least
+  // denormal, |z| underflows to 0, and a = 0 made ek / a infinite. The limit there is 1.
+  EXPECT_EQ(FresnelConductor(1.0f, 3.84846e-23f, 2.24301e-23f), 1.0f);
+  EXPECT_EQ(FresnelConductor(1.0f, 6.0064e-23f, 3.97018e-23f), 1.0f);
+  // η = 1, κ tiny, cos θ tiny: a, b ~ 1e-17 and the squares of Rs are denormal (it was 1.032).
+  EXPECT_LE(FresnelConductor(2.07785e-22f, 1.0f, 1.28374e-35f), 1.0f);
+  EXPECT_LE(FresnelConductor(1.92215e-20f, 1.0f, 5.76979e-27f), 1.0f);
+}
+
 TEST(Conductor, FresnelWithZeroKIsTheDielectricFresnel) {
   for (float eta : {1.1f, 1.5f, 2.5f})
     for (float c = 0.0f; c <= 1.0f; c += 0.01f) {

@@ -213,6 +213,16 @@ TEST(Shade8, ConductorFresnelMatchesOracleOnEveryTarget) {
     for (float e : hard_ior)
       for (float kk : hard_ior)
         cos_i.push_back(c), eta.push_back(e), k.push_back(kk), preset.push_back(false);
+  // η, κ ~ 1e-23 at normal incidence: t is float's least denormal and |z| underflows to 0 (a
+  // random search found these; the quotient ek / a was ∞ and the result NaN before).
+  const float tiny_pairs[][2] = {{3.84846e-23f, 2.24301e-23f}, {4.06811e-23f, 2.1011e-23f},
+                                 {6.0064e-23f, 3.97018e-23f}};
+  for (const auto& p : tiny_pairs)
+    cos_i.push_back(1.0f), eta.push_back(p[0]), k.push_back(p[1]), preset.push_back(false);
+  // η = 1 with κ and cos θ tiny: Rs's squares are denormal (its quotient was 1.032).
+  cos_i.push_back(2.07785e-22f), eta.push_back(1.0f), k.push_back(1.28374e-35f);
+  cos_i.push_back(1.92215e-20f), eta.push_back(1.0f), k.push_back(5.76979e-27f);
+  preset.push_back(false), preset.push_back(false);
   const size_t n = cos_i.size();
   std::vector<float> f0(n), f1(n);
   ptlab::ConductorFresnelBatch(cos_i.data(), eta.data(), k.data(), n, f0.data());
