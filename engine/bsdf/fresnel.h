@@ -1,6 +1,7 @@
 // Fresnel reflectance: exact unpolarised dielectric (with TIR), Schlick, conductors.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/vec.h"
@@ -82,28 +83,27 @@ inline float FresnelConductor(float cos_i, float eta, float k) {
   const float t = (eta - k) * (eta + k) - s2;  // Re z = η² − κ² − sin²θ
   const float ek = eta * k;                    // Im z / 2 = ab
   const float abs_z = std::sqrt(t * t + 4.0f * (ek * ek));
-  // a² = (|z| + t)/2, b² = (|z| − t)/2: take the non-cancelling root and divide for the other.
-  float a, b;
-  if (t > 0) {
-    a = std::sqrt(0.5f * (abs_z + t));
-    b = a > 0 ? ek / a : 0.0f;  // a = 0: t is float's least denormal and |z| underflowed
-  } else {
-    b = std::sqrt(0.5f * (abs_z - t));
-    a = b > 0 ? ek / b : 0.0f;
-  }
+  // a² = (|z| + t)/2, b² = (|z| − t)/2: take the non-cancelling root (a for t > 0, else b)
+  // and divide for the other. A root below 1e-20 (only for |z| < 2e-40, so ek < 1e-40) divides
+  // as 1e-20: where it is 0 (t is float's least denormal or 0 and |z| underflowed) the other is
+  // then 0 instead of ek/0.
+  const float root = std::sqrt(0.5f * (abs_z + std::abs(t)));
+  const float other = ek / std::max(root, 1e-20f);
+  const float a = t > 0 ? root : other, b = t > 0 ? other : root;
   const float b2 = b * b;
   const float am = a - c, ap = a + c;
   const float num_s = am * am + b2, den_s = ap * ap + b2;
   const float ac = a * c, bc = b * c;
   const float pm = ac - s2, pp = ac + s2;
   const float num_p = pm * pm + bc * bc, den_p = pp * pp + bc * bc;
-  // (Rs + Rp)/2 with Rs = num_s/den_s and Rp = Rs·num_p/den_p, as one quotient. A denominator
-  // below 1e-30 makes its ratio 1 (its limit for a = b = 0): that needs a, b and cos θ (or
-  // sin θ) below about 1e-15, where the squares are denormal and the quotient was off by up to
-  // 3 % (above 1). So ds·dp >= 1e-30/4 never underflows; with η, κ <= 1e4 nothing overflows.
-  const bool s_ok = den_s > 1e-30f, p_ok = den_p > 1e-30f;
-  const float ns = s_ok ? num_s : 1.0f, ds = s_ok ? den_s : 1.0f;
-  const float np = p_ok ? num_p : 1.0f, dp = p_ok ? den_p : 1.0f;
+  // (Rs + Rp)/2 with Rs = num_s/den_s and Rp = Rs·num_p/den_p, as one quotient, each term
+  // + 1e-30. That changes no term above 1e-23; below, where the squares are denormal (a, b and
+  // cos θ or sin θ under about 1e-15) and the plain quotient was off by up to 3 % (above 1), it
+  // takes each ratio to its limit 1 (num ≤ den, so it never passes 1). One of den_s ≥ cos²θ and
+  // den_p ≥ sin⁴θ is at least 1/4, so ds·dp ≥ 2.5e-31 never underflows; with η, κ ≤ 1e4 nothing
+  // overflows.
+  const float tiny = 1e-30f;
+  const float ns = num_s + tiny, ds = den_s + tiny, np = num_p + tiny, dp = den_p + tiny;
   return (0.5f * ns) * (dp + np) / (ds * dp);
 }
 

@@ -108,12 +108,10 @@ HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
   const V8 t = hn::Sub(RoundedMul(d, hn::Sub(eta, k), hn::Add(eta, k)), s2);
   const V8 ek = hn::Mul(eta, k);
   const V8 abs_z = hn::Sqrt(hn::Add(hn::Mul(t, t), hn::Mul(hn::Set(d, 4.0f), hn::Mul(ek, ek))));
-  // The oracle's branches as one square root and one quotient per lane: root = a for t > 0
-  // (then b = ek / a), root = b otherwise (then a = ek / b, or 0 for b = 0).
+  // The oracle's non-cancelling root (a for t > 0, else b) and the quotient for the other.
   const M8 pos = hn::Gt(t, zero);
-  const V8 root =
-      hn::Sqrt(hn::Mul(half, hn::IfThenElse(pos, hn::Add(abs_z, t), hn::Sub(abs_z, t))));
-  const V8 other = hn::IfThenElseZero(hn::Gt(root, zero), hn::Div(ek, root));
+  const V8 root = hn::Sqrt(hn::Mul(half, hn::Add(abs_z, hn::Abs(t))));
+  const V8 other = hn::Div(ek, hn::Max(root, hn::Set(d, 1e-20f)));
   const V8 a = hn::IfThenElse(pos, root, other);
   const V8 b = hn::IfThenElse(pos, other, root);
   const V8 b2 = hn::Mul(b, b);
@@ -123,11 +121,10 @@ HWY_INLINE V8 FresnelConductor(D8 d, V8 cos_i, V8 eta, V8 k) {
   const V8 pm = hn::Sub(ac, s2), pp = hn::Add(ac, s2);
   const V8 bc2 = hn::Mul(bc, bc);
   const V8 num_p = hn::Add(hn::Mul(pm, pm), bc2), den_p = hn::Add(hn::Mul(pp, pp), bc2);
-  // (Rs + Rp)/2 as the oracle's one quotient.
+  // (Rs + Rp)/2 as the oracle's one quotient of terms + 1e-30.
   const V8 tiny = hn::Set(d, 1e-30f);
-  const M8 s_ok = hn::Gt(den_s, tiny), p_ok = hn::Gt(den_p, tiny);
-  const V8 ns = hn::IfThenElse(s_ok, num_s, one), ds = hn::IfThenElse(s_ok, den_s, one);
-  const V8 np = hn::IfThenElse(p_ok, num_p, one), dp = hn::IfThenElse(p_ok, den_p, one);
+  const V8 ns = hn::Add(num_s, tiny), ds = hn::Add(den_s, tiny);
+  const V8 np = hn::Add(num_p, tiny), dp = hn::Add(den_p, tiny);
   return hn::Div(hn::Mul(hn::Mul(half, ns), hn::Add(dp, np)), hn::Mul(ds, dp));
 }
 
