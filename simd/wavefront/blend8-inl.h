@@ -274,7 +274,11 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
     children_eval(false, w, f0), children_eval(true, w, f1);
     BlendMix(n, weight.data(), f0, f1, fr, fg, fb, pdf);
   };
-  if (eval) mix(in.wl, out.f.r, out.f.g, out.f.b, out.pdf_l);
+  // Uniform children that evaluate and sample: each child's evaluation at wl runs in the same
+  // kernel call as its sampling (four child passes instead of six; a lane's numbers are its own
+  // either way, so the bits are those of separate calls).
+  const bool fused = uniform && eval && sample;
+  if (eval && !fused) mix(in.wl, out.f.r, out.f.g, out.f.b, out.pdf_l);
   if (!sample) return;
   // The pick, then each row's child sampled with its own lobe number.
   std::vector<MaterialRef>& picked = st.picked;
@@ -315,6 +319,13 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
   ShadeOutputs child_out = out;
   child_out.f = {}, child_out.pdf_l = nullptr;
   child_out.delta = delta.data();
+  // With `fused`, a sampling child also writes its f and pdf at wl into its columns.
+  const auto with_eval = [&](ShadeOutputs o, float* const f[4]) {
+    if (fused) o.f = {f[0], f[1], f[2]}, o.pdf_l = f[3];
+    return o;
+  };
+  ShadeInputs fused_in = child_in;
+  if (fused) fused_in.wl = in.wl;
   if (!uniform) {
     ShadeHitsWith(
         [](const MaterialTables& mt, MaterialTag tg, const uint32_t* index, size_t count,
@@ -323,11 +334,14 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
         },
         m, picked.data(), n, child_in, child_out, &scratch);
   } else if (seconds == 0 || seconds == n) {
-    ShadeBatchKernel(m, seconds == 0 ? kind0 : kind1,
-                     (seconds == 0 ? st.index0 : st.index1).data(), n, child_in, child_out);
+    const bool second_child = seconds == n;
+    ShadeBatchKernel(m, second_child ? kind1 : kind0,
+                     (second_child ? st.index1 : st.index0).data(), n, fused_in,
+                     with_eval(child_out, second_child ? f1 : f0));
+    if (fused) children_eval(!second_child, in.wl, second_child ? f0 : f1);
   } else {
     // The first child into the outputs, the second into `other`, then its picked rows moved.
-    ShadeBatchKernel(m, kind0, st.index0.data(), n, child_in, child_out);
+    ShadeBatchKernel(m, kind0, st.index0.data(), n, fused_in, with_eval(child_out, f0));
     std::vector<float>& other = st.other;
     other.resize(9 * n);
     float* col[9];
@@ -336,11 +350,12 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
     second_out.wi = {col[0], col[1], col[2]};
     second_out.weight = {col[3], col[4], col[5]};
     second_out.pdf = col[6], second_out.eta = col[7], second_out.delta = col[8];
-    ShadeBatchKernel(m, kind1, st.index1.data(), n, child_in, second_out);
+    ShadeBatchKernel(m, kind1, st.index1.data(), n, fused_in, with_eval(second_out, f1));
     float* const dst[9] = {out.wi.x,     out.wi.y,     out.wi.z, out.weight.r, out.weight.g,
                            out.weight.b, out.pdf,      out.eta,  delta.data()};
     for (int k = 0; k < 9; ++k) BlendTakeRows(n, is_second.data(), col[k], dst[k]);
   }
+  if (fused) BlendMix(n, weight.data(), f0, f1, out.f.r, out.f.g, out.f.b, out.pdf_l);
   // Non-delta samples: the mixture's f and pdf at the sampled direction.
   std::vector<float>& mixed = st.mixed;
   mixed.resize(4 * n);
