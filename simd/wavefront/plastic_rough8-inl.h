@@ -279,7 +279,7 @@ HWY_INLINE void PlasticRoughBlockPair(const PlasticTable& t, const ShadeIo& b, s
 
 /// The plastic batch of a table whose rows are all rough with one distribution (`uniform`):
 /// pairs of blocks (PlasticRoughBlockPair), then ForEachBlock over the rest.
-inline void ShadePlasticRoughUniform(const PlasticTable& t, const ShadeIo& io, size_t n,
+inline HWY_NOINLINE void ShadePlasticRoughUniform(const PlasticTable& t, const ShadeIo& io, size_t n,
                                      bool eval, bool sample, const CoatingDistribution& uniform) {
   const D8 d;
   const size_t pair = 2 * hn::Lanes(d);
