@@ -41,12 +41,10 @@ inline void BlendChildrenEval(const MaterialTables& m, const MaterialRef* refs, 
   ShadeOutputs out;
   out.f = {fr, fg, fb};
   out.pdf_l = pdf;
-  ShadeHitsWith(
-      [](const MaterialTables& mt, MaterialTag t, const uint32_t* index, size_t count,
-         const ShadeInputs& bin, const ShadeOutputs& bout) {
-        ShadeBatchKernel(mt, t, index, count, bin, bout);
-      },
-      m, refs, n, in, out, scratch);
+  ShadeHitsWith([](const MaterialTables& mt, MaterialTag t, const uint32_t* index, size_t count,
+                   const ShadeInputs& bin,
+                   const ShadeOutputs& bout) { ShadeBatchKernel(mt, t, index, count, bin, bout); },
+                m, refs, n, in, out, scratch);
 }
 
 /// mask: TexturedUnitFloat of rows material_index[0, n) into out[0, n): the constant column,
@@ -54,8 +52,8 @@ inline void BlendChildrenEval(const MaterialTables& m, const MaterialRef* refs, 
 /// blend's weight, a mask's opacity.
 inline void TexturedUnitFloatRows8(const AlignedVector<float>& constant,
                                    const AlignedVector<uint32_t>& texture,
-                                   const ShadeInputs::Textures& tex,
-                                   const uint32_t* material_index, size_t n, float* out) {
+                                   const ShadeInputs::Textures& tex, const uint32_t* material_index,
+                                   size_t n, float* out) {
   const bool textured = tex.textures != nullptr && !texture.empty();
   ShadeIo io;
   io.index = material_index;
@@ -108,8 +106,7 @@ inline void BlendMix(size_t n, const float* weight, float* const f0[4], float* c
 /// times the pick's probability, a non-delta sample the mixture's pdf `mixed[3]` and weight
 /// mixed[0..2] |wi.z| / pdf; a row that fails gets no sample. Rows without a sample are kept.
 inline void BlendFinishSamples(size_t n, const float* weight, const float* is_second,
-                               const float* const mixed[4], float* delta,
-                               const ShadeOutputs& out) {
+                               const float* const mixed[4], float* delta, const ShadeOutputs& out) {
   ForEachRowVector(
       n,
       [&](size_t i) HWY_ATTR {
@@ -126,14 +123,14 @@ inline void BlendFinishSamples(size_t n, const float* weight, const float* is_se
         const V8 s = hn::Div(hn::Abs(Load(d, out.wi.z, i)), pdf);
         const V8 wr = hn::Mul(Load(d, mixed[0], i), s), wg = hn::Mul(Load(d, mixed[1], i), s),
                  wb = hn::Mul(Load(d, mixed[2], i), s);
-        const M8 ok_mixed = hn::And(hn::And(hn::Gt(pdf, zero), hn::IsFinite(pdf)),
-                                    AllFinite3(d, wr, wg, wb));
-        const M8 ok = hn::Or(hn::And(is_delta, hn::Gt(delta_pdf, zero)), hn::AndNot(is_delta, ok_mixed));
+        const M8 ok_mixed =
+            hn::And(hn::And(hn::Gt(pdf, zero), hn::IsFinite(pdf)), AllFinite3(d, wr, wg, wb));
+        const M8 ok =
+            hn::Or(hn::And(is_delta, hn::Gt(delta_pdf, zero)), hn::AndNot(is_delta, ok_mixed));
         const M8 keep = hn::And(sampled, ok), drop = hn::AndNot(ok, sampled);
         const M8 mixture = hn::AndNot(is_delta, keep);
-        const auto put = [&](M8 m, V8 v, float* col) HWY_ATTR {
-          Store(d, hn::IfThenElse(m, v, Load(d, col, i)), col, i);
-        };
+        const auto put = [&](M8 m, V8 v, float* col)
+                             HWY_ATTR { Store(d, hn::IfThenElse(m, v, Load(d, col, i)), col, i); };
         put(sampled, hn::IfThenElseZero(keep, hn::IfThenElse(is_delta, delta_pdf, pdf)), out.pdf);
         put(mixture, wr, out.weight.r), put(mixture, wg, out.weight.g);
         put(mixture, wb, out.weight.b);
@@ -153,7 +150,8 @@ inline void BlendFinishSamples(size_t n, const float* weight, const float* is_se
           const float wr = mixed[0][i] * s, wg = mixed[1][i] * s, wb = mixed[2][i] * s;
           ok = pdf > 0 && std::isfinite(pdf) && std::isfinite(wr) && std::isfinite(wg) &&
                std::isfinite(wb);
-          if (ok) out.pdf[i] = pdf, out.weight.r[i] = wr, out.weight.g[i] = wg, out.weight.b[i] = wb;
+          if (ok)
+            out.pdf[i] = pdf, out.weight.r[i] = wr, out.weight.g[i] = wg, out.weight.b[i] = wb;
         }
         if (!ok) {
           out.wi.x[i] = out.wi.y[i] = out.wi.z[i] = 0.0f;
@@ -226,10 +224,10 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
         const hn::RebindToUnsigned<D8> du;
         const hn::RebindToSigned<D8> di;
         const auto row = hn::LoadU(di, reinterpret_cast<const int32_t*>(material_index + i));
-        const auto a = hn::BitCast(du, hn::GatherIndex(di, reinterpret_cast<const int32_t*>(
-                                                               t.first.data()), row));
-        const auto b = hn::BitCast(du, hn::GatherIndex(di, reinterpret_cast<const int32_t*>(
-                                                               t.second.data()), row));
+        const auto a = hn::BitCast(
+            du, hn::GatherIndex(di, reinterpret_cast<const int32_t*>(t.first.data()), row));
+        const auto b = hn::BitCast(
+            du, hn::GatherIndex(di, reinterpret_cast<const int32_t*>(t.second.data()), row));
         hn::StoreU(a, du, reinterpret_cast<uint32_t*>(first.data() + i));
         hn::StoreU(b, du, reinterpret_cast<uint32_t*>(second.data() + i));
         const auto low = hn::Set(du, 0x0fffffffu);
@@ -258,8 +256,8 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
   // f and pdf of one child of every row at (wo, w).
   const auto children_eval = [&](bool second_child, DirectionArrays w, float* const f[4]) {
     if (!uniform) {
-      return BlendChildrenEval(m, (second_child ? second : first).data(), n, in.wo, w, f[0],
-                               f[1], f[2], f[3], &scratch, in.texture);
+      return BlendChildrenEval(m, (second_child ? second : first).data(), n, in.wo, w, f[0], f[1],
+                               f[2], f[3], &scratch, in.texture);
     }
     ShadeInputs child_in;
     child_in.wo = in.wo, child_in.wl = w;
@@ -267,8 +265,8 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
     ShadeOutputs child_out;
     child_out.f = {f[0], f[1], f[2]};
     child_out.pdf_l = f[3];
-    ShadeBatchKernel(m, second_child ? kind1 : kind0,
-                     (second_child ? st.index1 : st.index0).data(), n, child_in, child_out);
+    ShadeBatchKernel(m, second_child ? kind1 : kind0, (second_child ? st.index1 : st.index0).data(),
+                     n, child_in, child_out);
   };
   const auto mix = [&](DirectionArrays w, float* fr, float* fg, float* fb, float* pdf) {
     children_eval(false, w, f0), children_eval(true, w, f1);
@@ -298,9 +296,9 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
         const V8 v_second = hn::Div(u, w);
         const V8 v_first = hn::Div(hn::Sub(u, w), hn::Sub(one, w));
         const V8 c_second = hn::IfThenElse(hn::Lt(v_second, below_one), v_second, below_one);
-        const V8 c_first = hn::IfThenElse(hn::Lt(v_first, below_one),
-                                          hn::IfThenElseZero(hn::Gt(v_first, zero), v_first),
-                                          below_one);
+        const V8 c_first =
+            hn::IfThenElse(hn::Lt(v_first, below_one),
+                           hn::IfThenElseZero(hn::Gt(v_first, zero), v_first), below_one);
         Store(d, hn::IfThenElse(s, c_second, c_first), u_child.data(), i);
         Store(d, hn::IfThenElseZero(s, one), is_second.data(), i);
         seconds += hn::CountTrue(d, s);
@@ -329,15 +327,13 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
   if (!uniform) {
     ShadeHitsWith(
         [](const MaterialTables& mt, MaterialTag tg, const uint32_t* index, size_t count,
-           const ShadeInputs& bin, const ShadeOutputs& bout) {
-          ShadeBatchKernel(mt, tg, index, count, bin, bout);
-        },
+           const ShadeInputs& bin,
+           const ShadeOutputs& bout) { ShadeBatchKernel(mt, tg, index, count, bin, bout); },
         m, picked.data(), n, child_in, child_out, &scratch);
   } else if (seconds == 0 || seconds == n) {
     const bool second_child = seconds == n;
-    ShadeBatchKernel(m, second_child ? kind1 : kind0,
-                     (second_child ? st.index1 : st.index0).data(), n, fused_in,
-                     with_eval(child_out, second_child ? f1 : f0));
+    ShadeBatchKernel(m, second_child ? kind1 : kind0, (second_child ? st.index1 : st.index0).data(),
+                     n, fused_in, with_eval(child_out, second_child ? f1 : f0));
     if (fused) children_eval(!second_child, in.wl, second_child ? f0 : f1);
   } else {
     // The first child into the outputs, the second into `other`, then its picked rows moved.
@@ -351,8 +347,8 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
     second_out.weight = {col[3], col[4], col[5]};
     second_out.pdf = col[6], second_out.eta = col[7], second_out.delta = col[8];
     ShadeBatchKernel(m, kind1, st.index1.data(), n, fused_in, with_eval(second_out, f1));
-    float* const dst[9] = {out.wi.x,     out.wi.y,     out.wi.z, out.weight.r, out.weight.g,
-                           out.weight.b, out.pdf,      out.eta,  delta.data()};
+    float* const dst[9] = {out.wi.x,     out.wi.y, out.wi.z, out.weight.r, out.weight.g,
+                           out.weight.b, out.pdf,  out.eta,  delta.data()};
     for (int k = 0; k < 9; ++k) BlendTakeRows(n, is_second.data(), col[k], dst[k]);
   }
   if (fused) BlendMix(n, weight.data(), f0, f1, out.f.r, out.f.g, out.f.b, out.pdf_l);
@@ -361,8 +357,7 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
   mixed.resize(4 * n);
   float* const mixed_cols[4] = {mixed.data(), mixed.data() + n, mixed.data() + 2 * n,
                                 mixed.data() + 3 * n};
-  mix({out.wi.x, out.wi.y, out.wi.z}, mixed_cols[0], mixed_cols[1], mixed_cols[2],
-      mixed_cols[3]);
+  mix({out.wi.x, out.wi.y, out.wi.z}, mixed_cols[0], mixed_cols[1], mixed_cols[2], mixed_cols[3]);
   BlendFinishSamples(n, weight.data(), is_second.data(), mixed_cols, delta.data(), out);
   if (out.delta != nullptr) std::copy(delta.begin(), delta.end(), out.delta);
 }
@@ -371,8 +366,8 @@ inline void ShadeBlendRows(const MaterialTables& m, const uint32_t* material_ind
 /// children's numbers, the outputs) stay in the core's caches between the passes over them.
 /// Every row's outputs depend on its own inputs only, so chunking changes no result.
 inline constexpr size_t kBlendChunk = 256;
-inline HWY_NOINLINE void ShadeBlend(const MaterialTables& m, const uint32_t* material_index, size_t n,
-                       const ShadeInputs& in, const ShadeOutputs& out) {
+inline HWY_NOINLINE void ShadeBlend(const MaterialTables& m, const uint32_t* material_index,
+                                    size_t n, const ShadeInputs& in, const ShadeOutputs& out) {
   const auto at = [](auto* p, size_t i) { return p != nullptr ? p + i : p; };
   for (size_t i = 0; i < n; i += kBlendChunk) {
     ShadeInputs ci = in;

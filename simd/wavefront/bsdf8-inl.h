@@ -18,8 +18,8 @@
 #include "engine/bsdf/beckmann.h"
 #include "engine/bsdf/bsdf.h"  // IsDeltaMaterial, MixesDeltaLobes
 #include "engine/bsdf/fresnel.h"
-#include "engine/wavefront/bsdf.h"
 #include "engine/scene/material_tables.h"
+#include "engine/wavefront/bsdf.h"
 #include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 #include "simd/texture/texture8-inl.h"
@@ -30,7 +30,6 @@ namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
-
 
 // ------------------------------------------------------------------------------ clamps
 
@@ -355,8 +354,22 @@ HWY_INLINE V8 Gather(D8 d, const AlignedVector<float>& column, const uint32_t* i
 // Column order of the shade step's BlockIo (see ShadeInputs / ShadeOutputs).
 enum ShadeIn { kWoX, kWoY, kWoZ, kWlX, kWlY, kWlZ, kULobe, kUX, kUY, kShadeInCount };
 // kDelta (matB): ShadeOutputs::delta, written only by the kernels of tags that MixesDeltaLobes.
-enum ShadeOut { kFR, kFG, kFB, kPdfL, kWiX, kWiY, kWiZ, kWR, kWG, kWB, kPdf, kEta, kDelta,
-                kShadeOutCount };
+enum ShadeOut {
+  kFR,
+  kFG,
+  kFB,
+  kPdfL,
+  kWiX,
+  kWiY,
+  kWiZ,
+  kWR,
+  kWG,
+  kWB,
+  kPdf,
+  kEta,
+  kDelta,
+  kShadeOutCount
+};
 using ShadeIo = BlockIo<kShadeInCount, kShadeOutCount>;
 
 /// Column c of the shade step's inputs, rows [i, i + Lanes(d)).
@@ -397,8 +410,7 @@ HWY_INLINE V8 CosinePdf(D8 d, V8 oz, V8 iz) {
 /// oracle's TexturedFloat does).
 HWY_INLINE void TexturedColor8(D8 d, const ShadeInputs::Textures& tex,
                                const AlignedVector<uint32_t>& texture, const ShadeIo& b, size_t i,
-                               V8* r, V8* g, V8* b_out, bool raw = false,
-                               M8* textured = nullptr) {
+                               V8* r, V8* g, V8* b_out, bool raw = false, M8* textured = nullptr) {
   const hn::RebindToSigned<D8> di;
   const auto id = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(texture.data()),
                                   hn::LoadU(di, reinterpret_cast<const int32_t*>(b.index + i)));
@@ -410,15 +422,14 @@ HWY_INLINE void TexturedColor8(D8 d, const ShadeInputs::Textures& tex,
   constexpr int32_t kP = int32_t(offsetof(SurfaceInteraction, p) / 4),
                     kUv = int32_t(offsetof(SurfaceInteraction, uv) / 4),
                     kPrim = int32_t(offsetof(SurfaceInteraction, prim) / 4);
-  const auto base = hn::Mul(hn::LoadU(di, reinterpret_cast<const int32_t*>(b.entry + i)),
-                            hn::Set(di, kWords));
+  const auto base =
+      hn::Mul(hn::LoadU(di, reinterpret_cast<const int32_t*>(b.entry + i)), hn::Set(di, kWords));
   const float* its = reinterpret_cast<const float*>(tex.its);
   const auto at = [&](int32_t word) { return hn::Add(base, hn::Set(di, word)); };
   const V8 u = hn::GatherIndex(d, its, at(kUv)), v = hn::GatherIndex(d, its, at(kUv + 1));
   const V8 px = hn::GatherIndex(d, its, at(kP)), py = hn::GatherIndex(d, its, at(kP + 1)),
            pz = hn::GatherIndex(d, its, at(kP + 2));
-  const auto prim =
-      hn::GatherIndex(di, reinterpret_cast<const int32_t*>(tex.its), at(kPrim));
+  const auto prim = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(tex.its), at(kPrim));
   V8 tr, tg, tb;
   EvalTexture8(*tex.textures, id, u, v, px, py, pz, prim, has, &tr, &tg, &tb);
   const V8 zero = hn::Zero(d);
@@ -442,8 +453,9 @@ HWY_INLINE void TexturedFloat8(D8 d, const ShadeInputs::Textures& tex,
   V8 r = hn::Zero(d), g = r, bl = r;
   M8 has;
   TexturedColor8(d, tex, texture, b, i, &r, &g, &bl, /*raw=*/true, &has);
-  const V8 lum = hn::Add(hn::Add(hn::Mul(hn::Set(d, 0.212671f), r), hn::Mul(hn::Set(d, 0.715160f), g)),
-                         hn::Mul(hn::Set(d, 0.072169f), bl));
+  const V8 lum =
+      hn::Add(hn::Add(hn::Mul(hn::Set(d, 0.212671f), r), hn::Mul(hn::Set(d, 0.715160f), g)),
+              hn::Mul(hn::Set(d, 0.072169f), bl));
   *value = hn::IfThenElse(has, hn::Max(lum, hn::Zero(d)), *value);
 }
 
@@ -460,10 +472,10 @@ HWY_AFTER_NAMESPACE();
 #include "simd/wavefront/rough_plastic8-inl.h"
 // matB: the models in their own files (they use the helpers above).
 #include "simd/wavefront/blend8-inl.h"
+#include "simd/wavefront/perturbed_frame8-inl.h"  // normal
 #include "simd/wavefront/plastic8-inl.h"
 #include "simd/wavefront/thin_dielectric8-inl.h"
 #include "simd/wavefront/two_sided8-inl.h"
-#include "simd/wavefront/perturbed_frame8-inl.h"  // normal
 // matA: the Mitsuba microfacet models, each in its own -inl file.
 #include "simd/wavefront/rough_conductor8-inl.h"
 #include "simd/wavefront/rough_dielectric8-inl.h"
@@ -541,14 +553,13 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
 }
 
 inline void ShadeBatchKernelInFrame(const MaterialTables& m, MaterialTag tag,
-                                    const uint32_t* material_index, size_t n,
-                                    const ShadeInputs& in, const ShadeOutputs& out) {
+                                    const uint32_t* material_index, size_t n, const ShadeInputs& in,
+                                    const ShadeOutputs& out) {
   if (in.u_lobe != nullptr && out.delta != nullptr && !MixesDeltaLobes(tag))
     std::fill(out.delta, out.delta + n, IsDeltaMaterial(tag) ? 1.0f : 0.0f);
   size_t flag_count = 0;
   const uint8_t* flags = m.two_sided.Column(tag, &flag_count);
-  if (flags != nullptr)
-    return ShadeTwoSided(m, tag, flags, flag_count, material_index, n, in, out);
+  if (flags != nullptr) return ShadeTwoSided(m, tag, flags, flag_count, material_index, n, in, out);
   ShadeBatchKernelOneSided(m, tag, material_index, n, in, out);
 }
 

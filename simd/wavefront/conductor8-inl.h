@@ -46,8 +46,8 @@ HWY_INLINE V8 ConductorEvalPdf(D8 d, const ConductorLanes& c, V8 ox, V8 oy, V8 o
 }
 
 /// ConductorEval / ConductorPdf / ConductorSample (engine/bsdf/conductor.h).
-inline HWY_NOINLINE void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n, bool eval,
-                           bool sample) {
+inline HWY_NOINLINE void ShadeConductor(const ConductorTable& t, const ShadeIo& io, size_t n,
+                                        bool eval, bool sample) {
   ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
@@ -76,8 +76,7 @@ inline HWY_NOINLINE void ShadeConductor(const ConductorTable& t, const ShadeIo& 
     // weight = F G1(wi) (G1(wo)/cos θo) (wo·H) / H.z, H = wo + wi (ConductorSample).
     const V8 sx = hn::Add(ox, ix), sy = hn::Add(oy, iy), sz = hn::Add(oz, iz);
     const V8 n2 = hn::Add(hn::Add(hn::Mul(sx, sx), hn::Mul(sy, sy)), hn::Mul(sz, sz));
-    const V8 g = hn::Mul(BeckmannG1(d, alpha, ix, iy, iz),
-                         BeckmannG1OverCos(d, alpha, ox, oy, oz));
+    const V8 g = hn::Mul(BeckmannG1(d, alpha, ix, iy, iz), BeckmannG1OverCos(d, alpha, ox, oy, oz));
     const V8 wi_h = hn::Mul(hn::Set(d, 0.5f), hn::Sqrt(n2));
     const V8 wo_h = RoundedDot(d, ox, oy, oz, sx, sy, sz);
     const V8 scale = hn::Div(hn::Mul(g, wo_h), sz);

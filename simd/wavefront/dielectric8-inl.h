@@ -15,8 +15,8 @@ namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
 /// DielectricSample (engine/bsdf/dielectric.h); Eval and Pdf are 0.
-inline HWY_NOINLINE void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t n, bool eval,
-                            bool sample) {
+inline HWY_NOINLINE void ShadeDielectric(const DielectricTable& t, const ShadeIo& io, size_t n,
+                                         bool eval, bool sample) {
   const bool has_flags = !t.flags.empty();
   ForEachBlock(io, n, [&t, eval, sample, has_flags](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;

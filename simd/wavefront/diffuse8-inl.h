@@ -15,7 +15,7 @@ namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
 inline HWY_NOINLINE void ShadeDiffuse(const DiffuseTable& t, const ShadeInputs::Textures& tex,
-                         const ShadeIo& io, size_t n, bool eval, bool sample) {
+                                      const ShadeIo& io, size_t n, bool eval, bool sample) {
   const bool textured = tex.textures != nullptr && t.textured();
   ForEachBlock(io, n, [&t, &tex, textured, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;

@@ -29,8 +29,8 @@ inline void ShadeBatchKernel(const MaterialTables& m, MaterialTag tag,
                              const ShadeOutputs& out);
 
 /// MaskEval / MaskPdf / MaskSample for rows of MaskTable.
-inline HWY_NOINLINE void ShadeMask(const MaterialTables& m, const uint32_t* material_index, size_t n,
-                      const ShadeInputs& in, const ShadeOutputs& out) {
+inline HWY_NOINLINE void ShadeMask(const MaterialTables& m, const uint32_t* material_index,
+                                   size_t n, const ShadeInputs& in, const ShadeOutputs& out) {
   const MaskTable& t = m.mask;
   const bool eval = in.wl.x != nullptr, sample = in.u_lobe != nullptr;
   // Working storage reused across calls, one set per nesting level (as ShadeBlend's).
@@ -57,9 +57,8 @@ inline HWY_NOINLINE void ShadeMask(const MaterialTables& m, const uint32_t* mate
   const auto run = [&](const MaterialRef* refs, const ShadeInputs& cin, const ShadeOutputs& cout) {
     ShadeHitsWith(
         [](const MaterialTables& mt, MaterialTag tg, const uint32_t* index, size_t count,
-           const ShadeInputs& bin, const ShadeOutputs& bout) {
-          ShadeBatchKernel(mt, tg, index, count, bin, bout);
-        },
+           const ShadeInputs& bin,
+           const ShadeOutputs& bout) { ShadeBatchKernel(mt, tg, index, count, bin, bout); },
         m, refs, n, cin, cout, &st.scratch);
   };
   if (eval) {
@@ -80,7 +79,7 @@ inline HWY_NOINLINE void ShadeMask(const MaterialTables& m, const uint32_t* mate
   for (size_t i = 0; i < n; ++i) {
     st.u_nested[i] = 0.0f;
     st.picked[i] = MaskPicksNested(opacity[i], in.u_lobe[i], &st.u_nested[i]) ? st.nested[i]
-                                                                                : MaterialRef::None();
+                                                                              : MaterialRef::None();
   }
   ShadeInputs cin;
   cin.wo = in.wo, cin.u_lobe = st.u_nested.data(), cin.u_x = in.u_x, cin.u_y = in.u_y;

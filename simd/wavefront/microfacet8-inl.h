@@ -227,10 +227,10 @@ HWY_INLINE BeckmannSlopeSearch BeckmannSlopeStart(D8 d, V8 cos_t, V8 u_x, V8 u_y
 HWY_INLINE void BeckmannSlopeStep(D8 d, BeckmannSlopeSearch* s) {
   const V8 one = hn::Set(d, 1.0f);
   const V8 slope = ErfInv(d, s->x);
-  const V8 value = hn::Sub(
-      hn::Add(hn::Add(one, s->x),
-              hn::Mul(s->tan_isp, hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(slope, slope)))))),
-      s->target);
+  const V8 value =
+      hn::Sub(hn::Add(hn::Add(one, s->x),
+                      hn::Mul(s->tan_isp, hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(slope, slope)))))),
+              s->target);
   const V8 derivative = hn::Sub(one, hn::Mul(slope, s->tan_t));
   s->x = hn::Sub(s->x, hn::Div(value, derivative));
 }
@@ -329,9 +329,9 @@ HWY_INLINE M8 SampleNormal(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8
       const V8 phi = hn::Mul(two_pi, ClampU(d, u_y));
       const V8 p1 = hn::Mul(r, hn::Cos(d, phi));
       const V8 s = hn::Mul(hn::Set(d, 0.5f), hn::Add(one, vz));
-      const V8 p2 = hn::Add(
-          hn::Mul(hn::Sub(one, s), hn::Sqrt(hn::Max(zero, hn::Sub(one, hn::Mul(p1, p1))))),
-          hn::Mul(s, hn::Mul(r, hn::Sin(d, phi))));
+      const V8 p2 =
+          hn::Add(hn::Mul(hn::Sub(one, s), hn::Sqrt(hn::Max(zero, hn::Sub(one, hn::Mul(p1, p1))))),
+                  hn::Mul(s, hn::Mul(r, hn::Sin(d, phi))));
       const V8 pz =
           hn::Sqrt(hn::Max(zero, hn::Sub(hn::Sub(one, hn::Mul(p1, p1)), hn::Mul(p2, p2))));
       // nh = t1 p1 + t2 p2 + v pz, summed as the oracle's Vec3f operators do.
@@ -409,13 +409,12 @@ HWY_INLINE M8 SamplePdfPositive(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 mx
   const V8 zero = hn::Zero(d), tiny = hn::Set(d, 1e-10f);
   const V8 ex = hn::Mul(mx, f.av), ey = hn::Mul(my, f.au);
   const V8 scale = hn::Mul(hn::Mul(f.au, f.av), mz);
-  const M8 d_sure =
-      hn::And(hn::Lt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)),
-                     hn::Mul(hn::Set(d, 32.0f), hn::Mul(scale, scale))),
-              hn::Gt(mz, hn::Set(d, 1e-3f)));
+  const M8 d_sure = hn::And(hn::Lt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)),
+                                   hn::Mul(hn::Set(d, 32.0f), hn::Mul(scale, scale))),
+                            hn::Gt(mz, hn::Set(d, 1e-3f)));
   const V8 wm = hn::Add(hn::Add(hn::Mul(wx, mx), hn::Mul(wy, my)), hn::Mul(wz, mz));
-  const M8 vis_sure = hn::And(hn::Gt(wm, tiny),
-                              hn::And(hn::Gt(g1_w, tiny), hn::Lt(g1_w, hn::Set(d, 1e18f))));
+  const M8 vis_sure =
+      hn::And(hn::Gt(wm, tiny), hn::And(hn::Gt(g1_w, tiny), hn::Lt(g1_w, hn::Set(d, 1e18f))));
   const M8 sure = hn::And(d_sure, hn::Or(hn::Not(f.visible), vis_sure));
   if (hn::AllFalse(d, hn::AndNot(sure, hn::And(valid, needed)))) return valid;
   const V8 p = Pdf(d, f, wx, wy, wz, mx, my, mz, &g1_w);

@@ -15,7 +15,8 @@ namespace ptlab::simd {
 namespace HWY_NAMESPACE {
 
 /// MirrorSample (engine/bsdf/mirror.h); Eval and Pdf are 0.
-inline HWY_NOINLINE void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool eval, bool sample) {
+inline HWY_NOINLINE void ShadeMirror(const MirrorTable& t, const ShadeIo& io, size_t n, bool eval,
+                                     bool sample) {
   ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);

@@ -115,8 +115,8 @@ HWY_INLINE V ShadowTerminator(V nz, V wz) {
   const D d;
   const V one = hn::Set(d, 1.0f);
   const V alpha2 = hn::Min(Mul(hn::Set(d, 0.125f), TanTheta2(nz)), one);
-  const V g = hn::Div(hn::Set(d, 2.0f),
-                      hn::Add(one, hn::Sqrt(hn::Add(one, Mul(alpha2, TanTheta2(wz))))));
+  const V g =
+      hn::Div(hn::Set(d, 2.0f), hn::Add(one, hn::Sqrt(hn::Add(one, Mul(alpha2, TanTheta2(wz))))));
   const V shadowed = hn::IfThenZeroElse(hn::Not(Finite(g)), g);
   return hn::IfThenElse(hn::Gt(alpha2, hn::Zero(d)), shadowed, one);
 }
@@ -150,7 +150,8 @@ HWY_INLINE void TextureGradient8(const TextureTable& t, VI id, V u, V v, M activ
   const VI wi = GatherI(t.width, row), hi = GatherI(t.height, row);
   const V w = hn::ConvertTo(d, wi), h = hn::ConvertTo(d, hi);
   const V half = hn::Set(d, 0.5f), one = hn::Set(d, 1.0f);
-  const V x = ClampTexel(d, hn::Sub(Mul(su, w), half)), y = ClampTexel(d, hn::Sub(Mul(sv, h), half));
+  const V x = ClampTexel(d, hn::Sub(Mul(su, w), half)),
+          y = ClampTexel(d, hn::Sub(Mul(sv, h), half));
   const V x0 = hn::Floor(x), y0 = hn::Floor(y);
   const V fx = hn::Sub(x, x0), fy = hn::Sub(y, y0);
   const VI ix = hn::ConvertTo(di, x0), iy = hn::ConvertTo(di, y0);
@@ -200,7 +201,8 @@ HWY_INLINE perturbed8::F3 PerturbedFrame8(const MaterialTables& m, const ShadeIn
                     kUv = int32_t(offsetof(SurfaceInteraction, uv) / 4),
                     kPrim = int32_t(offsetof(SurfaceInteraction, prim) / 4);
   HWY_ALIGN int32_t entries[8];
-  for (size_t j = 0; j < lanes; ++j) entries[j] = pid[j] >= 0 ? int32_t(entry[j]) : int32_t(entry[0]);
+  for (size_t j = 0; j < lanes; ++j)
+    entries[j] = pid[j] >= 0 ? int32_t(entry[j]) : int32_t(entry[0]);
   // Lanes that are not perturbed read a perturbed lane's entry (any valid row).
   int32_t any = 0;
   for (size_t j = 0; j < lanes; ++j)
@@ -209,7 +211,9 @@ HWY_INLINE perturbed8::F3 PerturbedFrame8(const MaterialTables& m, const ShadeIn
     if (pid[j] < 0) entries[j] = any;
   const VI base = hn::Mul(hn::Load(di, entries), hn::Set(di, kWords));
   const float* its = reinterpret_cast<const float*>(tex.its);
-  const auto at = [&](int32_t word) { return hn::GatherIndex(d, its, hn::Add(base, hn::Set(di, word))); };
+  const auto at = [&](int32_t word) {
+    return hn::GatherIndex(d, its, hn::Add(base, hn::Set(di, word)));
+  };
   F3 frame;
   frame.s = {at(kFrame), at(kFrame + 1), at(kFrame + 2)};
   frame.t = {at(kFrame + 3), at(kFrame + 4), at(kFrame + 5)};
@@ -245,7 +249,8 @@ HWY_INLINE perturbed8::F3 PerturbedFrame8(const MaterialTables& m, const ShadeIn
     scales[j] = ids[j] >= 0 ? p.scale[k] : 0.0f;
   }
   const VI kind = hn::Load(di, kinds), texture = hn::Load(di, textures);
-  const M normal = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, int32_t(PerturbationKind::kNormalMap))));
+  const M normal =
+      hn::RebindMask(d, hn::Eq(kind, hn::Set(di, int32_t(PerturbationKind::kNormalMap))));
   const M bump = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, int32_t(PerturbationKind::kBumpMap))));
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), two = hn::Set(d, 2.0f);
   V3 n = Splat(0, 0, 0), s_hint = Splat(0, 0, 0);
@@ -323,13 +328,14 @@ inline void PerturbedFrameBatchKernel(const MaterialTables& m, MaterialTag tag,
 }
 
 inline void ShadeBatchKernelInFrame(const MaterialTables& m, MaterialTag tag,
-                                    const uint32_t* material_index, size_t n,
-                                    const ShadeInputs& in, const ShadeOutputs& out);
+                                    const uint32_t* material_index, size_t n, const ShadeInputs& in,
+                                    const ShadeOutputs& out);
 
 /// The shade step of a tag some of whose rows are perturbed, in chunks of kChunk rows on stack
 /// copies of wo and wl in the rows' perturbed frames (rows that are not perturbed keep theirs).
-inline HWY_NOINLINE void ShadePerturbed(const MaterialTables& m, MaterialTag tag, const uint32_t* material_index,
-                           size_t n, const ShadeInputs& in, const ShadeOutputs& out) {
+inline HWY_NOINLINE void ShadePerturbed(const MaterialTables& m, MaterialTag tag,
+                                        const uint32_t* material_index, size_t n,
+                                        const ShadeInputs& in, const ShadeOutputs& out) {
   using namespace perturbed8;
   PTLAB_CHECK(in.texture.textures != nullptr);
   constexpr size_t kChunk = 256;

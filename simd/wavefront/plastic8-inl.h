@@ -71,8 +71,8 @@ HWY_INLINE void PlasticBlock(const PlasticTable& t, const ShadeIo& b, size_t i, 
   const V8 q = hn::Div(hn::Mul(t_o, hn::Sub(one, CoatingFresnel(d, iz, eta))), pd);
   const V8 pdf_diffuse = hn::Mul(pd, hn::Mul(iz, inv_pi));
   V8 wr = hn::Mul(base_r, q), wg = hn::Mul(base_g, q), wb = hn::Mul(base_b, q);
-  const M8 diffuse_ok = hn::And(hn::And(hn::Gt(iz, zero), hn::Gt(pdf_diffuse, zero)),
-                                AllFinite3(d, wr, wg, wb));
+  const M8 diffuse_ok =
+      hn::And(hn::And(hn::Gt(iz, zero), hn::Gt(pdf_diffuse, zero)), AllFinite3(d, wr, wg, wb));
   // Specular lanes: the mirror direction, weight specular F_o / ps.
   const V8 fs = hn::Div(f_o, hn::IfThenElse(spec, ps, one));
   wr = hn::IfThenElse(spec, hn::Mul(Gather(d, t.specular_r, b.index, i), fs), wr);
@@ -101,9 +101,10 @@ namespace HWY_NAMESPACE {
 /// The plastic tag's batch, smooth (`plastic`) and rough (`roughplastic`) rows: grouped by the
 /// coating's distribution (ForEachBlockGrouped), each 8-wide block runs PlasticBlock where it
 /// has smooth rows and PlasticRoughBlock where it has rough ones (both for a mixed block).
-inline HWY_NOINLINE void ShadePlasticRows(const MaterialTables& m, const uint32_t* /*material_index*/,
-                             size_t n, const ShadeInputs& /*in*/, const ShadeOutputs& /*out*/,
-                             const ShadeIo& io, bool eval, bool sample) {
+inline HWY_NOINLINE void ShadePlasticRows(const MaterialTables& m,
+                                          const uint32_t* /*material_index*/, size_t n,
+                                          const ShadeInputs& /*in*/, const ShadeOutputs& /*out*/,
+                                          const ShadeIo& io, bool eval, bool sample) {
   const PlasticTable& t = m.plastic;
   const auto key = [&t, &io](size_t r) { return uint32_t(t.distribution[io.index[r]]); };
   const auto block = [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {

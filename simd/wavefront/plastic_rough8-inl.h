@@ -25,8 +25,8 @@ namespace HWY_NAMESPACE {
 
 /// The distribution column of rows [i, i + Lanes) as int32 lanes.
 HWY_INLINE hn::Vec<hn::RebindToSigned<D8>> GatherCoatingDistribution(D8 d, const PlasticTable& t,
-                                                                    const uint32_t* index,
-                                                                    size_t i) {
+                                                                     const uint32_t* index,
+                                                                     size_t i) {
   const hn::RebindToSigned<D8> di;
   HWY_ALIGN int32_t dist[8] = {};
   for (size_t j = 0; j < hn::Lanes(d); ++j) dist[j] = t.distribution[index[i + j]];
@@ -107,9 +107,9 @@ HWY_INLINE V8 CoatingFresnelAbove(D8 d, const PlasticRoughLanes& c, V8 cos_i) {
 /// PlasticRoughEvalPdf: f into *fr, *fg, *fb, the pdf returned (both 0 unless wo.z, wi.z > 0).
 /// t_o: the coating's transmittance at wo.z, ps: CoatingSpecularProbability of it, g1o:
 /// G1OverCos(wo) (the three depend on wo only: computed once for eval and sample).
-HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRoughLanes& c,
-                                   V8 t_o, V8 ps, V8 g1o, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy, V8 iz,
-                                   V8* fr, V8* fg, V8* fb) {
+HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRoughLanes& c, V8 t_o,
+                                   V8 ps, V8 g1o, V8 ox, V8 oy, V8 oz, V8 ix, V8 iy, V8 iz, V8* fr,
+                                   V8* fg, V8* fb) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), inv_pi = hn::Set(d, kInvPi),
            quarter = hn::Set(d, 0.25f);
   const M8 above = hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero));
@@ -252,8 +252,8 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
 
 /// PlasticRoughBlock for every lane of rows [i, i + 2 Lanes): two blocks, whose microfacet
 /// samplers run together (mf8::SampleNormal2); each block's outputs are PlasticRoughBlock's.
-HWY_INLINE void PlasticRoughBlockPair(const PlasticTable& t, const ShadeIo& b, size_t i,
-                                      bool eval, bool sample, const CoatingDistribution* uniform) {
+HWY_INLINE void PlasticRoughBlockPair(const PlasticTable& t, const ShadeIo& b, size_t i, bool eval,
+                                      bool sample, const CoatingDistribution* uniform) {
   const D8 d;
   const M8 every = hn::Eq(hn::Zero(d), hn::Zero(d));
   const size_t j = i + hn::Lanes(d);
@@ -262,16 +262,15 @@ HWY_INLINE void PlasticRoughBlockPair(const PlasticTable& t, const ShadeIo& b, s
   V8 max = hn::Zero(d), may = max, maz = max, mbx = max, mby = max, mbz = max;
   M8 valid_a = hn::FirstN(d, 0), valid_b = valid_a;
   if (sa.micro && sb.micro) {
-    mf8::SampleNormal2(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may, &maz,
-                       &valid_a, sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby, &mbz,
-                       &valid_b);
+    mf8::SampleNormal2(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may, &maz, &valid_a,
+                       sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby, &mbz, &valid_b);
   } else {
     if (sa.micro)
-      valid_a = mf8::SampleNormal(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may,
-                                  &maz);
+      valid_a =
+          mf8::SampleNormal(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may, &maz);
     if (sb.micro)
-      valid_b = mf8::SampleNormal(d, sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby,
-                                  &mbz);
+      valid_b =
+          mf8::SampleNormal(d, sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby, &mbz);
   }
   FinishPlasticRough(t, b, i, sa, valid_a, max, may, maz, eval, sample);
   FinishPlasticRough(t, b, j, sb, valid_b, mbx, mby, mbz, eval, sample);
@@ -279,8 +278,9 @@ HWY_INLINE void PlasticRoughBlockPair(const PlasticTable& t, const ShadeIo& b, s
 
 /// The plastic batch of a table whose rows are all rough with one distribution (`uniform`):
 /// pairs of blocks (PlasticRoughBlockPair), then ForEachBlock over the rest.
-inline HWY_NOINLINE void ShadePlasticRoughUniform(const PlasticTable& t, const ShadeIo& io, size_t n,
-                                     bool eval, bool sample, const CoatingDistribution& uniform) {
+inline HWY_NOINLINE void ShadePlasticRoughUniform(const PlasticTable& t, const ShadeIo& io,
+                                                  size_t n, bool eval, bool sample,
+                                                  const CoatingDistribution& uniform) {
   const D8 d;
   const size_t pair = 2 * hn::Lanes(d);
   size_t i = 0;

@@ -67,8 +67,8 @@ HWY_INLINE PrincipledLanes GatherPrincipled(D8 d, const PrincipledTable& t,
   p.clearcoat_gloss = unit(kPrincipledClearcoatGloss);
   p.spec_trans = unit(kPrincipledSpecTrans);
   p.flatness = unit(kPrincipledFlatness);
-  p.diff_trans = thin ? hn::Mul(hn::Set(d, 0.5f), Clamp(d, value(kPrincipledDiffTrans), 0.0f, 2.0f))
-                      : zero;
+  p.diff_trans =
+      thin ? hn::Mul(hn::Set(d, 0.5f), Clamp(d, value(kPrincipledDiffTrans), 0.0f, 2.0f)) : zero;
   p.eta = Clamp(d, value(kPrincipledEta), 1e-4f, 1e4f);
   p.dist = Distribution(d, p.roughness, p.anisotropic);
   return p;
@@ -79,10 +79,9 @@ HWY_INLINE PrincipledLanes GatherPrincipled(D8 d, const PrincipledTable& t,
 /// Both models' sample store: weight f·|cos θi| / pdf, valid where the direction was, pdf > 0
 /// and the weight finite (the oracles' checks, in their order).
 template <class D>
-HWY_INLINE void StoreWeightedSample(D d, const ShadeIo& b, size_t i, hn::Mask<D> ok,
-                                    hn::Vec<D> ix, hn::Vec<D> iy, hn::Vec<D> iz, hn::Vec<D> fr,
-                                    hn::Vec<D> fg, hn::Vec<D> fb, hn::Vec<D> pdf,
-                                    hn::Vec<D> eta) {
+HWY_INLINE void StoreWeightedSample(D d, const ShadeIo& b, size_t i, hn::Mask<D> ok, hn::Vec<D> ix,
+                                    hn::Vec<D> iy, hn::Vec<D> iz, hn::Vec<D> fr, hn::Vec<D> fg,
+                                    hn::Vec<D> fb, hn::Vec<D> pdf, hn::Vec<D> eta) {
   const auto cos_over_pdf = hn::Div(hn::Abs(iz), pdf);
   const auto wr = hn::Mul(fr, cos_over_pdf), wg = hn::Mul(fg, cos_over_pdf),
              wb = hn::Mul(fb, cos_over_pdf);
@@ -91,8 +90,9 @@ HWY_INLINE void StoreWeightedSample(D d, const ShadeIo& b, size_t i, hn::Mask<D>
 }
 
 /// PrincipledThinEvalPdf / PrincipledThinSample for rows of MaterialTables::principled_thin.
-inline HWY_NOINLINE void ShadePrincipledThin(const PrincipledTable& t, const ShadeInputs::Textures& tex,
-                                const ShadeIo& io, size_t n, bool eval, bool sample) {
+inline HWY_NOINLINE void ShadePrincipledThin(const PrincipledTable& t,
+                                             const ShadeInputs::Textures& tex, const ShadeIo& io,
+                                             size_t n, bool eval, bool sample) {
   ForEachBlock(io, n, [&t, &tex, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
@@ -118,7 +118,7 @@ inline HWY_NOINLINE void ShadePrincipledThin(const PrincipledTable& t, const Sha
 
 /// PrincipledEvalPdf / PrincipledSample for rows of MaterialTables::principled.
 inline HWY_NOINLINE void ShadePrincipled(const PrincipledTable& t, const ShadeInputs::Textures& tex,
-                            const ShadeIo& io, size_t n, bool eval, bool sample) {
+                                         const ShadeIo& io, size_t n, bool eval, bool sample) {
   ForEachBlock(io, n, [&t, &tex, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), minus = hn::Set(d, -1.0f);
@@ -158,10 +158,10 @@ inline HWY_NOINLINE void ShadePrincipled(const PrincipledTable& t, const ShadeIn
     V8 ix = hn::Sub(hn::Mul(mx, two_wo_m), ox), iy = hn::Sub(hn::Mul(my, two_wo_m), oy),
        iz = hn::Sub(hn::Mul(mz, two_wo_m), oz);
     const M8 side_r = hn::Gt(hn::Mul(iz, cos_o), zero);
-    ok = hn::And(ok, hn::Or(hn::Not(is_refl),
-                            hn::And(hn::And(hn::Gt(pm, zero), side_r),
-                                    pr8::MicroMacroCompatible(d, mx, my, mz, ox, oy, oz, ix, iy,
-                                                              iz, cos_o, true))));
+    ok = hn::And(
+        ok, hn::Or(hn::Not(is_refl), hn::And(hn::And(hn::Gt(pm, zero), side_r),
+                                             pr8::MicroMacroCompatible(d, mx, my, mz, ox, oy, oz,
+                                                                       ix, iy, iz, cos_o, true))));
     if (!hn::AllFalse(d, is_diffuse)) {  // the cosine hemisphere
       V8 cx, cy, cz;
       SampleCosineHemisphere(d, ux, uy, &cx, &cy, &cz);
@@ -175,9 +175,9 @@ inline HWY_NOINLINE void ShadePrincipled(const PrincipledTable& t, const ShadeIn
       const V8 two_wo_n = hn::Mul(hn::Set(d, 2.0f), pr8::Dot(ox, oy, oz, nx, ny, nz));
       const V8 cx = hn::Sub(hn::Mul(nx, two_wo_n), ox), cy = hn::Sub(hn::Mul(ny, two_wo_n), oy),
                cz = hn::Sub(hn::Mul(nz, two_wo_n), oz);
-      const M8 coat_ok = hn::And(hn::Gt(hn::Mul(cz, cos_o), zero),
-                                 pr8::MicroMacroCompatible(d, nx, ny, nz, ox, oy, oz, cx, cy, cz,
-                                                           cos_o, true));
+      const M8 coat_ok =
+          hn::And(hn::Gt(hn::Mul(cz, cos_o), zero),
+                  pr8::MicroMacroCompatible(d, nx, ny, nz, ox, oy, oz, cx, cy, cz, cos_o, true));
       ix = hn::IfThenElse(is_coat, cx, ix), iy = hn::IfThenElse(is_coat, cy, iy);
       iz = hn::IfThenElse(is_coat, cz, iz);
       ok = hn::And(ok, hn::Or(hn::Not(is_coat), coat_ok));
@@ -192,9 +192,9 @@ inline HWY_NOINLINE void ShadePrincipled(const PrincipledTable& t, const ShadeIn
       const V8 tx = hn::Sub(hn::Mul(mx, k), hn::Mul(ox, inv)),
                ty = hn::Sub(hn::Mul(my, k), hn::Mul(oy, inv)),
                tz = hn::Sub(hn::Mul(mz, k), hn::Mul(oz, inv));
-      const M8 trans_ok = hn::And(
-          hn::And(hn::Gt(pm, zero), hn::Lt(hn::Mul(tz, cos_o), zero)),
-          pr8::MicroMacroCompatible(d, mx, my, mz, ox, oy, oz, tx, ty, tz, cos_o, false));
+      const M8 trans_ok =
+          hn::And(hn::And(hn::Gt(pm, zero), hn::Lt(hn::Mul(tz, cos_o), zero)),
+                  pr8::MicroMacroCompatible(d, mx, my, mz, ox, oy, oz, tx, ty, tz, cos_o, false));
       ix = hn::IfThenElse(is_trans, tx, ix), iy = hn::IfThenElse(is_trans, ty, iy);
       iz = hn::IfThenElse(is_trans, tz, iz);
       ok = hn::And(ok, hn::Or(hn::Not(is_trans), trans_ok));

@@ -39,8 +39,8 @@ struct RoughConductorLanes {
 };
 
 /// specular × FresnelConductor(cos) × scale per channel, as the oracle's (R F) s.
-HWY_INLINE void TintedConductorFresnel(D8 d, const RoughConductorLanes& c, V8 cos, V8 scale,
-                                       V8* r, V8* g, V8* b) {
+HWY_INLINE void TintedConductorFresnel(D8 d, const RoughConductorLanes& c, V8 cos, V8 scale, V8* r,
+                                       V8* g, V8* b) {
   *r = hn::Mul(hn::Mul(c.s_r, FresnelConductor(d, cos, c.eta_r, c.k_r)), scale);
   *g = hn::Mul(hn::Mul(c.s_g, FresnelConductor(d, cos, c.eta_g, c.k_g)), scale);
   *b = hn::Mul(hn::Mul(c.s_b, FresnelConductor(d, cos, c.eta_b, c.k_b)), scale);
@@ -48,8 +48,8 @@ HWY_INLINE void TintedConductorFresnel(D8 d, const RoughConductorLanes& c, V8 co
 
 /// RoughConductorEval (into *fr, *fg, *fb) and RoughConductorPdf (returned) at (wo, wi); g1o is
 /// G1OverCos(wo), computed once per block for the evaluation and the sample.
-HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 g1o, V8 ox, V8 oy,
-                                    V8 oz, V8 ix, V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
+HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 g1o, V8 ox, V8 oy, V8 oz,
+                                    V8 ix, V8 iy, V8 iz, V8* fr, V8* fg, V8* fb) {
   const V8 zero = hn::Zero(d);
   V8 hx = hn::Add(ox, ix), hy = hn::Add(oy, iy), hz = hn::Add(oz, iz);
   mf8::Normalize3(d, &hx, &hy, &hz);
@@ -65,15 +65,15 @@ HWY_INLINE V8 RoughConductorEvalPdf(D8 d, const RoughConductorLanes& c, V8 g1o, 
   *fb = hn::IfThenElseZero(ok, b);
   const V8 pdf = hn::Div(mf8::Pdf(d, c.dist, ox, oy, oz, hx, hy, hz, &g1o, &dv),
                          hn::Mul(hn::Set(d, 4.0f), wi_h));
-  return hn::IfThenElseZero(
-      hn::And(above, hn::And(hn::Gt(wi_h, zero), hn::IsFinite(pdf))), pdf);
+  return hn::IfThenElseZero(hn::And(above, hn::And(hn::Gt(wi_h, zero), hn::IsFinite(pdf))), pdf);
 }
 
 /// RoughConductorEval / RoughConductorPdf / RoughConductorSample for a ConductorTable in its
 /// Mitsuba form (ConductorTable::microfacet()).
 /// mask: `tex` for the textured αu, αv (TexturedFloat8, then clamped as MakeMicrofacet does).
-inline HWY_NOINLINE void ShadeRoughConductor(const ConductorTable& t, const ShadeInputs::Textures& tex,
-                                const ShadeIo& io, size_t n, bool eval, bool sample) {
+inline HWY_NOINLINE void ShadeRoughConductor(const ConductorTable& t,
+                                             const ShadeInputs::Textures& tex, const ShadeIo& io,
+                                             size_t n, bool eval, bool sample) {
   const bool textured = tex.textures != nullptr && t.textured();
   ForEachBlock(io, n, [&t, &tex, textured, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;

@@ -50,8 +50,8 @@ HWY_INLINE V8 RoughPlasticEvalPdf(D8 d, const RoughPlasticLanes& p, V8 ox, V8 oy
 }
 
 /// RoughPlasticEval / RoughPlasticPdf / RoughPlasticSample (engine/bsdf/rough_plastic.h).
-inline HWY_NOINLINE void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, size_t n, bool eval,
-                              bool sample) {
+inline HWY_NOINLINE void ShadeRoughPlastic(const RoughPlasticTable& t, const ShadeIo& io, size_t n,
+                                           bool eval, bool sample) {
   ForEachBlock(io, n, [&t, eval, sample](const ShadeIo& b, size_t i) HWY_ATTR {
     const D8 d;
     const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);

@@ -24,9 +24,10 @@ inline void ShadeBatchKernelOneSided(const MaterialTables& m, MaterialTag tag,
 
 /// The shade step of a tag some of whose rows are two-sided (`flags`, `flag_count` entries),
 /// in chunks of kChunk rows on stack copies of wo.z and wl.z.
-inline HWY_NOINLINE void ShadeTwoSided(const MaterialTables& m, MaterialTag tag, const uint8_t* flags,
-                          size_t flag_count, const uint32_t* material_index, size_t n,
-                          const ShadeInputs& in, const ShadeOutputs& out) {
+inline HWY_NOINLINE void ShadeTwoSided(const MaterialTables& m, MaterialTag tag,
+                                       const uint8_t* flags, size_t flag_count,
+                                       const uint32_t* material_index, size_t n,
+                                       const ShadeInputs& in, const ShadeOutputs& out) {
   constexpr size_t kChunk = 256;
   HWY_ALIGN float wo_z[kChunk], wl_z[kChunk];
   HWY_ALIGN uint8_t flip[kChunk];

@@ -2,7 +2,6 @@
 // clang-format off
 #include "simd/targets.h"  // first: the target policy (must precede every hwy/ include)
 // clang-format on
-#include "simd/dispatched_target.h"
 #include "simd/wavefront/bsdf8.h"
 
 #include <gtest/gtest.h>
@@ -22,8 +21,9 @@
 #include "engine/bsdf/plastic_rough.h"  // plastic8
 #include "engine/core/rng.h"
 #include "hwy/targets.h"
-#include "tests/simd/for_each_target.h"
+#include "simd/dispatched_target.h"
 #include "tests/engine/bsdf/bsdf_test_inputs.h"
+#include "tests/simd/for_each_target.h"
 
 namespace ptlab {
 namespace {
@@ -215,8 +215,8 @@ TEST(Shade8, ConductorFresnelMatchesOracleOnEveryTarget) {
         cos_i.push_back(c), eta.push_back(e), k.push_back(kk), preset.push_back(false);
   // η, κ ~ 1e-23 at normal incidence: t is float's least denormal and |z| underflows to 0 (a
   // random search found these; the quotient ek / a was ∞ and the result NaN before).
-  const float tiny_pairs[][2] = {{3.84846e-23f, 2.24301e-23f}, {4.06811e-23f, 2.1011e-23f},
-                                 {6.0064e-23f, 3.97018e-23f}};
+  const float tiny_pairs[][2] = {
+      {3.84846e-23f, 2.24301e-23f}, {4.06811e-23f, 2.1011e-23f}, {6.0064e-23f, 3.97018e-23f}};
   for (const auto& p : tiny_pairs)
     cos_i.push_back(1.0f), eta.push_back(p[0]), k.push_back(p[1]), preset.push_back(false);
   // η = 1 with κ and cos θ tiny: Rs's squares are denormal (its quotient was 1.032).
@@ -296,8 +296,7 @@ void AddMaterialRows(MaterialTables* m, Pcg32& rng) {
   for (float eta : bsdf_test::HardEtas()) {
     m->AddDielectric(eta, 1.0f, kDielectricSchlick);
     m->AddDielectric(eta, 1.0f, kDielectricRefractOnly | kDielectricScaleRadiance);
-    m->AddTintedDielectric(eta, 1.0f, kDielectricSchlick, {1.0f, 0.9f, 0.8f},
-                           {0.75f, 0.75f, 1.0f});
+    m->AddTintedDielectric(eta, 1.0f, kDielectricSchlick, {1.0f, 0.9f, 0.8f}, {0.75f, 0.75f, 1.0f});
   }
   for (float alpha : bsdf_test::HardAlphas()) {
     Color3f e, k;
@@ -317,8 +316,8 @@ void AddMaterialRows(MaterialTables* m, Pcg32& rng) {
     d.specular = {rng.NextFloat(), 1.0f, rng.NextFloat()};
     const MaterialRef p = m->AddPlastic(*MakePlasticRow(d));
     if (i % 4 == 1) m->two_sided.Set(p);
-    m->AddThinDielectric(std::pow(10.0f, rng.NextFloat() - 0.5f),
-                         {rng.NextFloat(), 1.0f, 0.5f}, {1.0f, rng.NextFloat(), 0.25f});
+    m->AddThinDielectric(std::pow(10.0f, rng.NextFloat() - 0.5f), {rng.NextFloat(), 1.0f, 0.5f},
+                         {1.0f, rng.NextFloat(), 0.25f});
   }
   for (float eta : bsdf_test::HardEtas()) {
     PlasticDesc d;
@@ -339,11 +338,16 @@ void AddMaterialRows(MaterialTables* m, Pcg32& rng) {
     const float w = i < 3 ? float(i) * 0.5f : rng.NextFloat();
     const auto pick = [&](int k) {
       switch (k % 5) {
-        case 0: return MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(i));
-        case 1: return MaterialRef::Make(MaterialTag::kMirror, 0);
-        case 2: return MaterialRef::Make(MaterialTag::kPlastic, uint32_t(i) % plastics);
-        case 3: return MaterialRef::Make(MaterialTag::kConductor, uint32_t(i));
-        default: return MaterialRef::Make(MaterialTag::kThinDielectric, uint32_t(i));
+        case 0:
+          return MaterialRef::Make(MaterialTag::kDiffuse, uint32_t(i));
+        case 1:
+          return MaterialRef::Make(MaterialTag::kMirror, 0);
+        case 2:
+          return MaterialRef::Make(MaterialTag::kPlastic, uint32_t(i) % plastics);
+        case 3:
+          return MaterialRef::Make(MaterialTag::kConductor, uint32_t(i));
+        default:
+          return MaterialRef::Make(MaterialTag::kThinDielectric, uint32_t(i));
       }
     };
     const MaterialRef b = m->AddBlend(w, pick(i), pick(i / 5 + 1));
@@ -416,8 +420,8 @@ struct ShadeResult {
   std::vector<float> f[3], pdf_l, weight[3], pdf, eta, delta;
   Dirs wi;
   explicit ShadeResult(size_t n) {
-    for (auto* v : {&f[0], &f[1], &f[2], &pdf_l, &weight[0], &weight[1], &weight[2], &pdf, &eta,
-                    &delta})
+    for (auto* v :
+         {&f[0], &f[1], &f[2], &pdf_l, &weight[0], &weight[1], &weight[2], &pdf, &eta, &delta})
       v->assign(n, -7.0f);  // poison: every output must be written
     wi.Resize(n);
   }
@@ -466,8 +470,9 @@ ShadeData MakeShadeData(const MaterialTables& m, MaterialTag tag, size_t random_
 // Checks simd::ShadeBatch output r1 against the oracle's r0 under the ShadeBatch contract.
 void CheckShadeContract(const MaterialTables& m, MaterialTag tag, const ShadeData& s,
                         const ShadeResult& r0, const ShadeResult& r1, const char* target) {
-  const char* names[] = {"diffuse", "mirror",  "dielectric",     "conductor", "rough plastic",
-                         "rough dielectric", "mask", "plastic", "thin dielectric", "blend"};
+  const char* names[] = {
+      "diffuse",          "mirror", "dielectric", "conductor",       "rough plastic",
+      "rough dielectric", "mask",   "plastic",    "thin dielectric", "blend"};
   const std::string name = names[static_cast<int>(tag)];
   Contract f{name + " f(wo,wl)", 2e-5, 1e-30}, pl{name + " pdf(wo,wl)", 2e-5, 1e-30};
   const bool delta = IsDeltaMaterial(tag);
@@ -623,9 +628,7 @@ TEST(Shade8, BlendOfUniformChildKindsEqualsRowsInAMixedBatch) {
       simd::ShadeBatch(m, MaterialTag::kBlend, mix.index.data(), 2 * n, mix.View(), mixed.Out());
       for (size_t i = 0; i < n; ++i) {
         const size_t j = 2 * i;
-        const auto same = [](float a, float b) {
-          return std::memcmp(&a, &b, sizeof(float)) == 0;
-        };
+        const auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; };
         for (int c = 0; c < 3; ++c) {
           ASSERT_TRUE(same(alone.f[c][i], mixed.f[c][j])) << target << " k " << k << " row " << i;
           ASSERT_TRUE(same(alone.weight[c][i], mixed.weight[c][j])) << target << " row " << i;
@@ -878,8 +881,8 @@ TEST(Shade8, ShadeHitsOfOneMaterialRunsOnTheInputArrays) {
     ptlab::ShadeHits(m, refs.data(), rows, s.View(), scalar.Out(), &scratch);
     for (size_t i = 0; i < rows; ++i) {
       BsdfSample bs;
-      const bool ok = BsdfSampleDirection(m, refs[i], s.wo[i], s.u_lobe[i],
-                                          {s.u_x[i], s.u_y[i]}, &bs);
+      const bool ok =
+          BsdfSampleDirection(m, refs[i], s.wo[i], s.u_lobe[i], {s.u_x[i], s.u_y[i]}, &bs);
       ASSERT_EQ(scalar.pdf[i], ok ? bs.pdf : 0.0f) << i;
       ASSERT_EQ(scalar.f[0][i], BsdfEval(m, refs[i], s.wo[i], s.wl[i]).r) << i;
     }
