@@ -29,19 +29,11 @@ using M8 = hn::Mask<D8>;
 // argument to an integer before range checks, which is undefined for NaN and ±∞ on the EMU128
 // target: every argument is made finite first (the oracle's libm gives the same value there).
 
-/// max(x, −200) with NaN → −200: an argument for hwy::Exp (exp(−200) = 0 in float). Needed
-/// for correctness only on EMU128 / SCALAR, but kept on every target: without it (tried,
-/// 2026-12-07) the AVX2 rough conductor's kernel ran ~2 % and roughplastic's ~6 % slower, the
-/// same bits — a lane's −10⁸ (D at a tiny α far from the lobe) saturates Exp's exponent, whose
-/// discarded intermediates then are likely subnormal (microcode assists).
+/// max(x, −200) with NaN → −200: an argument for hwy::Exp (exp(−200) = 0 in float).
 HWY_INLINE V8 ExpArg(D8 d, V8 x) {
   const V8 low = hn::Set(d, -200.0f);
   return hn::IfThenElse(hn::Ge(x, low), x, low);
 }
-
-/// hwy::Log for x ≥ FLT_MIN (no lane subnormal): hwy's own operations without its subnormal
-/// rescale, which leaves a normal x as it is, so the bits are Log's.
-HWY_INLINE V8 LogOfNormal(D8 d, V8 x) { return hn::impl::Log<D8, V8, false>(d, x); }
 
 /// ErfApprox (engine/bsdf/erf.h); *e (when non-null) receives its exp(−x²), which callers
 /// that need e^(−x²) themselves take instead of a second Exp (the same bits: (−x)² = x²).
@@ -93,8 +85,7 @@ HWY_INLINE V8 ErfInvTail(D8 d, V8 w) {
 HWY_INLINE V8 ErfInv(D8 d, V8 x) {
   const V8 one = hn::Set(d, 1.0f), hi = hn::Set(d, kErfInvMaxArg), lo = hn::Neg(hi);
   x = hn::IfThenElse(hn::Gt(x, lo), hn::Min(x, hi), lo);
-  // (1 − x)(1 + x) ≥ 2⁻²⁴ (x clamped within an ulp of ±1): a normal float.
-  const V8 w = hn::Neg(LogOfNormal(d, hn::Mul(hn::Sub(one, x), hn::Add(one, x))));
+  const V8 w = hn::Neg(hn::Log(d, hn::Mul(hn::Sub(one, x), hn::Add(one, x))));
   // Giles's branches, each only where some lane takes it (the tail one, |x| ≳ 0.9966, seldom).
   const M8 central = hn::Lt(w, hn::Set(d, 5.0f));
   V8 p = hn::Zero(d), q = p;
@@ -149,9 +140,7 @@ HWY_INLINE V8 G1OverCos(D8 d, const Dist8& f, V8 vx, V8 vy, V8 vz) {
     const V8 erf_a = Erf(d, a, &exp_a2);
     const V8 den = hn::Add(hn::Mul(z, hn::Add(one, erf_a)),
                            hn::Mul(hn::Mul(s, hn::Set(d, kInvSqrtPi)), exp_a2));
-    // 1/z only where some lane is untilted (v = ±z).
-    r = hn::AllTrue(d, tilted) ? hn::Div(two, den)
-                               : hn::IfThenElse(tilted, hn::Div(two, den), hn::Div(one, z));
+    r = hn::IfThenElse(tilted, hn::Div(two, den), hn::Div(one, z));
   }
   if (!hn::AllFalse(d, f.ggx)) {
     r = hn::IfThenElse(f.ggx, hn::Div(two, hn::Add(z, hn::Sqrt(hn::Add(hn::Mul(z, z), s2)))), r);
@@ -195,105 +184,38 @@ HWY_INLINE void Normalize3(D8 d, V8* x, V8* y, V8* z) {
   *x = hn::Mul(*x, inv), *y = hn::Mul(*y, inv), *z = hn::Mul(*z, inv);
 }
 
-/// SampleBeckmannVisibleSlope, in steps: Start, three Steps, Finish (BeckmannVisibleSlope).
-/// The Newton steps are one long chain of dependent operations (erf⁻¹'s Log and polynomial,
-/// Exp, a division): SampleNormal2 runs two blocks' steps alternately, so that out-of-order
-/// execution overlaps their chains. The operations and their order per lane are the same.
-struct BeckmannSlopeSearch {
-  V8 x, tan_t, tan_isp, target, uy;  // uy clamped
-};
-
-HWY_INLINE BeckmannSlopeSearch BeckmannSlopeStart(D8 d, V8 cos_t, V8 u_x, V8 u_y) {
+/// SampleBeckmannVisibleSlope.
+HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8* sy) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), lo = hn::Set(d, 1e-6f),
            hi = hn::Set(d, 1.0f - 1e-6f), isp = hn::Set(d, kInvSqrtPi);
-  const V8 ux = hn::Min(hn::Max(u_x, lo), hi);
+  const V8 ux = hn::Min(hn::Max(u_x, lo), hi), uy = hn::Min(hn::Max(u_y, lo), hi);
   const V8 sin_t = hn::Sqrt(hn::Max(zero, hn::Mul(hn::Sub(one, cos_t), hn::Add(one, cos_t))));
-  BeckmannSlopeSearch s;
-  s.uy = hn::Min(hn::Max(u_y, lo), hi);
-  s.tan_t = hn::Div(sin_t, cos_t);
-  s.tan_isp = hn::Mul(s.tan_t, isp);
-  const M8 tilted = hn::Gt(s.tan_t, zero);
+  const V8 tan_t = hn::Div(sin_t, cos_t);
+  const M8 tilted = hn::Gt(tan_t, zero);
   // cot = ∞ at normal incidence; erf(∞) = 1 and the tail is 0 there, as in the oracle.
   const V8 cot_t = hn::IfThenElse(tilted, hn::Div(cos_t, sin_t), hn::Set(d, 1e30f));
   V8 exp_cot2;  // e^(−cot²), from the Erf
   const V8 max_x = Erf(d, cot_t, &exp_cot2);
-  const V8 tail = hn::IfThenElseZero(tilted, hn::Mul(s.tan_isp, exp_cot2));
-  s.target = hn::Mul(ux, hn::Add(hn::Add(one, max_x), tail));
-  s.x = hn::Sub(max_x, hn::Mul(hn::Add(max_x, one),
-                               Erf(d, hn::Sqrt(hn::Neg(LogOfNormal(d, ux))))));  // ux ≥ 1e-6
-  return s;
+  const V8 tail = hn::IfThenElseZero(tilted, hn::Mul(hn::Mul(tan_t, isp), exp_cot2));
+  const V8 target = hn::Mul(ux, hn::Add(hn::Add(one, max_x), tail));
+  V8 x = hn::Sub(max_x, hn::Mul(hn::Add(max_x, one), Erf(d, hn::Sqrt(hn::Neg(hn::Log(d, ux))))));
+  for (int i = 0; i < 3; ++i) {
+    const V8 slope = ErfInv(d, x);
+    const V8 value = hn::Sub(
+        hn::Add(hn::Add(one, x), hn::Mul(hn::Mul(tan_t, isp),
+                                         hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(slope, slope)))))),
+        target);
+    const V8 derivative = hn::Sub(one, hn::Mul(slope, tan_t));
+    x = hn::Sub(x, hn::Div(value, derivative));
+  }
+  *sx = ErfInv(d, x);
+  *sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), uy), one));
 }
 
-HWY_INLINE void BeckmannSlopeStep(D8 d, BeckmannSlopeSearch* s) {
-  const V8 one = hn::Set(d, 1.0f);
-  const V8 slope = ErfInv(d, s->x);
-  const V8 value =
-      hn::Sub(hn::Add(hn::Add(one, s->x),
-                      hn::Mul(s->tan_isp, hn::Exp(d, ExpArg(d, hn::Neg(hn::Mul(slope, slope)))))),
-              s->target);
-  const V8 derivative = hn::Sub(one, hn::Mul(slope, s->tan_t));
-  s->x = hn::Sub(s->x, hn::Div(value, derivative));
-}
-
-inline constexpr int kBeckmannSlopeSteps = 3;
-
-/// The slopes once the steps are done.
-HWY_INLINE void BeckmannSlopeFinish(D8 d, const BeckmannSlopeSearch& s, V8* sx, V8* sy) {
-  *sx = ErfInv(d, s.x);
-  *sy = ErfInv(d, hn::Sub(hn::Mul(hn::Set(d, 2.0f), s.uy), hn::Set(d, 1.0f)));
-}
-
-/// SampleBeckmannVisibleSlope.
-HWY_INLINE void BeckmannVisibleSlope(D8 d, V8 cos_t, V8 u_x, V8 u_y, V8* sx, V8* sy) {
-  BeckmannSlopeSearch s = BeckmannSlopeStart(d, cos_t, u_x, u_y);
-  for (int i = 0; i < kBeckmannSlopeSteps; ++i) BeckmannSlopeStep(d, &s);
-  BeckmannSlopeFinish(d, s, sx, sy);
-}
-
-/// The visible-normal samplers' w stretched to α = 1 (v = Normalize(αu w.x, αv w.y, w.z)) and
-/// 1/|v.xy| (0 where v.xy = 0: not tilted).
-struct StretchedView {
-  V8 vx, vy, vz, inv_r;
-  M8 tilted;
-};
-
-HWY_INLINE StretchedView Stretch(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz) {
-  StretchedView v;
-  v.vx = hn::Mul(f.au, wx), v.vy = hn::Mul(f.av, wy), v.vz = wz;
-  Normalize3(d, &v.vx, &v.vy, &v.vz);
-  const V8 r2 = hn::Add(hn::Mul(v.vx, v.vx), hn::Mul(v.vy, v.vy));
-  v.tilted = hn::Gt(r2, hn::Zero(d));
-  v.inv_r = hn::IfThenElseZero(v.tilted, hn::Div(hn::Set(d, 1.0f), hn::Sqrt(r2)));
-  return v;
-}
-
-/// The Beckmann visible normal from its α = 1 slopes: rotated to v's azimuth, unstretched,
-/// normalised.
-HWY_INLINE void BeckmannVisibleNormal(D8 d, const Dist8& f, const StretchedView& v, V8 sx, V8 sy,
-                                      V8* bx, V8* by, V8* bz) {
-  const V8 one = hn::Set(d, 1.0f);
-  const V8 cos_phi = hn::IfThenElse(v.tilted, hn::Mul(v.vx, v.inv_r), one);
-  const V8 sin_phi = hn::IfThenElseZero(v.tilted, hn::Mul(v.vy, v.inv_r));
-  const V8 rx = hn::Mul(hn::Sub(hn::Mul(cos_phi, sx), hn::Mul(sin_phi, sy)), f.au);
-  const V8 ry = hn::Mul(hn::Add(hn::Mul(sin_phi, sx), hn::Mul(cos_phi, sy)), f.av);
-  *bx = hn::Neg(rx), *by = hn::Neg(ry), *bz = one;
-  Normalize3(d, bx, by, bz);
-}
-
-/// SampleMicrofacet's validity (w.z > 0, m.z > 0, m finite): m = +z elsewhere.
-HWY_INLINE M8 ValidNormal(D8 d, V8 wz, V8* x, V8* y, V8* z) {
-  const V8 zero = hn::Zero(d);
-  const M8 valid = hn::And(hn::And(hn::Gt(wz, zero), hn::Gt(*z, zero)),
-                           hn::And(hn::IsFinite(*x), hn::IsFinite(*y)));
-  *x = hn::IfThenElseZero(valid, *x), *y = hn::IfThenElseZero(valid, *y);
-  *z = hn::IfThenElse(valid, *z, hn::Set(d, 1.0f));
-  return valid;
-}
-
-/// SampleMicrofacet's normal: sets m (+z where the oracle returns that) and returns the lanes
-/// where it is valid (w.z > 0, m.z > 0, m finite); Sample adds the pdf.
-HWY_INLINE M8 SampleNormal(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y, V8* mx,
-                           V8* my, V8* mz) {
+/// SampleMicrofacet: sets m and *pdf (0 and m = +z where the oracle returns those). g1_w, when
+/// non-null, is G1OverCos(d, f, w) computed already (Pdf's).
+HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y, V8* mx, V8* my,
+                       V8* mz, V8* pdf, const V8* g1_w = nullptr) {
   const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f), two_pi = hn::Set(d, 2.0f * kPi);
   V8 x = zero, y = zero, z = one;
   if (!hn::AllTrue(d, f.visible)) {
@@ -312,9 +234,11 @@ HWY_INLINE M8 SampleNormal(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8
     z = cos_t;
   }
   if (!hn::AllFalse(d, f.visible)) {
-    const StretchedView v = Stretch(d, f, wx, wy, wz);
-    const V8 vx = v.vx, vy = v.vy, vz = v.vz, inv_r = v.inv_r;
-    const M8 tilted = v.tilted;
+    V8 vx = hn::Mul(f.au, wx), vy = hn::Mul(f.av, wy), vz = wz;
+    Normalize3(d, &vx, &vy, &vz);
+    const V8 r2 = hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy));
+    const M8 tilted = hn::Gt(r2, zero);
+    const V8 inv_r = hn::IfThenElseZero(tilted, hn::Div(one, hn::Sqrt(r2)));
     const M8 vis_ggx = hn::And(f.visible, f.ggx), vis_beck = hn::AndNot(f.ggx, f.visible);
     V8 gx = zero, gy = zero, gz = one;
     if (!hn::AllFalse(d, vis_ggx)) {
@@ -343,82 +267,26 @@ HWY_INLINE M8 SampleNormal(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8
     }
     V8 bx = zero, by = zero, bz = one;
     if (!hn::AllFalse(d, vis_beck)) {
+      const V8 cos_phi = hn::IfThenElse(tilted, hn::Mul(vx, inv_r), one);
+      const V8 sin_phi = hn::IfThenElseZero(tilted, hn::Mul(vy, inv_r));
       V8 sx, sy;
       BeckmannVisibleSlope(d, vz, u_x, u_y, &sx, &sy);
-      BeckmannVisibleNormal(d, f, v, sx, sy, &bx, &by, &bz);
+      const V8 rx = hn::Mul(hn::Sub(hn::Mul(cos_phi, sx), hn::Mul(sin_phi, sy)), f.au);
+      const V8 ry = hn::Mul(hn::Add(hn::Mul(sin_phi, sx), hn::Mul(cos_phi, sy)), f.av);
+      bx = hn::Neg(rx), by = hn::Neg(ry), bz = one;
+      Normalize3(d, &bx, &by, &bz);
     }
     x = hn::IfThenElse(f.visible, hn::IfThenElse(f.ggx, gx, bx), x);
     y = hn::IfThenElse(f.visible, hn::IfThenElse(f.ggx, gy, by), y);
     z = hn::IfThenElse(f.visible, hn::IfThenElse(f.ggx, gz, bz), z);
   }
-  const M8 valid = ValidNormal(d, wz, &x, &y, &z);
-  *mx = x, *my = y, *mz = z;
-  return valid;
-}
-
-/// SampleNormal for two blocks (a, b): where both are visible Beckmann in every lane, their
-/// slope searches' steps alternate (BeckmannSlopeSearch); otherwise one block after the other.
-/// The same operations per lane as SampleNormal, so the same bits.
-HWY_INLINE void SampleNormal2(D8 d, const Dist8& fa, V8 wax, V8 way, V8 waz, V8 uax, V8 uay,
-                              V8* max, V8* may, V8* maz, M8* valid_a, const Dist8& fb, V8 wbx,
-                              V8 wby, V8 wbz, V8 ubx, V8 uby, V8* mbx, V8* mby, V8* mbz,
-                              M8* valid_b) {
-  const M8 beck_a = hn::AndNot(fa.ggx, fa.visible), beck_b = hn::AndNot(fb.ggx, fb.visible);
-  if (!hn::AllTrue(d, beck_a) || !hn::AllTrue(d, beck_b)) {
-    *valid_a = SampleNormal(d, fa, wax, way, waz, uax, uay, max, may, maz);
-    *valid_b = SampleNormal(d, fb, wbx, wby, wbz, ubx, uby, mbx, mby, mbz);
-    return;
-  }
-  const StretchedView va = Stretch(d, fa, wax, way, waz), vb = Stretch(d, fb, wbx, wby, wbz);
-  BeckmannSlopeSearch sa = BeckmannSlopeStart(d, va.vz, uax, uay);
-  BeckmannSlopeSearch sb = BeckmannSlopeStart(d, vb.vz, ubx, uby);
-  for (int i = 0; i < kBeckmannSlopeSteps; ++i) {
-    BeckmannSlopeStep(d, &sa);
-    BeckmannSlopeStep(d, &sb);
-  }
-  V8 sax, say, sbx, sby;
-  BeckmannSlopeFinish(d, sa, &sax, &say);
-  BeckmannSlopeFinish(d, sb, &sbx, &sby);
-  BeckmannVisibleNormal(d, fa, va, sax, say, max, may, maz);
-  BeckmannVisibleNormal(d, fb, vb, sbx, sby, mbx, mby, mbz);
-  *valid_a = ValidNormal(d, waz, max, may, maz);
-  *valid_b = ValidNormal(d, wbz, mbx, mby, mbz);
-}
-
-/// SampleMicrofacet: sets m and *pdf (0 and m = +z where the oracle returns those). g1_w, when
-/// non-null, is G1OverCos(d, f, w) computed already (Pdf's).
-HWY_INLINE void Sample(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 u_x, V8 u_y, V8* mx, V8* my,
-                       V8* mz, V8* pdf, const V8* g1_w = nullptr) {
-  const V8 zero = hn::Zero(d);
-  const M8 valid = SampleNormal(d, f, wx, wy, wz, u_x, u_y, mx, my, mz);
-  const V8 p = Pdf(d, f, wx, wy, wz, *mx, *my, *mz, g1_w);
+  const M8 valid = hn::And(hn::And(hn::Gt(wz, zero), hn::Gt(z, zero)),
+                           hn::And(hn::IsFinite(x), hn::IsFinite(y)));
+  x = hn::IfThenElseZero(valid, x), y = hn::IfThenElseZero(valid, y);
+  z = hn::IfThenElse(valid, z, one);
+  const V8 p = Pdf(d, f, wx, wy, wz, x, y, z, g1_w);
   *pdf = hn::IfThenElseZero(hn::And(valid, hn::And(hn::Gt(p, zero), hn::IsFinite(p))), p);
-}
-
-/// The lanes where Sample's *pdf > 0, for m = SampleNormal's (valid: its mask) and g1_w =
-/// G1OverCos(d, f, w), without computing D(m) where that is sure: in a lane with
-///   (m.x αv)² + (m.y αu)² < 32 (αu αv m.z)²   (tan²θm in α units, D's exponent, below 32),
-///   m.z > 1e-3, and (visible sampling) w·m > 1e-10 and 1e-10 < g1_w < 1e18,
-/// D(m) = e^(−q)/(π αu αv m.z⁴) with q < 32 (+ rounding) and π αu αv ≤ π 10⁴ (α ≤ 100) is
-/// ≥ 1.2e-14 / 3.2e4 > 3e-19, so D m.z > 1e-20 (D's cut) and D ≤ 1/(π 10⁻⁸ 10⁻¹²) < 4e19: D(m)
-/// g1_w (w·m) lies in [3e-39, 4e37], positive and finite. The visible samplers' slopes are
-/// erf⁻¹ of clamped arguments (|slope| ≤ 3.82 per axis, q ≤ 29.2), so every sampled lane but
-/// the degenerate ones passes; where a lane of `needed` does not, Pdf decides the block.
-HWY_INLINE M8 SamplePdfPositive(D8 d, const Dist8& f, V8 wx, V8 wy, V8 wz, V8 mx, V8 my, V8 mz,
-                                M8 valid, M8 needed, V8 g1_w) {
-  const V8 zero = hn::Zero(d), tiny = hn::Set(d, 1e-10f);
-  const V8 ex = hn::Mul(mx, f.av), ey = hn::Mul(my, f.au);
-  const V8 scale = hn::Mul(hn::Mul(f.au, f.av), mz);
-  const M8 d_sure = hn::And(hn::Lt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)),
-                                   hn::Mul(hn::Set(d, 32.0f), hn::Mul(scale, scale))),
-                            hn::Gt(mz, hn::Set(d, 1e-3f)));
-  const V8 wm = hn::Add(hn::Add(hn::Mul(wx, mx), hn::Mul(wy, my)), hn::Mul(wz, mz));
-  const M8 vis_sure =
-      hn::And(hn::Gt(wm, tiny), hn::And(hn::Gt(g1_w, tiny), hn::Lt(g1_w, hn::Set(d, 1e18f))));
-  const M8 sure = hn::And(d_sure, hn::Or(hn::Not(f.visible), vis_sure));
-  if (hn::AllFalse(d, hn::AndNot(sure, hn::And(valid, needed)))) return valid;
-  const V8 p = Pdf(d, f, wx, wy, wz, mx, my, mz, &g1_w);
-  return hn::And(valid, hn::And(hn::Gt(p, zero), hn::IsFinite(p)));
+  *mx = x, *my = y, *mz = z;
 }
 
 }  // namespace mf8

@@ -115,14 +115,16 @@ inline HWY_NOINLINE void ShadePlasticRows(const MaterialTables& m,
   };
   // A table of one coating (the usual case) has no blocks to group: when it is no longer than
   // the batch, checking its rows costs less than keying the batch's. A rough one's blocks also
-  // take the distribution as known (no per-block gathers of the coating column) and run in
-  // pairs whose microfacet samplers interleave (ShadePlasticRoughUniform).
+  // take the distribution as known (no per-block gathers of the coating column).
   const auto& dist = t.distribution;
   if (!dist.empty() && dist.size() <= n &&
       std::all_of(dist.begin(), dist.end(), [&dist](uint8_t v) { return v == dist[0]; })) {
     const CoatingDistribution one = static_cast<CoatingDistribution>(dist[0]);
     if (one == CoatingDistribution::kSmooth) return ForEachBlock(io, n, block);
-    return ShadePlasticRoughUniform(t, io, n, eval, sample, one);
+    return ForEachBlock(io, n, [&t, eval, sample, &one](const ShadeIo& b, size_t i) HWY_ATTR {
+      const D8 d;
+      PlasticRoughBlock(t, b, i, hn::Eq(hn::Zero(d), hn::Zero(d)), eval, sample, &one);
+    });
   }
   ForEachBlockGrouped(io, n, key, block);
 }

@@ -44,7 +44,6 @@ HWY_INLINE M8 RoughCoatingLanes(D8 d, const PlasticTable& t, const uint32_t* ind
 struct PlasticRoughLanes {
   mf8::Dist8 dist;
   V8 eta, ws, base_r, base_g, base_b, s_r, s_g, s_b;
-  V8 eta2_m1, eta2;  // η clamped (ClampRelIor): (η − 1)(η + 1) rounded, η²
   hn::Vec<hn::RebindToSigned<D8>> table;  // first entry of the row's T(μ) table
 };
 
@@ -59,10 +58,7 @@ HWY_INLINE PlasticRoughLanes GatherPlasticRough(D8 d, const PlasticTable& t, con
   c.dist.visible = hn::RebindMask(d, hn::Eq(dist, dist));  // MakeMicrofacet's default
   c.dist.au = mf8::ClampAlpha(d, Gather(d, t.alpha, index, i));
   c.dist.av = c.dist.au;
-  c.eta = ClampRelIor(d, Gather(d, t.eta, index, i));
-  const V8 one = hn::Set(d, 1.0f);
-  c.eta2_m1 = RoundedMul(d, hn::Sub(c.eta, one), hn::Add(c.eta, one));
-  c.eta2 = hn::Mul(c.eta, c.eta);
+  c.eta = Gather(d, t.eta, index, i);
   c.ws = Gather(d, t.specular_sampling_weight, index, i);
   c.base_r = Gather(d, t.base_r, index, i), c.base_g = Gather(d, t.base_g, index, i);
   c.base_b = Gather(d, t.base_b, index, i);
@@ -88,22 +84,6 @@ HWY_INLINE V8 CoatingTransmittance8(D8 d, const PlasticTable& t, const PlasticRo
   return hn::Add(hn::Mul(t0, hn::Sub(one, f)), hn::Mul(t1, f));
 }
 
-/// FresnelDielectric(cos_i, c.eta) where cos_i > 0 (the lobe's wo·h; F is not used in the other
-/// lanes): its operations, less the η clamp, the 1/η for cos_i < 0 and the transmitted cosine,
-/// with the η terms taken once per block (GatherPlasticRough).
-HWY_INLINE V8 CoatingFresnelAbove(D8 d, const PlasticRoughLanes& c, V8 cos_i) {
-  const V8 one = hn::Set(d, 1.0f);
-  const V8 cc = ClampCos(d, cos_i);
-  const V8 p = hn::Add(c.eta2_m1, RoundedMul(d, cc, cc));
-  const M8 refracts = hn::Gt(p, hn::Zero(d));
-  const V8 eta_ct = hn::Sqrt(hn::IfThenElseZero(refracts, p));
-  const V8 ct_over_eta = hn::Div(eta_ct, c.eta2);
-  const V8 rs = hn::Div(hn::Sub(cc, eta_ct), hn::Add(cc, eta_ct));
-  const V8 rp = hn::Div(hn::Sub(cc, ct_over_eta), hn::Add(cc, ct_over_eta));
-  const V8 f = hn::Mul(hn::Set(d, 0.5f), hn::Add(hn::Mul(rs, rs), hn::Mul(rp, rp)));
-  return hn::IfThenElse(refracts, f, one);
-}
-
 /// PlasticRoughEvalPdf: f into *fr, *fg, *fb, the pdf returned (both 0 unless wo.z, wi.z > 0).
 /// t_o: the coating's transmittance at wo.z, ps: CoatingSpecularProbability of it, g1o:
 /// G1OverCos(wo) (the three depend on wo only: computed once for eval and sample).
@@ -125,7 +105,8 @@ HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRou
   const V8 dv = mf8::D(d, c.dist, hx, hy, hz);
   const V8 wo_h = hn::Add(hn::Add(hn::Mul(ox, hx), hn::Mul(oy, hy)), hn::Mul(oz, hz));
   const M8 lobe = hn::And(has_h, hn::And(hn::Gt(dv, zero), hn::Gt(wo_h, zero)));
-  const V8 fresnel = CoatingFresnelAbove(d, c, wo_h);
+  V8 cos_t;
+  const V8 fresnel = FresnelDielectric(d, wo_h, c.eta, &cos_t);
   const V8 g1i = mf8::G1OverCos(d, c.dist, ix, iy, iz);
   const V8 s = hn::Mul(hn::Mul(fresnel, dv), hn::Mul(hn::Mul(quarter, g1o), g1i));
   const M8 add = hn::And(lobe, hn::And(hn::IsFinite(s), hn::Gt(s, zero)));
@@ -141,99 +122,10 @@ HWY_INLINE V8 PlasticRoughEvalPdf8(D8 d, const PlasticTable& t, const PlasticRou
   return hn::IfThenElseZero(hn::And(above, hn::IsFinite(pdf)), pdf);
 }
 
-/// Stores v into rows [i, i + Lanes) of col where `lanes` (every lane when `all`), keeping the
-/// others.
-HWY_INLINE void StoreLanes(D8 d, bool all, M8 lanes, V8 v, float* col, size_t i) {
+/// Stores v into rows [i, i + Lanes) of col where `lanes`, keeping the others.
+HWY_INLINE void StoreLanes(D8 d, M8 lanes, V8 v, float* col, size_t i) {
   if (col == nullptr) return;
-  Store(d, all ? v : hn::IfThenElse(lanes, v, Load(d, col, i)), col, i);
-}
-
-/// One block's inputs and the terms that depend on wo only (PlasticRoughBlock's first part).
-struct PlasticRoughStart {
-  PlasticRoughLanes c;
-  V8 ox, oy, oz, t_o, ps, g1o, ux, uy;
-  M8 rough, spec;
-  bool all;    // every lane rough
-  bool micro;  // a rough lane samples the specular lobe: the microfacet sampler runs
-};
-
-HWY_INLINE PlasticRoughStart StartPlasticRough(const PlasticTable& t, const ShadeIo& b, size_t i,
-                                               M8 rough, bool sample,
-                                               const CoatingDistribution* uniform) {
-  const D8 d;
-  PlasticRoughStart s;
-  s.rough = rough;
-  s.all = hn::AllTrue(d, rough);
-  s.c = GatherPlasticRough(d, t, b.index, i, uniform);
-  s.ox = In(d, b, kWoX, i), s.oy = In(d, b, kWoY, i), s.oz = In(d, b, kWoZ, i);
-  s.t_o = CoatingTransmittance8(d, t, s.c, s.oz);
-  s.ps = CoatingSpecularProbability(d, s.t_o, s.c.ws);
-  s.g1o = mf8::G1OverCos(d, s.c.dist, s.ox, s.oy, s.oz);
-  s.ux = hn::Zero(d), s.uy = s.ux;
-  s.spec = hn::FirstN(d, 0);  // none (eval only)
-  s.micro = false;
-  if (sample) {
-    s.ux = In(d, b, kUX, i), s.uy = In(d, b, kUY, i);
-    s.spec = hn::Lt(In(d, b, kULobe, i), s.ps);
-    s.micro = !hn::AllFalse(d, hn::And(rough, s.spec));
-  }
-  return s;
-}
-
-/// PlasticRoughBlock's second part, given the sampled microfacet normal m (valid: its lanes;
-/// used where s.micro): the sampled direction, the evals at the light direction and at it, the
-/// outputs. The light's eval follows the sampler in program order: it does not depend on the
-/// sampler's long chain, which out-of-order execution overlaps with it.
-HWY_INLINE void FinishPlasticRough(const PlasticTable& t, const ShadeIo& b, size_t i,
-                                   const PlasticRoughStart& s, M8 valid, V8 mx, V8 my, V8 mz,
-                                   bool eval, bool sample) {
-  const D8 d;
-  const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-  const PlasticRoughLanes& c = s.c;
-  const M8 rough = s.rough, spec = s.spec;
-  const bool all = s.all;
-  V8 ix = zero, iy = zero, iz = zero;
-  M8 drawn = hn::Not(spec);  // the cosine lobe always draws; the specular one where pm > 0
-  if (sample) {
-    if (s.micro) {
-      // Only pm > 0 of the sampler's pdf is used: SamplePdfPositive skips D(m) where it is sure.
-      const M8 pm_pos = mf8::SamplePdfPositive(d, c.dist, s.ox, s.oy, s.oz, mx, my, mz, valid,
-                                               hn::And(rough, spec), s.g1o);
-      Reflect(d, s.ox, s.oy, s.oz, mx, my, mz, &ix, &iy, &iz);
-      drawn = hn::Or(drawn, hn::And(spec, pm_pos));
-    }
-    if (!hn::AllTrue(d, spec)) {
-      V8 cx, cy, cz;
-      SampleCosineHemisphere(d, s.ux, s.uy, &cx, &cy, &cz);
-      ix = hn::IfThenElse(spec, ix, cx), iy = hn::IfThenElse(spec, iy, cy);
-      iz = hn::IfThenElse(spec, iz, cz);
-    }
-  }
-  if (eval) {
-    V8 fr, fg, fb;
-    const V8 pdf_l =
-        PlasticRoughEvalPdf8(d, t, c, s.t_o, s.ps, s.g1o, s.ox, s.oy, s.oz, In(d, b, kWlX, i),
-                             In(d, b, kWlY, i), In(d, b, kWlZ, i), &fr, &fg, &fb);
-    StoreLanes(d, all, rough, fr, b.out[kFR], i), StoreLanes(d, all, rough, fg, b.out[kFG], i);
-    StoreLanes(d, all, rough, fb, b.out[kFB], i), StoreLanes(d, all, rough, pdf_l, b.out[kPdfL], i);
-  }
-  if (!sample) return;
-  V8 fr, fg, fb;
-  const V8 pdf = PlasticRoughEvalPdf8(d, t, c, s.t_o, s.ps, s.g1o, s.ox, s.oy, s.oz, ix, iy, iz,
-                                      &fr, &fg, &fb);
-  const V8 scale = hn::Div(iz, hn::IfThenElse(hn::Gt(pdf, zero), pdf, one));
-  const V8 wr = hn::Mul(fr, scale), wg = hn::Mul(fg, scale), wb = hn::Mul(fb, scale);
-  const M8 ok = hn::And(hn::And(drawn, hn::And(hn::Gt(s.oz, zero), hn::Gt(iz, zero))),
-                        hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
-  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, ix), b.out[kWiX], i);
-  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, iy), b.out[kWiY], i);
-  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, iz), b.out[kWiZ], i);
-  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, wr), b.out[kWR], i);
-  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, wg), b.out[kWG], i);
-  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, wb), b.out[kWB], i);
-  StoreLanes(d, all, rough, hn::IfThenElseZero(ok, pdf), b.out[kPdf], i);
-  StoreLanes(d, all, rough, one, b.out[kEta], i);
-  StoreLanes(d, all, rough, zero, b.out[kDelta], i);
+  Store(d, hn::IfThenElse(lanes, v, Load(d, col, i)), col, i);
 }
 
 /// PlasticRoughEvalPdf / PlasticRoughSample for the `rough` lanes of rows [i, i + Lanes) of the
@@ -243,60 +135,49 @@ HWY_INLINE void PlasticRoughBlock(const PlasticTable& t, const ShadeIo& b, size_
                                   bool eval, bool sample,
                                   const CoatingDistribution* uniform = nullptr) {
   const D8 d;
-  const PlasticRoughStart s = StartPlasticRough(t, b, i, rough, sample, uniform);
-  V8 mx = hn::Zero(d), my = mx, mz = mx;
-  M8 valid = hn::FirstN(d, 0);
-  if (s.micro) valid = mf8::SampleNormal(d, s.c.dist, s.ox, s.oy, s.oz, s.ux, s.uy, &mx, &my, &mz);
-  FinishPlasticRough(t, b, i, s, valid, mx, my, mz, eval, sample);
-}
-
-/// PlasticRoughBlock for every lane of rows [i, i + 2 Lanes): two blocks, whose microfacet
-/// samplers run together (mf8::SampleNormal2); each block's outputs are PlasticRoughBlock's.
-HWY_INLINE void PlasticRoughBlockPair(const PlasticTable& t, const ShadeIo& b, size_t i, bool eval,
-                                      bool sample, const CoatingDistribution* uniform) {
-  const D8 d;
-  const M8 every = hn::Eq(hn::Zero(d), hn::Zero(d));
-  const size_t j = i + hn::Lanes(d);
-  const PlasticRoughStart sa = StartPlasticRough(t, b, i, every, sample, uniform);
-  const PlasticRoughStart sb = StartPlasticRough(t, b, j, every, sample, uniform);
-  V8 max = hn::Zero(d), may = max, maz = max, mbx = max, mby = max, mbz = max;
-  M8 valid_a = hn::FirstN(d, 0), valid_b = valid_a;
-  if (sa.micro && sb.micro) {
-    mf8::SampleNormal2(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may, &maz, &valid_a,
-                       sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby, &mbz, &valid_b);
-  } else {
-    if (sa.micro)
-      valid_a =
-          mf8::SampleNormal(d, sa.c.dist, sa.ox, sa.oy, sa.oz, sa.ux, sa.uy, &max, &may, &maz);
-    if (sb.micro)
-      valid_b =
-          mf8::SampleNormal(d, sb.c.dist, sb.ox, sb.oy, sb.oz, sb.ux, sb.uy, &mbx, &mby, &mbz);
+  const V8 zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const PlasticRoughLanes c = GatherPlasticRough(d, t, b.index, i, uniform);
+  const V8 ox = In(d, b, kWoX, i), oy = In(d, b, kWoY, i), oz = In(d, b, kWoZ, i);
+  const V8 t_o = CoatingTransmittance8(d, t, c, oz);
+  const V8 ps = CoatingSpecularProbability(d, t_o, c.ws);
+  const V8 g1o = mf8::G1OverCos(d, c.dist, ox, oy, oz);
+  if (eval) {
+    V8 fr, fg, fb;
+    const V8 pdf_l = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, In(d, b, kWlX, i),
+                                          In(d, b, kWlY, i), In(d, b, kWlZ, i), &fr, &fg, &fb);
+    StoreLanes(d, rough, fr, b.out[kFR], i), StoreLanes(d, rough, fg, b.out[kFG], i);
+    StoreLanes(d, rough, fb, b.out[kFB], i), StoreLanes(d, rough, pdf_l, b.out[kPdfL], i);
   }
-  FinishPlasticRough(t, b, i, sa, valid_a, max, may, maz, eval, sample);
-  FinishPlasticRough(t, b, j, sb, valid_b, mbx, mby, mbz, eval, sample);
-}
-
-/// The plastic batch of a table whose rows are all rough with one distribution (`uniform`):
-/// pairs of blocks (PlasticRoughBlockPair), then ForEachBlock over the rest.
-inline HWY_NOINLINE void ShadePlasticRoughUniform(const PlasticTable& t, const ShadeIo& io,
-                                                  size_t n, bool eval, bool sample,
-                                                  const CoatingDistribution& uniform) {
-  const D8 d;
-  const size_t pair = 2 * hn::Lanes(d);
-  size_t i = 0;
-  for (; i + pair <= n; i += pair) PlasticRoughBlockPair(t, io, i, eval, sample, &uniform);
-  if (i == n) return;
-  ShadeIo rest = io;  // rows [i, n)
-  rest.index = io.index + i;
-  if (io.entry != nullptr) rest.entry = io.entry + i;
-  for (auto& c : rest.in)
-    if (c != nullptr) c += i;
-  for (auto& c : rest.out)
-    if (c != nullptr) c += i;
-  ForEachBlock(rest, n - i, [&t, eval, sample, &uniform](const ShadeIo& b, size_t k) HWY_ATTR {
-    const D8 d8;
-    PlasticRoughBlock(t, b, k, hn::Eq(hn::Zero(d8), hn::Zero(d8)), eval, sample, &uniform);
-  });
+  if (!sample) return;
+  const V8 ux = In(d, b, kUX, i), uy = In(d, b, kUY, i);
+  const M8 spec = hn::Lt(In(d, b, kULobe, i), ps);
+  V8 ix = zero, iy = zero, iz = zero;
+  M8 drawn = hn::Not(spec);  // the cosine lobe always draws; the specular one where pm > 0
+  if (!hn::AllTrue(d, spec)) SampleCosineHemisphere(d, ux, uy, &ix, &iy, &iz);
+  if (!hn::AllFalse(d, hn::And(rough, spec))) {
+    V8 mx, my, mz, pm;
+    mf8::Sample(d, c.dist, ox, oy, oz, ux, uy, &mx, &my, &mz, &pm, &g1o);
+    V8 rx, ry, rz;
+    Reflect(d, ox, oy, oz, mx, my, mz, &rx, &ry, &rz);
+    ix = hn::IfThenElse(spec, rx, ix), iy = hn::IfThenElse(spec, ry, iy);
+    iz = hn::IfThenElse(spec, rz, iz);
+    drawn = hn::Or(drawn, hn::And(spec, hn::Gt(pm, zero)));
+  }
+  V8 fr, fg, fb;
+  const V8 pdf = PlasticRoughEvalPdf8(d, t, c, t_o, ps, g1o, ox, oy, oz, ix, iy, iz, &fr, &fg, &fb);
+  const V8 scale = hn::Div(iz, hn::IfThenElse(hn::Gt(pdf, zero), pdf, one));
+  const V8 wr = hn::Mul(fr, scale), wg = hn::Mul(fg, scale), wb = hn::Mul(fb, scale);
+  const M8 ok = hn::And(hn::And(drawn, hn::And(hn::Gt(oz, zero), hn::Gt(iz, zero))),
+                        hn::And(hn::Gt(pdf, zero), AllFinite3(d, wr, wg, wb)));
+  StoreLanes(d, rough, hn::IfThenElseZero(ok, ix), b.out[kWiX], i);
+  StoreLanes(d, rough, hn::IfThenElseZero(ok, iy), b.out[kWiY], i);
+  StoreLanes(d, rough, hn::IfThenElseZero(ok, iz), b.out[kWiZ], i);
+  StoreLanes(d, rough, hn::IfThenElseZero(ok, wr), b.out[kWR], i);
+  StoreLanes(d, rough, hn::IfThenElseZero(ok, wg), b.out[kWG], i);
+  StoreLanes(d, rough, hn::IfThenElseZero(ok, wb), b.out[kWB], i);
+  StoreLanes(d, rough, hn::IfThenElseZero(ok, pdf), b.out[kPdf], i);
+  StoreLanes(d, rough, one, b.out[kEta], i);
+  StoreLanes(d, rough, zero, b.out[kDelta], i);
 }
 
 }  // namespace HWY_NAMESPACE
