@@ -231,6 +231,15 @@ class Collapser {
     out_->depth = std::max(out_->depth, depth);
     uint32_t kids[8];
     const uint32_t num = Kids(b, kids);
+    // The children by their boxes' surface area, the largest last: the any-hit walks visit a
+    // node's children from the last to the first (simd/traverse8_single-inl.h,
+    // traverse8_packet_walk-inl.h), so a ray meets first the subtree it is most likely to enter,
+    // and in it, e.g., a floor whose two triangles span the scene (the rock field's ground: its
+    // camera rays' Occluded8 7.5 -> 19.3 M rays/s). Closest hits sort by distance and do not
+    // depend on the order.
+    std::stable_sort(kids, kids + num, [&](uint32_t x, uint32_t y) {
+      return HalfArea(bvh_.nodes[x]) < HalfArea(bvh_.nodes[y]);
+    });
     const Bvh8Ref ref = static_cast<Bvh8Ref>(cursor_);
     Bvh8Node& node = NewNode();  // the lines are allocated: the reference stays valid
     node.num_children = num;

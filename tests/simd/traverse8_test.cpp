@@ -750,6 +750,16 @@ TEST(Traverse8, Bvh8KeepsBinaryBoxesAndPartitionsTriangles) {
         EXPECT_EQ(node.lo_x[c], kInf);
         EXPECT_EQ(node.hi_x[c], -kInf);
       }
+      // The children by their boxes' half area, the largest last (the any-hit walks visit
+      // the last child first); the same float expression as the build's.
+      const auto half_area = [&node](uint32_t c) {
+        const float x = node.hi_x[c] - node.lo_x[c], y = node.hi_y[c] - node.lo_y[c],
+                    z = node.hi_z[c] - node.lo_z[c];
+        return x * y + y * z + z * x;
+      };
+      for (uint32_t c = 1; c < node.num_children; ++c) {
+        EXPECT_LE(half_area(c - 1), half_area(c)) << "slot " << c;
+      }
       // The leaf mask is the children's leaf bits, and names no empty slot.
       uint32_t leaves = 0;
       for (uint32_t c = 0; c < node.num_children; ++c) leaves |= IsLeaf(node.child[c]) << c;
