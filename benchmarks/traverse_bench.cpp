@@ -104,7 +104,7 @@ struct RaySet {
 struct BenchScene {
   std::string error;  // non-empty: the scene could not be made
   std::unique_ptr<Scene> scene;
-  TriangleTable terrain;  // the fractal terrain or the rock field (no scene file)
+  TriangleTable generated;  // the fractal terrain or the rock field (no scene file)
   const TriangleTable* triangles = nullptr;
   Bvh bvh;
   simd::Bvh8 bvh8;
@@ -226,16 +226,12 @@ std::unique_ptr<BenchScene> MakeScene(const std::string& name) {
   auto s = std::make_unique<BenchScene>();
   CameraDesc camera;
   LightSampler light;
-  if (name == "terrain") {
-    s->terrain = MakeFractalTerrain(kTerrainGridSize);
-    s->triangles = &s->terrain;
-    const TerrainView& v = kTerrainView;
-    camera = LookAtCamera(v.eye, v.target, v.up, v.fov_deg, v.width, v.height);
-  } else if (name == "rocks") {
-    // Many small objects: 16,384 closed rocks of 144 triangles over a ground quad (2.36 M
-    // triangles), seen from the terrain's viewpoint and lit by its light.
-    s->terrain = MakeRockField(kRockFieldRocks);
-    s->triangles = &s->terrain;
+  if (name == "terrain" || name == "rocks") {
+    // The rock field (many small objects: 16,384 closed rocks of 144 triangles over a ground
+    // quad, 2.36 M triangles) is seen from the terrain's viewpoint and lit by its light.
+    s->generated =
+        name == "terrain" ? MakeFractalTerrain(kTerrainGridSize) : MakeRockField(kRockFieldRocks);
+    s->triangles = &s->generated;
     const TerrainView& v = kTerrainView;
     camera = LookAtCamera(v.eye, v.target, v.up, v.fov_deg, v.width, v.height);
   } else if (name == "terrain16") {

@@ -235,8 +235,8 @@ class Collapser {
     // node's children from the last to the first (simd/traverse8_single-inl.h,
     // traverse8_packet_walk-inl.h), so a ray meets first the subtree it is most likely to enter,
     // and in it, e.g., a floor whose two triangles span the scene (the rock field's ground: its
-    // camera rays' Occluded8 7.5 -> 19.3 M rays/s). Closest hits sort by distance and do not
-    // depend on the order.
+    // camera rays' Occluded8 went from 0.52 to 1.22 of Embree; docs/traversal.md). Closest
+    // hits sort by distance and do not depend on the order.
     std::stable_sort(kids, kids + num, [&](uint32_t x, uint32_t y) {
       return HalfArea(bvh_.nodes[x]) < HalfArea(bvh_.nodes[y]);
     });
